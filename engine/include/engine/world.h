@@ -1,0 +1,139 @@
+// The world: body definitions, world settings, and World, which owns the bodies and steps them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/broadphase.h"
+#include "engine/collide.h"
+#include "engine/math.h"
+
+namespace engine {
+
+enum class ShapeType : std::uint8_t { kCircle, kBox };
+
+struct Shape {
+  ShapeType type = ShapeType::kCircle;
+  double radius = 0.5;             ///< m, circles only
+  Vec2 half_extents{0.5, 0.5};     ///< m, boxes only (half the width and height)
+};
+
+enum class Integrator : std::uint8_t {
+  kSemiImplicitEuler,  ///< velocity first, then position with the new velocity (symplectic)
+  kExplicitEuler,      ///< position with the old velocity, then velocity (the seed's)
+};
+
+enum class BroadPhaseType : std::uint8_t {
+  kAuto,           ///< all pairs for a handful of bodies, sweep and prune beyond
+  kAllPairs,
+  kSweepAndPrune,
+};
+
+struct BodyDef {
+  Shape shape;
+  Vec2 position;                  ///< centre, m
+  Vec2 velocity;                  ///< m/s
+  double angle = 0.0;             ///< rad (kept, not integrated, while rotation is off)
+  double angular_velocity = 0.0;  ///< rad/s
+  double mass = 0.0;              ///< kg; 0 means density × area
+  double density = 1.0;           ///< kg/m², used when mass is 0
+  bool is_static = false;         ///< infinite mass: never moves
+  double restitution = 0.2;
+  double friction = 0.3;
+  bool fixed_rotation = false;
+  bool bullet = false;
+};
+
+struct WorldDef {
+  Vec2 gravity{0.0, -9.8};              ///< m/s²
+  double dt = 1.0 / 60.0;               ///< the fixed step, s
+  bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
+  Integrator integrator = Integrator::kSemiImplicitEuler;
+  BroadPhaseType broad_phase = BroadPhaseType::kAuto;
+  int velocity_iterations = 10;         ///< passes of the contact solver per step
+  double restitution_threshold = 1.0;   ///< m/s; slower impacts do not bounce, so rest is quiet
+  double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
+  double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
+};
+
+/// A body's index in creation (scene) order.
+using BodyId = std::uint32_t;
+
+/// What every step writes.
+struct BodyState {
+  Vec2 position;
+  Vec2 velocity;
+  double angle = 0.0;
+  double angular_velocity = 0.0;
+};
+
+/// What a step only reads.
+struct BodyInfo {
+  Shape shape;
+  double mass = 0.0;      ///< kg; 0 for static bodies
+  double inv_mass = 0.0;  ///< 1/kg; 0 for static bodies, so impulses never move them
+  double restitution = 0.0;
+  double friction = 0.0;
+  bool is_static = false;
+  bool fixed_rotation = false;
+  bool bullet = false;
+};
+
+struct Contact {
+  BodyId a;
+  BodyId b;
+  Manifold manifold;
+  double restitution;  ///< the larger of the pair's
+  double friction;     ///< the geometric mean of the pair's
+};
+
+class World {
+ public:
+  /// Preconditions: dt > 0 and finite, finite gravity, iterations ≥ 1, slop and correction ≥ 0.
+  explicit World(const WorldDef& def);
+
+  /// Preconditions: positive finite size and mass (or density) for dynamic bodies, finite state.
+  BodyId CreateBody(const BodyDef& def);
+
+  /// Advances the world by one fixed step of `Def().dt`.
+  void Step();
+
+  /// Changes a dynamic body's velocity by impulse / mass (N·s, applied at the centre); static
+  /// bodies ignore it.
+  void ApplyLinearImpulse(BodyId id, Vec2 impulse);
+
+  std::size_t BodyCount() const { return states_.size(); }
+  const BodyState& State(BodyId id) const { return states_[id]; }
+  const BodyInfo& Info(BodyId id) const { return infos_[id]; }
+  AABB BodyBounds(BodyId id) const;
+  const WorldDef& Def() const { return def_; }
+  std::int64_t StepCount() const { return step_count_; }
+  /// The contacts found in the last step, in body-pair order.
+  const std::vector<Contact>& Contacts() const { return contacts_; }
+
+  /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
+  std::uint64_t StateHash() const;
+
+ private:
+  void IntegrateVelocities();
+  void FindCandidatePairs();
+  void BuildContacts();
+  void SolveContacts();
+  void IntegratePositions();
+  void CorrectPositions();
+
+  WorldDef def_;
+  std::vector<BodyState> states_;
+  std::vector<BodyInfo> infos_;
+  std::int64_t step_count_ = 0;
+
+  // Scratch reused across steps, so a step allocates nothing once the scene has settled in.
+  std::vector<AABB> bounds_;
+  std::vector<BodyPair> pairs_;
+  std::vector<Contact> contacts_;
+  std::vector<Vec2> positions_before_;
+  SweepAndPrune sweep_and_prune_;
+};
+
+}  // namespace engine

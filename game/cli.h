@@ -1,0 +1,53 @@
+// The command line (contract: ballbox render | sim | play, --help, --version), parsed into options.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "game/status.h"
+
+namespace game {
+
+/// What every simulating command shares.
+struct RunOptions {
+  std::optional<std::string> scene_path;   ///< none: the embedded default scene
+  std::optional<std::string> script_path;  ///< none: no events (the default scene's demo script)
+  int width = 800;
+  int height = 600;
+};
+
+struct SimOptions {
+  RunOptions run;
+  std::int64_t steps = 0;
+  std::optional<std::string> dump_path;
+  std::int64_t dump_every = 1;
+};
+
+struct RenderOptions {
+  RunOptions run;
+  std::int64_t frames = 300;
+  std::int64_t every = 1;
+  std::optional<std::string> out_dir;  ///< none: out/<scene name>
+};
+
+struct PlayOptions {
+  RunOptions run;
+  std::optional<std::string> record_path;
+};
+
+enum class CommandKind { kHelp, kVersion, kSim, kRender, kPlay };
+
+struct CommandLine {
+  CommandKind kind = CommandKind::kHelp;
+  std::string help_text;  ///< for kHelp: the usage to print
+  SimOptions sim;
+  RenderOptions render;
+  PlayOptions play;
+};
+
+/// Parses argv (without the program name). Bad usage is a Failure with exit code 2.
+Expected<CommandLine> ParseCommandLine(const std::vector<std::string>& args);
+
+}  // namespace game

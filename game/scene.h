@@ -1,0 +1,41 @@
+// Scene files (JSON, see docs/scene-format.md): parsed and validated into plain structs.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/world.h"
+#include "game/status.h"
+#include "render/camera.h"
+#include "render/color.h"
+
+namespace game {
+
+struct SceneBody {
+  std::string id;
+  engine::BodyDef def;
+  render::Color color;
+};
+
+struct Scene {
+  std::string name;
+  engine::WorldDef world;
+  std::optional<render::Camera> camera;  ///< none: fit all bodies
+  double click_max_impulse = 10.0;       ///< N·s at a ball's rim
+  std::vector<SceneBody> bodies;
+};
+
+/// Parses scene JSON. `file_label` names the source in messages; `default_name` is used when
+/// the scene has no "name". Every failure is bad input, with a line:column or a key path.
+Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
+                           const std::string& default_name);
+
+/// Reads and parses a scene file; its name defaults to the file's stem.
+Expected<Scene> LoadScene(const std::string& path);
+
+/// The engine world a scene describes, bodies in scene order (BodyId = index in `bodies`).
+engine::World BuildWorld(const Scene& scene);
+
+}  // namespace game

@@ -1,0 +1,26 @@
+// The camera: which part of the world an image shows, and the pixel <-> world mapping (no GL).
+#pragma once
+
+#include "engine/math.h"
+#include "engine/world.h"
+
+namespace render {
+
+/// A view of the world: `center` lands at the image centre and `width` metres span the image's
+/// width; the visible height follows the image's aspect ratio.
+struct Camera {
+  engine::Vec2 center;
+  double width = 20.0;
+};
+
+/// Pixel coordinates are continuous with (0, 0) at the image's top-left corner and y down.
+/// World y points up. s = width / image_width metres per pixel.
+engine::Vec2 PixelToWorld(const Camera& camera, int image_width, int image_height, double px,
+                          double py);
+/// The inverse of PixelToWorld.
+engine::Vec2 WorldToPixel(const Camera& camera, int image_width, int image_height, engine::Vec2 p);
+
+/// A camera showing every body of the world with a margin around them, for scenes that set none.
+Camera FitCamera(const engine::World& world, int image_width, int image_height);
+
+}  // namespace render

@@ -1,0 +1,39 @@
+// Pixel <-> world mapping and the fit-everything camera.
+#include "render/camera.h"
+
+#include <algorithm>
+
+namespace render {
+
+engine::Vec2 PixelToWorld(const Camera& camera, int image_width, int image_height, double px,
+                          double py) {
+  const double s = camera.width / image_width;
+  return {camera.center.x + (px - image_width / 2.0) * s,
+          camera.center.y - (py - image_height / 2.0) * s};
+}
+
+engine::Vec2 WorldToPixel(const Camera& camera, int image_width, int image_height, engine::Vec2 p) {
+  const double s = camera.width / image_width;
+  return {(p.x - camera.center.x) / s + image_width / 2.0,
+          image_height / 2.0 - (p.y - camera.center.y) / s};
+}
+
+Camera FitCamera(const engine::World& world, int image_width, int image_height) {
+  // A tenth of the larger side as margin on every side keeps bodies clear of the image edge.
+  constexpr double kMarginFraction = 0.1;
+  if (world.BodyCount() == 0) return Camera{};
+  engine::AABB all = world.BodyBounds(0);
+  for (engine::BodyId id = 1; id < world.BodyCount(); ++id) {
+    const engine::AABB b = world.BodyBounds(id);
+    all.lower = {std::min(all.lower.x, b.lower.x), std::min(all.lower.y, b.lower.y)};
+    all.upper = {std::max(all.upper.x, b.upper.x), std::max(all.upper.y, b.upper.y)};
+  }
+  const double w = all.upper.x - all.lower.x;
+  const double h = all.upper.y - all.lower.y;
+  const double aspect = static_cast<double>(image_width) / image_height;
+  const double fit_width = std::max(w, h * aspect);
+  const double margin = kMarginFraction * std::max(w, h * aspect);
+  return Camera{0.5 * (all.lower + all.upper), fit_width + 2.0 * margin};
+}
+
+}  // namespace render
