@@ -51,3 +51,8 @@ struct CommandLine {
 Expected<CommandLine> ParseCommandLine(const std::vector<std::string>& args);
 
 }  // namespace game
+
+namespace game {
+/// The program's version, e.g. "0.1.0".
+const char* VersionString();
+}  // namespace game

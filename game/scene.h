@@ -19,10 +19,16 @@ struct SceneBody {
   render::Color color;
 };
 
+/// The scene's camera; what it leaves out comes from a fit of all bodies.
+struct CameraDef {
+  std::optional<engine::Vec2> center;
+  std::optional<double> width;
+};
+
 struct Scene {
   std::string name;
   engine::WorldDef world;
-  std::optional<render::Camera> camera;  ///< none: fit all bodies
+  CameraDef camera;
   double click_max_impulse = 10.0;       ///< N·s at a ball's rim
   std::vector<SceneBody> bodies;
 };

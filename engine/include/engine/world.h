@@ -7,6 +7,7 @@
 
 #include "engine/broadphase.h"
 #include "engine/collide.h"
+#include "engine/contact.h"
 #include "engine/math.h"
 
 namespace engine {
@@ -57,9 +58,6 @@ struct WorldDef {
   double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
 };
 
-/// A body's index in creation (scene) order.
-using BodyId = std::uint32_t;
-
 /// What every step writes.
 struct BodyState {
   Vec2 position;
@@ -78,14 +76,6 @@ struct BodyInfo {
   bool is_static = false;
   bool fixed_rotation = false;
   bool bullet = false;
-};
-
-struct Contact {
-  BodyId a;
-  BodyId b;
-  Manifold manifold;
-  double restitution;  ///< the larger of the pair's
-  double friction;     ///< the geometric mean of the pair's
 };
 
 class World {
@@ -133,6 +123,8 @@ class World {
   std::vector<BodyPair> pairs_;
   std::vector<Contact> contacts_;
   std::vector<Vec2> positions_before_;
+  std::vector<Vec2> start_velocities_;
+  std::vector<ContactConstraint> constraints_;
   SweepAndPrune sweep_and_prune_;
 };
 

@@ -1,0 +1,84 @@
+// All-pairs and sweep-and-prune broad phases. Both emit pairs sorted by (a, b), so what the
+// solver sees never depends on how the pairs were found.
+#include "engine/broadphase.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace engine {
+
+namespace {
+
+bool PairLess(BodyPair p, BodyPair q) { return p.a != q.a ? p.a < q.a : p.b < q.b; }
+
+BodyPair MakePair(std::uint32_t i, std::uint32_t j) { return i < j ? BodyPair{i, j} : BodyPair{j, i}; }
+
+}  // namespace
+
+void FindPairsAllPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+  pairs->clear();
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t j = i + 1; j < n; ++j) {
+      if (Overlaps(boxes[i], boxes[j])) pairs->push_back({i, j});
+    }
+  }
+}
+
+void SweepAndPrune::Rebuild(std::span<const AABB> boxes) {
+  endpoints_.clear();
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    endpoints_.push_back({boxes[i].lower.x, i, false});
+    endpoints_.push_back({boxes[i].upper.x, i, true});
+  }
+}
+
+void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+  if (endpoints_.size() != 2 * boxes.size()) Rebuild(boxes);
+
+  // Refresh the values in place, then restore the order by insertion sort: after a small step
+  // almost nothing moves, so this is close to linear. At equal values a lower end sorts before
+  // an upper end, so boxes that exactly touch are still reported.
+  for (Endpoint& e : endpoints_) {
+    e.value = e.is_max ? boxes[e.body].upper.x : boxes[e.body].lower.x;
+  }
+  auto less = [](const Endpoint& p, const Endpoint& q) {
+    return p.value < q.value || (p.value == q.value && !p.is_max && q.is_max);
+  };
+  std::int64_t swaps = 0;
+  for (std::size_t i = 1; i < endpoints_.size(); ++i) {
+    const Endpoint key = endpoints_[i];
+    std::size_t j = i;
+    while (j > 0 && less(key, endpoints_[j - 1])) {
+      endpoints_[j] = endpoints_[j - 1];
+      --j;
+      ++swaps;
+    }
+    endpoints_[j] = key;
+  }
+  last_swap_count_ = swaps;
+
+  // Sweep x: every body whose interval is open when another's opens overlaps it in x.
+  pairs->clear();
+  active_.clear();
+  for (const Endpoint& e : endpoints_) {
+    if (e.is_max) {
+      auto it = std::find(active_.begin(), active_.end(), e.body);
+      assert(it != active_.end());
+      *it = active_.back();
+      active_.pop_back();
+      continue;
+    }
+    const AABB& box = boxes[e.body];
+    for (std::uint32_t other : active_) {
+      const AABB& o = boxes[other];
+      if (box.lower.y <= o.upper.y && o.lower.y <= box.upper.y) {
+        pairs->push_back(MakePair(e.body, other));
+      }
+    }
+    active_.push_back(e.body);
+  }
+  std::sort(pairs->begin(), pairs->end(), PairLess);
+}
+
+}  // namespace engine

@@ -1,0 +1,102 @@
+// Narrow phase for circles and axis-aligned boxes. Touching counts as contact (depth 0), so a
+// body resting exactly on another is held from its first step.
+#include "engine/collide.h"
+
+#include <cmath>
+
+namespace engine {
+
+bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out) {
+  const Vec2 d = center_b - center_a;
+  const double distance_squared = LengthSquared(d);
+  const double radii = radius_a + radius_b;
+  if (distance_squared > radii * radii) return false;
+  const double distance = std::sqrt(distance_squared);
+  // Concentric circles have no direction between them; push B straight up, deterministically.
+  const Vec2 normal = distance > 0.0 ? d / distance : Vec2{0.0, 1.0};
+  const Vec2 surface_a = center_a + radius_a * normal;
+  const Vec2 surface_b = center_b - radius_b * normal;
+  out->normal = normal;
+  out->points[0] = {0.5 * (surface_a + surface_b), radii - distance};
+  out->point_count = 1;
+  return true;
+}
+
+namespace {
+
+// The face of a box (centre c, half extents h) nearest to an interior point p, as the outward
+// normal and the distance from p to that face. Ties go to the first of +y, −y, +x, −x, so the
+// answer never depends on anything but the numbers.
+void NearestFace(Vec2 p, Vec2 c, Vec2 h, Vec2* outward, double* distance) {
+  const Vec2 local = p - c;
+  const double to_face[4] = {h.y - local.y, h.y + local.y, h.x - local.x, h.x + local.x};
+  const Vec2 normals[4] = {{0.0, 1.0}, {0.0, -1.0}, {1.0, 0.0}, {-1.0, 0.0}};
+  int best = 0;
+  for (int i = 1; i < 4; ++i) {
+    if (to_face[i] < to_face[best]) best = i;
+  }
+  *outward = normals[best];
+  *distance = to_face[best];
+}
+
+}  // namespace
+
+bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b, Manifold* out) {
+  const Vec2 lower = center_b - half_b;
+  const Vec2 upper = center_b + half_b;
+  const Vec2 closest = {Clamp(center_a.x, lower.x, upper.x), Clamp(center_a.y, lower.y, upper.y)};
+  const Vec2 d = closest - center_a;
+  const double distance_squared = LengthSquared(d);
+  if (distance_squared > radius_a * radius_a) return false;
+
+  if (distance_squared > 0.0) {
+    // Centre outside the box: the contact is at the box's closest point.
+    const double distance = std::sqrt(distance_squared);
+    const Vec2 normal = d / distance;
+    const Vec2 surface_a = center_a + radius_a * normal;
+    out->normal = normal;
+    out->points[0] = {0.5 * (surface_a + closest), radius_a - distance};
+  } else {
+    // Centre inside (or on the boundary of) the box: leave through the nearest face.
+    Vec2 outward;
+    double to_face;
+    NearestFace(center_a, center_b, half_b, &outward, &to_face);
+    const Vec2 face_point = center_a + to_face * outward;
+    const Vec2 surface_a = center_a - radius_a * outward;
+    out->normal = -outward;
+    out->points[0] = {0.5 * (surface_a + face_point), radius_a + to_face};
+  }
+  out->point_count = 1;
+  return true;
+}
+
+bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out) {
+  const Vec2 d = center_b - center_a;
+  const double overlap_x = half_a.x + half_b.x - std::abs(d.x);
+  const double overlap_y = half_a.y + half_b.y - std::abs(d.y);
+  if (overlap_x < 0.0 || overlap_y < 0.0) return false;
+
+  const Vec2 lower = {std::fmax(center_a.x - half_a.x, center_b.x - half_b.x),
+                      std::fmax(center_a.y - half_a.y, center_b.y - half_b.y)};
+  const Vec2 upper = {std::fmin(center_a.x + half_a.x, center_b.x + half_b.x),
+                      std::fmin(center_a.y + half_a.y, center_b.y + half_b.y)};
+  // Separate along the axis of least overlap; ties go to y, the axis gravity presses along,
+  // so a box landing exactly on a corner is stood up rather than pushed aside. On a tie in
+  // position too (d = 0) B goes up or right.
+  if (overlap_y <= overlap_x) {
+    const double middle_y = 0.5 * (lower.y + upper.y);
+    out->normal = {0.0, d.y >= 0.0 ? 1.0 : -1.0};
+    out->points[0] = {{lower.x, middle_y}, overlap_y};
+    out->points[1] = {{upper.x, middle_y}, overlap_y};
+  } else {
+    const double middle_x = 0.5 * (lower.x + upper.x);
+    out->normal = {d.x >= 0.0 ? 1.0 : -1.0, 0.0};
+    out->points[0] = {{middle_x, lower.y}, overlap_x};
+    out->points[1] = {{middle_x, upper.y}, overlap_x};
+  }
+  // Corner to corner the overlap is one point; two identical points would double its impulse.
+  out->point_count = out->points[0].point == out->points[1].point ? 1 : 2;
+  return true;
+}
+
+}  // namespace engine

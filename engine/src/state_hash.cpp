@@ -1,0 +1,38 @@
+// The state hash of the contract: FNV-1a 64 over the little-endian IEEE-754 bytes of
+// x, y, vx, vy, angle, ω of every body in scene order.
+#include <bit>
+#include <cstdint>
+
+#include "engine/world.h"
+
+namespace engine {
+
+namespace {
+
+constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ULL;
+constexpr std::uint64_t kFnvPrime = 0x100000001b3ULL;
+
+void HashDouble(double value, std::uint64_t* hash) {
+  const auto bits = std::bit_cast<std::uint64_t>(value);
+  for (int byte = 0; byte < 8; ++byte) {  // least significant byte first: little-endian order
+    *hash ^= (bits >> (8 * byte)) & 0xffu;
+    *hash *= kFnvPrime;
+  }
+}
+
+}  // namespace
+
+std::uint64_t World::StateHash() const {
+  std::uint64_t hash = kFnvOffset;
+  for (const BodyState& s : states_) {
+    HashDouble(s.position.x, &hash);
+    HashDouble(s.position.y, &hash);
+    HashDouble(s.velocity.x, &hash);
+    HashDouble(s.velocity.y, &hash);
+    HashDouble(s.angle, &hash);
+    HashDouble(s.angular_velocity, &hash);
+  }
+  return hash;
+}
+
+}  // namespace engine

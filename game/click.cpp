@@ -1,0 +1,35 @@
+// The click rule, written in the contract's own order of operations so results match it bit for bit.
+#include "game/click.h"
+
+namespace game {
+
+engine::Vec2 ClickImpulse(engine::Vec2 center, double radius, engine::Vec2 p, double max_impulse) {
+  const engine::Vec2 away = center - p;
+  const double d = engine::Length(away);
+  if (d == 0.0) return {};  // the exact centre has no direction to push in
+  const double strength = max_impulse * (d / radius);
+  return {strength * away.x / d, strength * away.y / d};
+}
+
+std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
+                                     double max_impulse) {
+  // Scan from the back: the last ball in scene order is drawn on top, so it takes the click.
+  for (std::size_t i = world.BodyCount(); i-- > 0;) {
+    const auto id = static_cast<engine::BodyId>(i);
+    const engine::BodyInfo& info = world.Info(id);
+    if (info.is_static || info.shape.type != engine::ShapeType::kCircle) continue;
+    const engine::Vec2 center = world.State(id).position;
+    const double r = info.shape.radius;
+    if (engine::LengthSquared(p - center) > r * r) continue;
+    return ClickHit{id, ClickImpulse(center, r, p, max_impulse)};
+  }
+  return std::nullopt;
+}
+
+std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double max_impulse) {
+  const std::optional<ClickHit> hit = ResolveClick(world, p, max_impulse);
+  if (hit) world.ApplyLinearImpulse(hit->body, hit->impulse);
+  return hit;
+}
+
+}  // namespace game

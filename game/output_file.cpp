@@ -1,0 +1,44 @@
+// Temporary-then-rename output, so an interrupted or failed run leaves no half-written file.
+#include "game/output_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace game {
+
+Expected<AtomicOutputFile> AtomicOutputFile::Open(const std::string& path) {
+  std::string temp_path = path + ".tmp-" + std::to_string(::getpid());
+  std::FILE* file = std::fopen(temp_path.c_str(), "wb");
+  if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
+  return AtomicOutputFile(path, std::move(temp_path), file);
+}
+
+AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
+    : path_(std::move(other.path_)), temp_path_(std::move(other.temp_path_)), file_(other.file_) {
+  other.file_ = nullptr;
+  other.temp_path_.clear();
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (file_) std::fclose(file_);
+  if (!temp_path_.empty()) std::remove(temp_path_.c_str());
+}
+
+Status AtomicOutputFile::Commit() {
+  const bool written = std::fflush(file_) == 0 && !std::ferror(file_);
+  const int saved_errno = errno;
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  if (!written || !closed) {
+    return RuntimeFailure(path_ + ": cannot write: " + std::strerror(written ? errno : saved_errno));
+  }
+  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+    return RuntimeFailure(path_ + ": cannot write: " + std::strerror(errno));
+  }
+  temp_path_.clear();
+  return std::nullopt;
+}
+
+}  // namespace game

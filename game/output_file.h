@@ -1,0 +1,32 @@
+// Output files that appear whole or not at all: written under a temporary name, then renamed.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "game/status.h"
+
+namespace game {
+
+class AtomicOutputFile {
+ public:
+  /// Opens `path`.tmp-<pid> beside `path` for writing.
+  static Expected<AtomicOutputFile> Open(const std::string& path);
+  AtomicOutputFile(AtomicOutputFile&& other) noexcept;
+  AtomicOutputFile& operator=(AtomicOutputFile&&) = delete;
+  /// Removes the temporary file unless Commit succeeded.
+  ~AtomicOutputFile();
+
+  std::FILE* Stream() { return file_; }
+  /// Flushes, closes and renames the temporary file to its final name.
+  Status Commit();
+
+ private:
+  AtomicOutputFile(std::string path, std::string temp_path, std::FILE* file)
+      : path_(std::move(path)), temp_path_(std::move(temp_path)), file_(file) {}
+  std::string path_;
+  std::string temp_path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace game

@@ -1,0 +1,336 @@
+// Scene loading: JSON text -> checked Scene. Every value is validated here, at the edge, and
+// each failure names the file and the key path (`bodies[2].radius: must be > 0`).
+#include "game/scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "game/text_file.h"
+
+namespace game {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// Thrown inside the reader and turned into a Failure at its top: validation reads straight down.
+struct SceneError {
+  std::string path;
+  std::string message;
+};
+
+std::string Join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+// Edit distance, to suggest the key a typo meant.
+std::size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+void RejectUnknownKeys(const Json& object, const std::string& path,
+                       std::initializer_list<const char*> known) {
+  for (const auto& item : object.items()) {
+    bool is_known = false;
+    std::string suggestion;
+    std::size_t best = 3;  // suggest only close matches
+    for (const char* k : known) {
+      if (item.key() == k) is_known = true;
+      const std::size_t distance = EditDistance(item.key(), k);
+      if (distance < best) best = distance, suggestion = k;
+    }
+    if (is_known) continue;
+    std::string message = "unknown key \"" + item.key() + "\"";
+    if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
+    throw SceneError{path, message};
+  }
+}
+
+const Json* Find(const Json& object, const char* key) {
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+double ReadNumber(const Json& value, const std::string& path) {
+  if (!value.is_number()) throw SceneError{path, "must be a number"};
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) throw SceneError{path, "must be finite"};
+  return v;
+}
+
+double ReadPositive(const Json& value, const std::string& path) {
+  const double v = ReadNumber(value, path);
+  if (!(v > 0.0)) throw SceneError{path, "must be > 0"};
+  return v;
+}
+
+double ReadNonNegative(const Json& value, const std::string& path) {
+  const double v = ReadNumber(value, path);
+  if (v < 0.0) throw SceneError{path, "must be >= 0"};
+  return v;
+}
+
+engine::Vec2 ReadVec2(const Json& value, const std::string& path) {
+  if (!value.is_array() || value.size() != 2) throw SceneError{path, "must be an array of 2 numbers"};
+  return {ReadNumber(value[0], path + "[0]"), ReadNumber(value[1], path + "[1]")};
+}
+
+bool ReadBool(const Json& value, const std::string& path) {
+  if (!value.is_boolean()) throw SceneError{path, "must be true or false"};
+  return value.get<bool>();
+}
+
+std::string ReadString(const Json& value, const std::string& path) {
+  if (!value.is_string()) throw SceneError{path, "must be a string"};
+  return value.get<std::string>();
+}
+
+template <class Enum>
+Enum ReadChoice(const Json& value, const std::string& path,
+                std::initializer_list<std::pair<const char*, Enum>> choices) {
+  const std::string name = ReadString(value, path);
+  std::string expected;
+  for (const auto& [label, choice] : choices) {
+    if (name == label) return choice;
+    expected += (expected.empty() ? "\"" : ", \"") + std::string(label) + "\"";
+  }
+  throw SceneError{path, "unknown value \"" + name + "\" (expected one of " + expected + ")"};
+}
+
+int HexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+render::Color ReadColor(const Json& value, const std::string& path) {
+  const std::string text = ReadString(value, path);
+  const bool short_form = text.size() == 4;
+  const bool valid_shape = text.size() >= 1 && text[0] == '#' && (short_form || text.size() == 7);
+  bool valid_digits = valid_shape;
+  for (std::size_t i = 1; valid_digits && i < text.size(); ++i) valid_digits = HexDigit(text[i]) >= 0;
+  if (!valid_digits) throw SceneError{path, "must be a colour \"#rgb\" or \"#rrggbb\", got \"" + text + "\""};
+  auto channel = [&](int i) -> std::uint8_t {
+    if (short_form) return static_cast<std::uint8_t>(HexDigit(text[1 + i]) * 17);
+    return static_cast<std::uint8_t>(HexDigit(text[1 + 2 * i]) * 16 + HexDigit(text[2 + 2 * i]));
+  };
+  return {channel(0), channel(1), channel(2)};
+}
+
+void ReadSolver(const Json& solver, const std::string& path, engine::WorldDef* world) {
+  if (!solver.is_object()) throw SceneError{path, "must be an object"};
+  RejectUnknownKeys(solver, path,
+                    {"iterations", "restitution_threshold", "slop", "position_correction"});
+  if (const Json* v = Find(solver, "iterations")) {
+    const double n = ReadPositive(*v, Join(path, "iterations"));
+    if (n != std::floor(n) || n > 1000) {
+      throw SceneError{Join(path, "iterations"), "must be a whole number from 1 to 1000"};
+    }
+    world->velocity_iterations = static_cast<int>(n);
+  }
+  if (const Json* v = Find(solver, "restitution_threshold")) {
+    world->restitution_threshold = ReadNonNegative(*v, Join(path, "restitution_threshold"));
+  }
+  if (const Json* v = Find(solver, "slop")) world->linear_slop = ReadNonNegative(*v, Join(path, "slop"));
+  if (const Json* v = Find(solver, "position_correction")) {
+    const double c = ReadNonNegative(*v, Join(path, "position_correction"));
+    if (c > 1.0) throw SceneError{Join(path, "position_correction"), "must be from 0 to 1"};
+    world->position_correction = c;
+  }
+}
+
+SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index, bool rotation) {
+  if (!body.is_object()) throw SceneError{path, "must be an object"};
+  RejectUnknownKeys(body, path,
+                    {"id", "shape", "radius", "size", "position", "velocity", "angle",
+                     "angular_velocity", "mass", "density", "static", "restitution", "friction",
+                     "fixed_rotation", "bullet", "color"});
+  SceneBody out;
+  engine::BodyDef& def = out.def;
+  auto key = [&](const char* k) { return Join(path, k); };
+
+  out.id = "body" + std::to_string(index);
+  if (const Json* v = Find(body, "id")) {
+    out.id = ReadString(*v, key("id"));
+    if (out.id.empty()) throw SceneError{key("id"), "must not be empty"};
+  }
+
+  const Json* shape = Find(body, "shape");
+  if (!shape) throw SceneError{path, "needs a \"shape\" (\"circle\" or \"box\")"};
+  def.shape.type = ReadChoice<engine::ShapeType>(
+      *shape, key("shape"), {{"circle", engine::ShapeType::kCircle}, {"box", engine::ShapeType::kBox}});
+  if (def.shape.type == engine::ShapeType::kCircle) {
+    if (Find(body, "size")) throw SceneError{key("size"), "applies to boxes only; a circle has a \"radius\""};
+    const Json* radius = Find(body, "radius");
+    if (!radius) throw SceneError{path, "a circle needs a \"radius\""};
+    def.shape.radius = ReadPositive(*radius, key("radius"));
+  } else {
+    if (Find(body, "radius")) throw SceneError{key("radius"), "applies to circles only; a box has a \"size\""};
+    const Json* size = Find(body, "size");
+    if (!size) throw SceneError{path, "a box needs a \"size\" [width, height]"};
+    const engine::Vec2 s = ReadVec2(*size, key("size"));
+    if (!(s.x > 0.0)) throw SceneError{key("size") + "[0]", "must be > 0"};
+    if (!(s.y > 0.0)) throw SceneError{key("size") + "[1]", "must be > 0"};
+    def.shape.half_extents = 0.5 * s;
+  }
+
+  const Json* position = Find(body, "position");
+  if (!position) throw SceneError{path, "needs a \"position\" [x, y]"};
+  def.position = ReadVec2(*position, key("position"));
+
+  if (const Json* v = Find(body, "static")) def.is_static = ReadBool(*v, key("static"));
+  for (const char* moving_key : {"mass", "density", "velocity", "angular_velocity"}) {
+    if (def.is_static && Find(body, moving_key)) {
+      throw SceneError{key(moving_key), "a static body takes no mass, density or velocity"};
+    }
+  }
+  for (const char* angular_key : {"angle", "angular_velocity"}) {
+    if (!rotation && Find(body, angular_key)) {
+      throw SceneError{key(angular_key), "needs \"rotation\": true in the scene"};
+    }
+  }
+  if (const Json* v = Find(body, "velocity")) def.velocity = ReadVec2(*v, key("velocity"));
+  if (const Json* v = Find(body, "angle")) def.angle = ReadNumber(*v, key("angle"));
+  if (const Json* v = Find(body, "angular_velocity")) {
+    def.angular_velocity = ReadNumber(*v, key("angular_velocity"));
+  }
+  const Json* mass = Find(body, "mass");
+  const Json* density = Find(body, "density");
+  if (mass && density) throw SceneError{path, "give \"mass\" or \"density\", not both"};
+  if (mass) def.mass = ReadPositive(*mass, key("mass"));
+  if (density) def.density = ReadPositive(*density, key("density"));
+
+  if (const Json* v = Find(body, "restitution")) def.restitution = ReadNonNegative(*v, key("restitution"));
+  if (const Json* v = Find(body, "friction")) def.friction = ReadNonNegative(*v, key("friction"));
+  if (const Json* v = Find(body, "fixed_rotation")) def.fixed_rotation = ReadBool(*v, key("fixed_rotation"));
+  if (const Json* v = Find(body, "bullet")) def.bullet = ReadBool(*v, key("bullet"));
+
+  out.color = def.is_static ? render::kStaticColor : render::PaletteColor(index);
+  if (const Json* v = Find(body, "color")) out.color = ReadColor(*v, key("color"));
+  return out;
+}
+
+Scene ReadScene(const Json& root, const std::string& default_name) {
+  if (!root.is_object()) throw SceneError{"", "a scene must be a JSON object"};
+  RejectUnknownKeys(root, "",
+                    {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
+                     "broad_phase", "solver"});
+  Scene scene;
+  scene.name = default_name;
+  if (const Json* v = Find(root, "name")) {
+    scene.name = ReadString(*v, "name");
+    if (scene.name.empty()) throw SceneError{"name", "must not be empty"};
+  }
+  engine::WorldDef& world = scene.world;
+  if (const Json* v = Find(root, "gravity")) world.gravity = ReadVec2(*v, "gravity");
+  if (const Json* v = Find(root, "dt")) world.dt = ReadPositive(*v, "dt");
+  if (const Json* v = Find(root, "rotation")) world.rotation = ReadBool(*v, "rotation");
+  if (const Json* v = Find(root, "integrator")) {
+    world.integrator = ReadChoice<engine::Integrator>(
+        *v, "integrator",
+        {{"semi_implicit_euler", engine::Integrator::kSemiImplicitEuler},
+         {"explicit_euler", engine::Integrator::kExplicitEuler}});
+  }
+  if (const Json* v = Find(root, "broad_phase")) {
+    world.broad_phase = ReadChoice<engine::BroadPhaseType>(
+        *v, "broad_phase",
+        {{"auto", engine::BroadPhaseType::kAuto},
+         {"all_pairs", engine::BroadPhaseType::kAllPairs},
+         {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune}});
+  }
+  if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
+
+  if (const Json* camera = Find(root, "camera")) {
+    if (!camera->is_object()) throw SceneError{"camera", "must be an object"};
+    RejectUnknownKeys(*camera, "camera", {"center", "width"});
+    if (const Json* v = Find(*camera, "center")) scene.camera.center = ReadVec2(*v, "camera.center");
+    if (const Json* v = Find(*camera, "width")) scene.camera.width = ReadPositive(*v, "camera.width");
+  }
+  if (const Json* click = Find(root, "click")) {
+    if (!click->is_object()) throw SceneError{"click", "must be an object"};
+    RejectUnknownKeys(*click, "click", {"max_impulse"});
+    if (const Json* v = Find(*click, "max_impulse")) {
+      scene.click_max_impulse = ReadNonNegative(*v, "click.max_impulse");
+    }
+  }
+
+  const Json* bodies = Find(root, "bodies");
+  if (!bodies) throw SceneError{"", "a scene needs \"bodies\" (an array)"};
+  if (!bodies->is_array()) throw SceneError{"bodies", "must be an array"};
+  std::map<std::string, std::size_t> first_use;  // ordered: no hash-map order anywhere
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const std::string path = "bodies[" + std::to_string(i) + "]";
+    SceneBody body = ReadBody((*bodies)[i], path, i, world.rotation);
+    const auto [it, inserted] = first_use.emplace(body.id, i);
+    if (!inserted) {
+      throw SceneError{path + ".id", "duplicate id \"" + body.id + "\" (also bodies[" +
+                                         std::to_string(it->second) + "])"};
+    }
+    scene.bodies.push_back(std::move(body));
+  }
+  return scene;
+}
+
+// 1-based line and column of a byte offset, for syntax errors.
+std::string LineColumn(std::string_view text, std::size_t byte) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+}  // namespace
+
+Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
+                           const std::string& default_name) {
+  Json root;
+  try {
+    root = Json::parse(json.begin(), json.end());
+  } catch (const Json::parse_error& e) {
+    // nlohmann reports the byte just past the fault; the column is of the character at fault.
+    const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
+    std::string reason = e.what();
+    if (const auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
+    return BadInput(file_label + ":" + LineColumn(json, at) + ": " + reason);
+  }
+  try {
+    return ReadScene(root, default_name);
+  } catch (const SceneError& e) {
+    return BadInput(file_label + ": " + (e.path.empty() ? "" : e.path + ": ") + e.message);
+  }
+}
+
+Expected<Scene> LoadScene(const std::string& path) {
+  Expected<std::string> text = ReadTextFile(path);
+  if (!text.HasValue()) return text.Error();
+  return ParseScene(text.Value(), path, std::filesystem::path(path).stem().string());
+}
+
+engine::World BuildWorld(const Scene& scene) {
+  engine::World world(scene.world);
+  for (const SceneBody& body : scene.bodies) world.CreateBody(body.def);
+  return world;
+}
+
+}  // namespace game
