@@ -19,4 +19,7 @@ Color PaletteColor(std::size_t index);
 /// The colour static bodies get when their scene gives none.
 inline constexpr Color kStaticColor{0x5a, 0x60, 0x6b};
 
+/// What the renderer clears to: a warm off-white that every palette colour stands out from.
+inline constexpr Color kBackgroundColor{0xf4, 0xf1, 0xea};
+
 }  // namespace render

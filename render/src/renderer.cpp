@@ -1,0 +1,327 @@
+// The OpenGL renderer: every body is one instance of a quad whose fragment shader evaluates the
+// shape's signed distance, which gives smooth edges and outlines without multisampling.
+#include "render/renderer.h"
+
+#include <cassert>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "gl_functions.h"
+
+namespace render {
+namespace {
+
+// The unit quad, as a triangle strip; the vertex shader scales and turns it per body.
+constexpr float kQuadCorners[] = {-1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f};
+
+// What the shaders draw, per body.
+enum class Kind : int { kDisc = 0, kDiscWithSpoke = 1, kBox = 2 };
+
+struct Instance {
+  float center[2];      // m, relative to the camera centre (subtracted in double, so far-away
+                        // scenes keep their precision in float)
+  float half_size[2];   // m; a disc's radius twice
+  float rotation[2];    // cos and sin of the body's angle
+  std::uint8_t color[4];
+  float kind;           // a Kind
+};
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec2 corner;
+layout(location = 1) in vec2 center;
+layout(location = 2) in vec2 half_size_in;
+layout(location = 3) in vec2 rotation;
+layout(location = 4) in vec4 color;
+layout(location = 5) in float kind_in;
+
+uniform vec2 view_half_size;  // m
+uniform float pixel_size;     // m per pixel
+
+out vec2 local;  // m, in the body's own frame
+flat out vec2 half_size;
+flat out vec3 fill;
+flat out float kind;
+
+void main() {
+  // Two pixels beyond the shape leave room for its anti-aliased edge.
+  local = corner * (half_size_in + 2.0 * pixel_size);
+  vec2 offset = vec2(rotation.x * local.x - rotation.y * local.y,
+                     rotation.y * local.x + rotation.x * local.y);
+  gl_Position = vec4((center + offset) / view_half_size, 0.0, 1.0);
+  half_size = half_size_in;
+  fill = color.rgb;
+  kind = kind_in;
+}
+)";
+
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec2 local;
+flat in vec2 half_size;
+flat in vec3 fill;
+flat in float kind;
+
+uniform float pixel_size;  // m per pixel
+
+out vec4 frag_color;
+
+const float kOutlinePixels = 2.0;
+const float kOutlineShade = 0.55;  // the outline is the fill, darker
+
+float SignedDistance() {
+  if (kind < 1.5) return length(local) - half_size.x;
+  vec2 q = abs(local) - half_size;
+  return length(max(q, 0.0)) + min(max(q.x, q.y), 0.0);
+}
+
+void main() {
+  float d = SignedDistance();
+  // Coverage ramps across one pixel at the edge: anti-aliasing with no multisampling.
+  float coverage = clamp(0.5 - d / pixel_size, 0.0, 1.0);
+  if (coverage == 0.0) discard;
+  // Thin bodies keep some fill: the outline takes at most half of the smaller half-size.
+  float outline_width = min(kOutlinePixels * pixel_size, 0.5 * min(half_size.x, half_size.y));
+  vec3 outline = kOutlineShade * fill;
+  vec3 color = mix(fill, outline, clamp(0.5 + (d + outline_width) / pixel_size, 0.0, 1.0));
+  if (kind > 0.5 && kind < 1.5) {
+    // The spoke runs from the centre to the rim along the body's x axis: it shows the angle.
+    vec2 from_spoke = local - vec2(clamp(local.x, 0.0, half_size.x), 0.0);
+    float spoke = clamp(0.5 - (length(from_spoke) - 0.5 * outline_width) / pixel_size, 0.0, 1.0);
+    color = mix(color, outline, spoke);
+  }
+  frag_color = vec4(color, coverage);
+}
+)";
+
+bool CompileShader(const GlFunctions& fn, GLenum type, const char* source, GLuint& shader,
+                   std::string& error) {
+  shader = fn.CreateShader(type);
+  fn.ShaderSource(shader, 1, &source, nullptr);
+  fn.CompileShader(shader);
+  GLint ok = GL_FALSE;
+  fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok == GL_TRUE) return true;
+  char log[1024] = {};
+  fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+  error = std::string("the ") + (type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
+          " shader does not compile: " + log;
+  fn.DeleteShader(shader);
+  return false;
+}
+
+bool BuildProgram(const GlFunctions& fn, GLuint& program, std::string& error) {
+  GLuint vertex = 0;
+  GLuint fragment = 0;
+  if (!CompileShader(fn, GL_VERTEX_SHADER, kVertexShader, vertex, error)) return false;
+  if (!CompileShader(fn, GL_FRAGMENT_SHADER, kFragmentShader, fragment, error)) {
+    fn.DeleteShader(vertex);
+    return false;
+  }
+  program = fn.CreateProgram();
+  fn.AttachShader(program, vertex);
+  fn.AttachShader(program, fragment);
+  fn.LinkProgram(program);
+  // The program keeps the compiled code; the shader objects can go once it is linked.
+  fn.DeleteShader(vertex);
+  fn.DeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) return true;
+  char log[1024] = {};
+  fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
+  error = std::string("the shader program does not link: ") + log;
+  return false;
+}
+
+void SetInstanceAttribute(const GlFunctions& fn, GLuint location, GLint size, GLenum type,
+                          GLboolean normalized, std::size_t offset) {
+  fn.EnableVertexAttribArray(location);
+  fn.VertexAttribPointer(location, size, type, normalized, sizeof(Instance),
+                         reinterpret_cast<const void*>(offset));
+  fn.VertexAttribDivisor(location, 1);
+}
+
+}  // namespace
+
+struct Renderer::Gl {
+  GlFunctions fn;
+  int width = 0;
+  int height = 0;
+  GLuint program = 0;
+  GLint view_half_size_location = -1;
+  GLint pixel_size_location = -1;
+  GLuint vertex_array = 0;
+  GLuint quad_buffer = 0;
+  GLuint instance_buffer = 0;
+  GLuint framebuffer = 0;
+  GLuint color_buffer = 0;
+  std::vector<Instance> instances;     // reused every frame
+  std::vector<std::uint8_t> readback;  // bottom-up rows, as GL returns them
+
+  explicit Gl(const GlFunctions& functions) : fn(functions) {}
+  Gl(const Gl&) = delete;
+  Gl& operator=(const Gl&) = delete;
+  ~Gl() {
+    // GL ignores the name 0, so a half-built renderer cleans up the same way.
+    fn.DeleteProgram(program);
+    fn.DeleteBuffers(1, &quad_buffer);
+    fn.DeleteBuffers(1, &instance_buffer);
+    fn.DeleteVertexArrays(1, &vertex_array);
+    fn.DeleteFramebuffers(1, &framebuffer);
+    fn.DeleteRenderbuffers(1, &color_buffer);
+  }
+};
+
+std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, int height,
+                                           std::string& error) {
+  GlFunctions functions;
+  if (!LoadGlFunctions(context, functions, error)) return nullptr;
+  auto gl = std::make_unique<Gl>(functions);
+  const GlFunctions& fn = gl->fn;
+
+  GLint max_renderbuffer = 0;
+  GLint max_viewport[2] = {};
+  fn.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer);
+  fn.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+  if (width < 1 || height < 1 || width > max_renderbuffer || height > max_renderbuffer ||
+      width > max_viewport[0] || height > max_viewport[1]) {
+    error = "cannot render " + std::to_string(width) + "x" + std::to_string(height) +
+            " pixels: this OpenGL allows 1 to " + std::to_string(max_renderbuffer) +
+            " pixels a side";
+    return nullptr;
+  }
+  gl->width = width;
+  gl->height = height;
+
+  if (!BuildProgram(fn, gl->program, error)) return nullptr;
+  gl->view_half_size_location = fn.GetUniformLocation(gl->program, "view_half_size");
+  gl->pixel_size_location = fn.GetUniformLocation(gl->program, "pixel_size");
+
+  fn.GenVertexArrays(1, &gl->vertex_array);
+  fn.BindVertexArray(gl->vertex_array);
+  fn.GenBuffers(1, &gl->quad_buffer);
+  fn.BindBuffer(GL_ARRAY_BUFFER, gl->quad_buffer);
+  fn.BufferData(GL_ARRAY_BUFFER, sizeof kQuadCorners, kQuadCorners, GL_STATIC_DRAW);
+  fn.EnableVertexAttribArray(0);
+  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  fn.GenBuffers(1, &gl->instance_buffer);
+  fn.BindBuffer(GL_ARRAY_BUFFER, gl->instance_buffer);
+  SetInstanceAttribute(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(Instance, center));
+  SetInstanceAttribute(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Instance, half_size));
+  SetInstanceAttribute(fn, 3, 2, GL_FLOAT, GL_FALSE, offsetof(Instance, rotation));
+  // Normalised bytes reach the shader as exactly c / 255, so a body's fill lands in the image
+  // as exactly its scene colour.
+  SetInstanceAttribute(fn, 4, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Instance, color));
+  SetInstanceAttribute(fn, 5, 1, GL_FLOAT, GL_FALSE, offsetof(Instance, kind));
+
+  fn.GenRenderbuffers(1, &gl->color_buffer);
+  fn.BindRenderbuffer(GL_RENDERBUFFER, gl->color_buffer);
+  fn.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  fn.GenFramebuffers(1, &gl->framebuffer);
+  fn.BindFramebuffer(GL_FRAMEBUFFER, gl->framebuffer);
+  fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                             gl->color_buffer);
+  if (fn.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    error = "cannot render " + std::to_string(width) + "x" + std::to_string(height) +
+            " pixels: the OpenGL framebuffer is incomplete";
+    return nullptr;
+  }
+  if (const GLenum code = fn.GetError(); code != GL_NO_ERROR) {
+    error = "OpenGL error " + std::to_string(code) + " while setting up the renderer";
+    return nullptr;
+  }
+  return std::unique_ptr<Renderer>(new Renderer(std::move(gl)));
+}
+
+Renderer::Renderer(std::unique_ptr<Gl> gl) : gl_(std::move(gl)) {}
+Renderer::~Renderer() = default;
+
+int Renderer::Width() const { return gl_->width; }
+int Renderer::Height() const { return gl_->height; }
+
+std::string Renderer::Description() const {
+  auto text = [this](GLenum name) {
+    const GLubyte* s = gl_->fn.GetString(name);
+    return s == nullptr ? std::string("?") : std::string(reinterpret_cast<const char*>(s));
+  };
+  return text(GL_RENDERER) + ", " + text(GL_VERSION);
+}
+
+void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
+                    const Camera& camera) {
+  assert(colors.size() == world.BodyCount());
+  Gl& gl = *gl_;
+  const GlFunctions& fn = gl.fn;
+  // With rotation off the engine does no angular work, so angles are not part of the picture.
+  const bool rotation = world.Def().rotation;
+
+  gl.instances.clear();
+  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    const engine::BodyState& state = world.State(id);
+    const engine::Shape& shape = world.Info(id).shape;
+    const double angle = rotation ? state.angle : 0.0;
+    Instance instance{};
+    instance.center[0] = static_cast<float>(state.position.x - camera.center.x);
+    instance.center[1] = static_cast<float>(state.position.y - camera.center.y);
+    if (shape.type == engine::ShapeType::kCircle) {
+      instance.half_size[0] = instance.half_size[1] = static_cast<float>(shape.radius);
+      instance.kind = static_cast<float>(rotation ? Kind::kDiscWithSpoke : Kind::kDisc);
+    } else {
+      instance.half_size[0] = static_cast<float>(shape.half_extents.x);
+      instance.half_size[1] = static_cast<float>(shape.half_extents.y);
+      instance.kind = static_cast<float>(Kind::kBox);
+    }
+    instance.rotation[0] = static_cast<float>(std::cos(angle));
+    instance.rotation[1] = static_cast<float>(std::sin(angle));
+    const Color color = colors[id];
+    instance.color[0] = color.r;
+    instance.color[1] = color.g;
+    instance.color[2] = color.b;
+    instance.color[3] = 255;
+    gl.instances.push_back(instance);
+  }
+
+  // All state is set on every draw, so a window backend may share the context with other code.
+  fn.BindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  fn.Viewport(0, 0, gl.width, gl.height);
+  fn.ClearColor(kBackgroundColor.r / 255.0f, kBackgroundColor.g / 255.0f,
+                kBackgroundColor.b / 255.0f, 1.0f);
+  fn.Clear(GL_COLOR_BUFFER_BIT);
+  fn.Enable(GL_BLEND);
+  // Alpha accumulates towards 1 instead of being overwritten by the edge coverage, so the
+  // framebuffer stays opaque (a PNG with partial alpha looks washed out in viewers).
+  fn.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  fn.UseProgram(gl.program);
+  const double pixel_size = camera.width / gl.width;
+  fn.Uniform2f(gl.view_half_size_location, static_cast<float>(0.5 * camera.width),
+               static_cast<float>(0.5 * pixel_size * gl.height));
+  fn.Uniform1f(gl.pixel_size_location, static_cast<float>(pixel_size));
+  fn.BindVertexArray(gl.vertex_array);
+  fn.BindBuffer(GL_ARRAY_BUFFER, gl.instance_buffer);
+  fn.BufferData(GL_ARRAY_BUFFER, gl.instances.size() * sizeof(Instance), gl.instances.data(),
+                GL_STREAM_DRAW);
+  if (!gl.instances.empty()) {
+    fn.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(gl.instances.size()));
+  }
+}
+
+void Renderer::ReadImage(Image& image) {
+  Gl& gl = *gl_;
+  const std::size_t row_bytes = static_cast<std::size_t>(gl.width) * 3;
+  gl.readback.resize(row_bytes * gl.height);
+  gl.fn.BindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  gl.fn.PixelStorei(GL_PACK_ALIGNMENT, 1);  // RGB rows are not 4-byte multiples
+  gl.fn.ReadPixels(0, 0, gl.width, gl.height, GL_RGB, GL_UNSIGNED_BYTE, gl.readback.data());
+  // GL's row 0 is the bottom of the picture; images are top-down.
+  image.width = gl.width;
+  image.height = gl.height;
+  image.rgb.resize(gl.readback.size());
+  for (int row = 0; row < gl.height; ++row) {
+    std::memcpy(image.rgb.data() + row * row_bytes,
+                gl.readback.data() + (gl.height - 1 - row) * row_bytes, row_bytes);
+  }
+}
+
+}  // namespace render
