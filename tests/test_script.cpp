@@ -1,0 +1,155 @@
+// game::ParseScript / LoadScript / FormatScript: the input-script format, its errors and an exact round trip.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "game/script.h"
+
+namespace {
+
+std::string DataPath(const std::string& name) { return std::string(BALLBOX_TEST_DATA) + "/" + name; }
+
+// Loads tests/data/`file`; requires bad input reading `path:LINE: rest`.
+void RequireScriptError(const std::string& file, int line, const std::string& rest) {
+  const std::string path = DataPath(file);
+  const auto events = game::LoadScript(path);
+  REQUIRE_FALSE(events.HasValue());
+  CHECK(events.Error().exit_code == 2);
+  CHECK(events.Error().message == path + ":" + std::to_string(line) + ": " + rest);
+}
+
+// Parses inline text labelled "s.txt"; requires bad input with exactly `message`.
+void RequireParseError(const std::string& text, const std::string& message) {
+  const auto events = game::ParseScript(text, "s.txt");
+  REQUIRE_FALSE(events.HasValue());
+  CHECK(events.Error().exit_code == 2);
+  CHECK(events.Error().message == message);
+}
+
+std::uint64_t Bits(double d) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &d, sizeof bits);
+  return bits;
+}
+
+}  // namespace
+
+TEST_CASE("script with comments, blank lines, both events and equal steps", "[script]") {
+  const auto events = game::LoadScript(DataPath("script_good.txt"));
+  REQUIRE(events.HasValue());
+  const std::vector<game::InputEvent>& e = events.Value();
+  REQUIRE(e.size() == 4);
+  CHECK(e[0].step == 0);
+  CHECK(e[0].kind == game::EventKind::kClickPixel);
+  CHECK((e[0].at.x == 400.0 && e[0].at.y == 300.0));
+  CHECK(e[1].step == 30);
+  CHECK(e[1].kind == game::EventKind::kClickWorld);
+  CHECK((e[1].at.x == 1.5 && e[1].at.y == -2.25));
+  CHECK(e[2].step == 30);  // equal steps are allowed
+  CHECK((e[2].at.x == -0.125 && e[2].at.y == 0.001));
+  CHECK(e[3].step == 45);  // tabs separate fields; "#" ends the line even without a space
+  CHECK(e[3].kind == game::EventKind::kClickPixel);
+  CHECK((e[3].at.x == 12.5 && e[3].at.y == 0.75));
+}
+
+TEST_CASE("script that is empty or only comments has no events", "[script]") {
+  for (const char* text : {"", "\n\n", "# nothing\n   # still nothing\n", "   \t  "}) {
+    const auto events = game::ParseScript(text, "s.txt");
+    REQUIRE(events.HasValue());
+    CHECK(events.Value().empty());
+  }
+}
+
+TEST_CASE("script with CRLF line ends and no final newline", "[script]") {
+  const auto events = game::ParseScript("# header\r\n3 click-world 1 2\r\n4 click 5 6", "s.txt");
+  REQUIRE(events.HasValue());
+  REQUIRE(events.Value().size() == 2);
+  CHECK(events.Value()[0].at.y == 2.0);
+  CHECK(events.Value()[1].step == 4);
+  CHECK(events.Value()[1].at.y == 6.0);
+}
+
+TEST_CASE("script error: wrong field count names file and line", "[script]") {
+  RequireScriptError("script_field_count.txt", 3, "expected \"STEP EVENT X Y\", got 3 fields");
+}
+
+TEST_CASE("script error: one field and five fields", "[script]") {
+  RequireParseError("\n30\n", "s.txt:2: expected \"STEP EVENT X Y\", got 1 field");
+  RequireParseError("30 click 1 2 3\n", "s.txt:1: expected \"STEP EVENT X Y\", got 5 fields");
+}
+
+TEST_CASE("script error: step that is not a whole number", "[script]") {
+  RequireScriptError("script_bad_step.txt", 2, "step \"1.5\" is not a whole number >= 0");
+}
+
+TEST_CASE("script error: negative step", "[script]") {
+  RequireScriptError("script_negative_step.txt", 3, "step \"-3\" is not a whole number >= 0");
+}
+
+TEST_CASE("script error: step with letters or out of range", "[script]") {
+  RequireParseError("3a click 1 2", "s.txt:1: step \"3a\" is not a whole number >= 0");
+  RequireParseError("99999999999999999999 click 1 2",
+                    "s.txt:1: step \"99999999999999999999\" is not a whole number >= 0");
+}
+
+TEST_CASE("script error: unknown event", "[script]") {
+  RequireScriptError("script_unknown_event.txt", 2, "unknown event \"tap\" (expected \"click\" or \"click-world\")");
+}
+
+TEST_CASE("script error: non-finite x", "[script]") {
+  RequireScriptError("script_non_finite.txt", 3, "x \"nan\" is not a finite number");
+}
+
+TEST_CASE("script error: non-finite or malformed y", "[script]") {
+  RequireParseError("1 click 2 inf", "s.txt:1: y \"inf\" is not a finite number");
+  RequireParseError("1 click 2 1e999", "s.txt:1: y \"1e999\" is not a finite number");
+  RequireParseError("1 click 2 3px", "s.txt:1: y \"3px\" is not a finite number");
+}
+
+TEST_CASE("script error: decreasing steps", "[script]") {
+  RequireScriptError("script_decreasing.txt", 4,
+                     "step 5 comes before the previous event's step 10 (steps must not decrease)");
+}
+
+TEST_CASE("script error: a missing file", "[script]") {
+  const std::string path = DataPath("script_does_not_exist.txt");
+  const auto events = game::LoadScript(path);
+  REQUIRE_FALSE(events.HasValue());
+  CHECK(events.Error().exit_code == 2);
+  CHECK(events.Error().message == path + ": cannot open: No such file or directory");
+}
+
+TEST_CASE("FormatScript then ParseScript gives back bit-identical events", "[script]") {
+  const double values[] = {0.1,
+                           1e-300,
+                           123456.789,
+                           -0.0,
+                           1.0 / 3.0,
+                           std::numeric_limits<double>::max(),
+                           std::numeric_limits<double>::min(),
+                           std::numeric_limits<double>::denorm_min(),
+                           -2.5e-7};
+  std::vector<game::InputEvent> events;
+  std::int64_t step = 0;
+  for (double v : values) {
+    events.push_back({step, game::EventKind::kClickWorld, {v, -v}});
+    events.push_back({step, game::EventKind::kClickPixel, {0.7 * v, v}});
+    step += 17;
+  }
+  events.push_back({std::int64_t{1} << 40, game::EventKind::kClickPixel, {1.0, 2.0}});
+
+  const auto parsed = game::ParseScript(game::FormatScript(events), "round-trip");
+  REQUIRE(parsed.HasValue());
+  REQUIRE(parsed.Value().size() == events.size());
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    INFO("event " << i << " x " << events[i].at.x);
+    CHECK(parsed.Value()[i].step == events[i].step);
+    CHECK(parsed.Value()[i].kind == events[i].kind);
+    CHECK(Bits(parsed.Value()[i].at.x) == Bits(events[i].at.x));
+    CHECK(Bits(parsed.Value()[i].at.y) == Bits(events[i].at.y));
+  }
+}
