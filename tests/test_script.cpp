@@ -97,7 +97,8 @@ TEST_CASE("script error: step with letters or out of range", "[script]") {
 }
 
 TEST_CASE("script error: unknown event", "[script]") {
-  RequireScriptError("script_unknown_event.txt", 2, "unknown event \"tap\" (expected \"click\" or \"click-world\")");
+  RequireScriptError("script_unknown_event.txt", 2,
+                     "unknown event \"tap\" (expected \"click\" or \"click-world\")");
 }
 
 TEST_CASE("script error: non-finite x", "[script]") {
