@@ -2,8 +2,10 @@
 // writing run on FrameWriter's threads, so the simulation runs ahead while frames are encoded.
 #include "game/frame_sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <string_view>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -14,6 +16,46 @@
 #include "render/renderer.h"
 
 namespace game {
+
+namespace {
+
+// Frames past this run's last, left in the folder by an earlier and longer run, would pass for
+// part of this film (a video tool takes every frame_*.png). Only names this program writes are
+// touched: frame_ with the index as FrameFileName spells it, then .png.
+Status RemoveStaleFrames(const std::string& dir, std::int64_t frames) {
+  std::vector<std::filesystem::path> stale;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    constexpr std::string_view kPrefix = "frame_";
+    constexpr std::string_view kSuffix = ".png";
+    if (name.size() <= kPrefix.size() + kSuffix.size() || !name.starts_with(kPrefix) ||
+        !name.ends_with(kSuffix)) {
+      continue;
+    }
+    const std::string digits =
+        name.substr(kPrefix.size(), name.size() - kPrefix.size() - kSuffix.size());
+    if (digits.size() > 18 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      continue;
+    }
+    const std::int64_t index = std::stoll(digits);
+    if (index >= frames && FrameFileName(index) == name && entry.is_regular_file()) {
+      stale.push_back(entry.path());
+    }
+  }
+  if (ec) return RuntimeFailure(dir + ": cannot list the output folder: " + ec.message());
+  for (const std::filesystem::path& path : stale) {
+    std::filesystem::remove(path, ec);
+    if (ec) {
+      return RuntimeFailure(path.string() + ": cannot remove this frame of an earlier run: " +
+                            ec.message());
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
                                                  const FrameSequenceOptions& options) {
@@ -59,6 +101,7 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
   const Status written = writer.Finish();
   progress.Finish();
   if (written) return *written;
+  if (Status removed = RemoveStaleFrames(options.out_dir, options.frames)) return *removed;
 
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.gl_description = renderer->Description();

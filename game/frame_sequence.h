@@ -29,7 +29,8 @@ struct FrameSequenceStats {
 
 /// Writes out_dir/frame_00000.png … for frames k = 0 … N−1, frame k showing the session after
 /// k·K more steps (frame 0: its state now). Images are the session's image size, seen through
-/// its camera. Failures (GL context, output folder, writing) exit 1.
+/// its camera. Frames of an earlier run numbered N or more are removed from the folder, so it
+/// holds this film alone. Failures (GL context, output folder, writing) exit 1.
 Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
                                                  const FrameSequenceOptions& options);
 

@@ -254,3 +254,16 @@ TEST_CASE("render command: an output folder that cannot be created exits 1", "[r
   }
   CHECK(ReadFile(dir / "a_file") == "not a folder\n");
 }
+
+TEST_CASE("render command: a shorter rerun leaves only its own frames", "[render][cli]") {
+  const fs::path dir = FreshDir("shorter");
+  REQUIRE(Ballbox("render --frames 6 --size 64x48 --out frames", dir).exit_code == 0);
+  // Files that only look like frames are the user's, not ours.
+  for (const char* name : {"notes.txt", "frame_00009.jpg", "frame_0000009.png", "frame_x.png"}) {
+    std::ofstream(dir / "frames" / name) << "keep\n";
+  }
+  REQUIRE(Ballbox("render --frames 2 --size 64x48 --out frames", dir).exit_code == 0);
+  std::set<std::string> expected = FrameNames(2);
+  expected.insert({"notes.txt", "frame_00009.jpg", "frame_0000009.png", "frame_x.png"});
+  CHECK(FileNames(dir / "frames") == expected);
+}
