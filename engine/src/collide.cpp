@@ -1,16 +1,19 @@
 // Narrow phase for circles and axis-aligned boxes. Touching counts as contact (depth 0), so a
-// body resting exactly on another is held from its first step.
+// body resting exactly on another is held from its first step; within the margin, a gap gives a
+// speculative contact (negative depth) that lets the solver stop bodies exactly at contact.
 #include "engine/collide.h"
 
 #include <cmath>
 
 namespace engine {
 
-bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out) {
+bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out,
+                    double margin) {
   const Vec2 d = center_b - center_a;
   const double distance_squared = LengthSquared(d);
   const double radii = radius_a + radius_b;
-  if (distance_squared > radii * radii) return false;
+  const double reach = radii + margin;
+  if (distance_squared > reach * reach) return false;
   const double distance = std::sqrt(distance_squared);
   // Concentric circles have no direction between them; push B straight up, deterministically.
   const Vec2 normal = distance > 0.0 ? d / distance : Vec2{0.0, 1.0};
@@ -41,13 +44,15 @@ void NearestFace(Vec2 p, Vec2 c, Vec2 h, Vec2* outward, double* distance) {
 
 }  // namespace
 
-bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b, Manifold* out) {
+bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b, Manifold* out,
+                      double margin) {
   const Vec2 lower = center_b - half_b;
   const Vec2 upper = center_b + half_b;
   const Vec2 closest = {Clamp(center_a.x, lower.x, upper.x), Clamp(center_a.y, lower.y, upper.y)};
   const Vec2 d = closest - center_a;
   const double distance_squared = LengthSquared(d);
-  if (distance_squared > radius_a * radius_a) return false;
+  const double reach = radius_a + margin;
+  if (distance_squared > reach * reach) return false;
 
   if (distance_squared > 0.0) {
     // Centre outside the box: the contact is at the box's closest point.
@@ -70,11 +75,12 @@ bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b
   return true;
 }
 
-bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out) {
+bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out,
+                  double margin) {
   const Vec2 d = center_b - center_a;
   const double overlap_x = half_a.x + half_b.x - std::abs(d.x);
   const double overlap_y = half_a.y + half_b.y - std::abs(d.y);
-  if (overlap_x < 0.0 || overlap_y < 0.0) return false;
+  if (overlap_x < -margin || overlap_y < -margin) return false;
 
   const Vec2 lower = {std::fmax(center_a.x - half_a.x, center_b.x - half_b.x),
                       std::fmax(center_a.y - half_a.y, center_b.y - half_b.y)};
@@ -82,17 +88,23 @@ bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifo
                       std::fmin(center_a.y + half_a.y, center_b.y + half_b.y)};
   // Separate along the axis of least overlap; ties go to y, the axis gravity presses along,
   // so a box landing exactly on a corner is stood up rather than pushed aside. On a tie in
-  // position too (d = 0) B goes up or right.
+  // position too (d = 0) B goes up or right. Point ids name the face (its normal) and the end.
   if (overlap_y <= overlap_x) {
     const double middle_y = 0.5 * (lower.y + upper.y);
-    out->normal = {0.0, d.y >= 0.0 ? 1.0 : -1.0};
-    out->points[0] = {{lower.x, middle_y}, overlap_y};
-    out->points[1] = {{upper.x, middle_y}, overlap_y};
+    const bool up = d.y >= 0.0;
+    out->normal = {0.0, up ? 1.0 : -1.0};
+    const std::uint8_t face = up ? 0 : 2;
+    out->points[0] = {{lower.x, middle_y}, overlap_y, face};
+    out->points[1] = {{std::fmax(upper.x, lower.x), middle_y}, overlap_y,
+                      static_cast<std::uint8_t>(face + 1)};
   } else {
     const double middle_x = 0.5 * (lower.x + upper.x);
-    out->normal = {d.x >= 0.0 ? 1.0 : -1.0, 0.0};
-    out->points[0] = {{middle_x, lower.y}, overlap_x};
-    out->points[1] = {{middle_x, upper.y}, overlap_x};
+    const bool right = d.x >= 0.0;
+    out->normal = {right ? 1.0 : -1.0, 0.0};
+    const std::uint8_t face = right ? 4 : 6;
+    out->points[0] = {{middle_x, lower.y}, overlap_x, face};
+    out->points[1] = {{middle_x, std::fmax(upper.y, lower.y)}, overlap_x,
+                      static_cast<std::uint8_t>(face + 1)};
   }
   // Corner to corner the overlap is one point; two identical points would double its impulse.
   out->point_count = out->points[0].point == out->points[1].point ? 1 : 2;

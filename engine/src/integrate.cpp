@@ -10,20 +10,20 @@ Vec2 Kick(Vec2 velocity, Vec2 gravity, double dt) { return velocity + gravity * 
 
 }  // namespace
 
-void IntegrateVelocities(std::span<BodyState> states, std::span<const BodyInfo> infos, Vec2 gravity,
-                         double dt, std::span<Vec2> start_velocities) {
+void IntegrateVelocities(std::span<BodyState> states, std::span<const std::uint8_t> moving,
+                         Vec2 gravity, double dt, std::span<Vec2> start_velocities) {
   for (std::size_t i = 0; i < states.size(); ++i) {
     start_velocities[i] = states[i].velocity;
-    if (infos[i].is_static) continue;
+    if (!moving[i]) continue;
     states[i].velocity = Kick(states[i].velocity, gravity, dt);
   }
 }
 
 void IntegratePositions(Integrator integrator, std::span<BodyState> states,
-                        std::span<const BodyInfo> infos, std::span<const Vec2> start_velocities,
+                        std::span<const std::uint8_t> moving, std::span<const Vec2> start_velocities,
                         Vec2 gravity, double dt) {
   for (std::size_t i = 0; i < states.size(); ++i) {
-    if (infos[i].is_static) continue;
+    if (!moving[i]) continue;
     BodyState& s = states[i];
     switch (integrator) {
       case Integrator::kSemiImplicitEuler:

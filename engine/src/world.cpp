@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "impact.h"
 #include "integrate.h"
-#include "solver.h"
+#include "seed_solver.h"
+#include "sleep.h"
+#include "soft_step.h"
 
 namespace engine {
 
@@ -22,6 +25,7 @@ void Require(bool condition, const char* what) {
 }
 
 bool IsPositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
+bool IsNonNegativeFinite(double v) { return std::isfinite(v) && v >= 0.0; }
 
 double Area(const Shape& shape) {
   constexpr double kPi = 3.14159265358979323846;
@@ -32,18 +36,27 @@ double Area(const Shape& shape) {
 // Up to this many bodies, testing every pair is cheaper than keeping sorted endpoint lists.
 constexpr std::size_t kAllPairsMaxBodies = 16;
 
+// Speculative contacts start this far apart (Box2D's 4 × linear slop), so a body coming to
+// rest is caught a little before it touches.
+constexpr double kSpeculativeSlops = 4.0;
+
 }  // namespace
 
 World::World(const WorldDef& def) : def_(def) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 1, "WorldDef::velocity_iterations must be >= 1");
-  Require(def.restitution_threshold >= 0.0 && std::isfinite(def.restitution_threshold),
+  Require(def.substeps >= 1, "WorldDef::substeps must be >= 1");
+  Require(IsNonNegativeFinite(def.contact_hertz) && IsNonNegativeFinite(def.contact_damping_ratio),
+          "WorldDef contact softness must be finite and >= 0");
+  Require(IsPositiveFinite(def.max_push_out_speed), "WorldDef::max_push_out_speed must be > 0");
+  Require(IsNonNegativeFinite(def.restitution_threshold),
           "WorldDef::restitution_threshold must be finite and >= 0");
-  Require(def.linear_slop >= 0.0 && std::isfinite(def.linear_slop),
-          "WorldDef::linear_slop must be finite and >= 0");
+  Require(IsNonNegativeFinite(def.linear_slop), "WorldDef::linear_slop must be finite and >= 0");
   Require(def.position_correction >= 0.0 && def.position_correction <= 1.0,
           "WorldDef::position_correction must be in [0, 1]");
+  Require(IsNonNegativeFinite(def.sleep_speed) && IsNonNegativeFinite(def.time_to_sleep),
+          "WorldDef sleep settings must be finite and >= 0");
 }
 
 BodyId World::CreateBody(const BodyDef& def) {
@@ -55,8 +68,7 @@ BodyId World::CreateBody(const BodyDef& def) {
   Require(IsFinite(def.position) && IsFinite(def.velocity) && std::isfinite(def.angle) &&
               std::isfinite(def.angular_velocity),
           "BodyDef state must be finite");
-  Require(def.restitution >= 0.0 && std::isfinite(def.restitution) && def.friction >= 0.0 &&
-              std::isfinite(def.friction),
+  Require(IsNonNegativeFinite(def.restitution) && IsNonNegativeFinite(def.friction),
           "BodyDef restitution and friction must be finite and >= 0");
 
   BodyInfo info;
@@ -79,6 +91,9 @@ BodyId World::CreateBody(const BodyDef& def) {
   }
   states_.push_back(state);
   infos_.push_back(info);
+  rest_time_.push_back(0.0);
+  awake_.push_back(def.is_static ? 0 : 1);
+  island_.push_back(0);
   return static_cast<BodyId>(states_.size() - 1);
 }
 
@@ -87,6 +102,7 @@ void World::ApplyLinearImpulse(BodyId id, Vec2 impulse) {
   Require(IsFinite(impulse), "ApplyLinearImpulse: impulse must be finite");
   const BodyInfo& info = infos_[id];
   if (info.is_static) return;
+  detail::WakeIsland(id, infos_, {rest_time_, awake_, island_});
   states_[id].velocity += impulse / info.mass;
 }
 
@@ -98,81 +114,145 @@ AABB World::BodyBounds(BodyId id) const {
   return {c - half, c + half};
 }
 
+double World::Reach(BodyId id) const {
+  if (def_.solver == ContactSolver::kSeed) return 0.0;  // the seed only sees real overlap
+  const double speculative = 0.5 * kSpeculativeSlops * def_.linear_slop;
+  if (!awake_[id]) return speculative;
+  // The farthest a body can travel in this step under gravity, and then some.
+  const double dt = def_.dt;
+  return Length(states_[id].velocity) * dt + Length(def_.gravity) * dt * dt + speculative;
+}
+
 void World::Step() {
   const std::size_t n = states_.size();
   positions_before_.resize(n);
   start_velocities_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) positions_before_[i] = states_[i].position;
 
-  IntegrateVelocities();  // forces: gravity changes velocities
-  FindCandidatePairs();   // broad phase: pairs whose bounding boxes overlap
-  BuildContacts();        // narrow phase: exact manifolds for those pairs
-  SolveContacts();        // impulses: restitution, friction, no approach
-  IntegratePositions();   // move with the solved velocities
-  CorrectPositions();     // push out what overlap remains beyond the slop
+  FindCandidatePairs();  // broad phase: pairs whose grown bounds overlap; wakes touched sleepers
+  BuildContacts();       // narrow phase: manifolds, with last step's impulses to warm-start
+  if (def_.solver == ContactSolver::kSeed) {
+    StepSeed();
+  } else {
+    StepSoft();
+  }
+  if (def_.sleeping) UpdateSleep();  // islands at rest long enough go to sleep
   ++step_count_;
 }
 
-void World::IntegrateVelocities() {
-  detail::IntegrateVelocities(states_, infos_, def_.gravity, def_.dt, start_velocities_);
-}
-
 void World::FindCandidatePairs() {
-  bounds_.resize(states_.size());
-  for (BodyId id = 0; id < states_.size(); ++id) bounds_[id] = BodyBounds(id);
+  const std::size_t n = states_.size();
+  bounds_.resize(n);
+  reach_.resize(n);
+  for (BodyId id = 0; id < n; ++id) {
+    reach_[id] = Reach(id);
+    const Vec2 grow{reach_[id], reach_[id]};
+    const AABB b = BodyBounds(id);
+    bounds_[id] = {b.lower - grow, b.upper + grow};
+  }
   const bool all_pairs = def_.broad_phase == BroadPhaseType::kAllPairs ||
-                         (def_.broad_phase == BroadPhaseType::kAuto &&
-                          states_.size() <= kAllPairsMaxBodies);
+                         (def_.broad_phase == BroadPhaseType::kAuto && n <= kAllPairsMaxBodies);
   if (all_pairs) {
     FindPairsAllPairs(bounds_, &pairs_);
   } else {
     sweep_and_prune_.FindPairs(bounds_, &pairs_);
   }
-  // Two static bodies never need a contact.
-  std::erase_if(pairs_, [this](BodyPair p) { return infos_[p.a].is_static && infos_[p.b].is_static; });
+  // A moving body reaching a sleeping one wakes its whole island before anything is solved.
+  for (const BodyPair& p : pairs_) {
+    if (awake_[p.a] != awake_[p.b]) {
+      const BodyId sleeper = awake_[p.a] ? p.b : p.a;
+      if (!infos_[sleeper].is_static) detail::WakeIsland(sleeper, infos_, {rest_time_, awake_, island_});
+    }
+  }
+  // Pairs where nothing moves need no contact: static with static, or with a sleeping body.
+  std::erase_if(pairs_, [this](BodyPair p) { return !awake_[p.a] && !awake_[p.b]; });
 }
 
 void World::BuildContacts() {
+  previous_contacts_.swap(contacts_);
   contacts_.clear();
+  std::size_t previous = 0;
   for (const BodyPair& pair : pairs_) {
     const BodyInfo& ia = infos_[pair.a];
     const BodyInfo& ib = infos_[pair.b];
     const Vec2 pa = states_[pair.a].position;
     const Vec2 pb = states_[pair.b].position;
+    const double margin = reach_[pair.a] + reach_[pair.b];
     const bool circle_a = ia.shape.type == ShapeType::kCircle;
     const bool circle_b = ib.shape.type == ShapeType::kCircle;
     Manifold m;
     bool touching;
     if (circle_a && circle_b) {
-      touching = CollideCircles(pa, ia.shape.radius, pb, ib.shape.radius, &m);
+      touching = CollideCircles(pa, ia.shape.radius, pb, ib.shape.radius, &m, margin);
     } else if (circle_a) {
-      touching = CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, &m);
+      touching = CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, &m, margin);
     } else if (circle_b) {
       // The narrow phase takes the circle first; flip its normal back to point from a to b.
-      touching = CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, &m);
+      touching = CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, &m, margin);
       m.normal = -m.normal;
     } else {
-      touching = CollideBoxes(pa, ia.shape.half_extents, pb, ib.shape.half_extents, &m);
+      touching = CollideBoxes(pa, ia.shape.half_extents, pb, ib.shape.half_extents, &m, margin);
     }
     if (!touching) continue;
-    contacts_.push_back({pair.a, pair.b, m, std::max(ia.restitution, ib.restitution),
-                         std::sqrt(ia.friction * ib.friction)});
+
+    Contact contact{pair.a, pair.b, m, std::max(ia.restitution, ib.restitution),
+                    std::sqrt(ia.friction * ib.friction)};
+    // Warm start: both lists are in pair order, so the old contact is found by walking forward.
+    while (previous < previous_contacts_.size() &&
+           (previous_contacts_[previous].a < pair.a ||
+            (previous_contacts_[previous].a == pair.a && previous_contacts_[previous].b < pair.b))) {
+      ++previous;
+    }
+    if (previous < previous_contacts_.size() && previous_contacts_[previous].a == pair.a &&
+        previous_contacts_[previous].b == pair.b) {
+      const Contact& old = previous_contacts_[previous];
+      if (Dot(old.manifold.normal, m.normal) > 0.99) {
+        for (int i = 0; i < m.point_count; ++i) {
+          for (int j = 0; j < old.manifold.point_count; ++j) {
+            if (old.manifold.points[j].id != m.points[i].id) continue;
+            contact.normal_impulse[i] = old.normal_impulse[j];
+            contact.tangent_impulse[i] = old.tangent_impulse[j];
+          }
+        }
+      }
+    }
+    contacts_.push_back(contact);
   }
 }
 
-void World::SolveContacts() {
-  detail::PrepareContacts(contacts_, states_, infos_, def_.restitution_threshold, &constraints_);
-  detail::SolveVelocities(constraints_, states_, infos_, def_.velocity_iterations);
-}
-
-void World::IntegratePositions() {
-  for (std::size_t i = 0; i < states_.size(); ++i) positions_before_[i] = states_[i].position;
-  detail::IntegratePositions(def_.integrator, states_, infos_, start_velocities_, def_.gravity,
-                             def_.dt);
-}
-
-void World::CorrectPositions() {
+void World::StepSeed() {
+  const double dt = def_.dt;
+  detail::IntegrateVelocities(states_, awake_, def_.gravity, dt, start_velocities_);
+  detail::PrepareContacts(contacts_, states_, infos_, def_.restitution_threshold, &seed_constraints_);
+  detail::SolveVelocities(seed_constraints_, states_, infos_, def_.velocity_iterations);
+  detail::IntegratePositions(def_.integrator, states_, awake_, start_velocities_, def_.gravity, dt);
   detail::CorrectPositions(contacts_, positions_before_, states_, infos_, def_.linear_slop,
                            def_.position_correction);
+}
+
+void World::StepSoft() {
+  const double h = def_.dt / def_.substeps;
+  const double inv_h = 1.0 / h;
+  accelerations_.resize(states_.size());
+  for (std::size_t i = 0; i < states_.size(); ++i) accelerations_[i] = awake_[i] ? def_.gravity : Vec2{};
+
+  detail::PrepareSoftConstraints(contacts_, infos_, def_, &soft_constraints_);
+  detail::ResolveImpacts(soft_constraints_, states_, accelerations_, def_);  // bounces first
+  for (int substep = 0; substep < def_.substeps; ++substep) {
+    detail::IntegrateVelocities(states_, awake_, def_.gravity, h, start_velocities_);
+    detail::WarmStart(soft_constraints_, states_);
+    detail::SolveSoftConstraints(soft_constraints_, states_, positions_before_, inv_h,
+                                 def_.max_push_out_speed, def_.linear_slop, /*use_bias=*/true);
+    detail::IntegratePositions(def_.integrator, states_, awake_, start_velocities_, def_.gravity, h);
+    detail::SolveSoftConstraints(soft_constraints_, states_, positions_before_, inv_h,
+                                 def_.max_push_out_speed, def_.linear_slop, /*use_bias=*/false);
+  }
+  detail::ApplyImpactLags(soft_constraints_, states_);
+  detail::StoreImpulses(soft_constraints_, contacts_);
+}
+
+void World::UpdateSleep() {
+  detail::UpdateSleep(contacts_, states_, infos_, def_, {rest_time_, awake_, island_});
 }
 
 }  // namespace engine

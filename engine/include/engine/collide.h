@@ -1,13 +1,18 @@
 // Narrow phase: exact contact manifolds between circles and axis-aligned boxes.
 #pragma once
 
+#include <cstdint>
+
 #include "engine/math.h"
 
 namespace engine {
 
 struct ContactPoint {
   Vec2 point;    ///< world point midway between the two surfaces
-  double depth;  ///< penetration along the normal, m; 0 when exactly touching, never negative
+  double depth;  ///< penetration along the normal, m: 0 when touching, negative for a gap
+  /// Which features meet here (a box face's end, say), so the same point can be recognised
+  /// next step and warm-started with its impulse.
+  std::uint8_t id = 0;
 };
 
 /// Up to two contact points sharing one normal. `normal` is a unit vector pointing from shape A
@@ -18,10 +23,14 @@ struct Manifold {
   int point_count = 0;
 };
 
-/// Each function returns false (and leaves `out` alone) when the shapes are apart; touching
-/// shapes collide with depth 0. Boxes are given by centre and half extents.
-bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out);
-bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b, Manifold* out);
-bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out);
+/// Each function returns false (and leaves `out` alone) when the shapes are farther apart than
+/// `margin`; touching shapes collide with depth 0, and shapes up to `margin` apart give a
+/// speculative contact with negative depth. Boxes are given by centre and half extents.
+bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out,
+                    double margin = 0.0);
+bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b, Manifold* out,
+                      double margin = 0.0);
+bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out,
+                  double margin = 0.0);
 
 }  // namespace engine

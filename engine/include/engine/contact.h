@@ -16,15 +16,19 @@ struct Contact {
   Manifold manifold;   ///< normal points from a to b
   double restitution;  ///< the larger of the pair's
   double friction;     ///< the geometric mean of the pair's
+  /// Impulses accumulated on each point last step (N·s), carried over to warm-start the next.
+  double normal_impulse[2] = {0.0, 0.0};
+  double tangent_impulse[2] = {0.0, 0.0};
 };
 
+/// Seed solver: one point of a contact.
 struct PointConstraint {
   double target_normal_velocity;  ///< after the solve: the restitution bounce, or 0 (rest)
   double normal_impulse;          ///< accumulated this step, N·s, never negative
   double tangent_impulse;         ///< accumulated this step, |.| ≤ friction · normal_impulse
 };
 
-/// The solver's working state for one contact.
+/// Seed solver: its working state for one contact.
 struct ContactConstraint {
   BodyId a;
   BodyId b;
@@ -33,6 +37,34 @@ struct ContactConstraint {
   double friction;
   int point_count;
   PointConstraint points[2];
+};
+
+/// Soft contact parameters for one substep size (Catto, "Solver2D", 2024): a spring-damper
+/// expressed as a bias rate and how much of the rigid impulse and of the accumulated impulse
+/// to apply, so that stiffness does not depend on mass.
+struct Softness {
+  double bias_rate = 0.0;
+  double mass_scale = 1.0;
+  double impulse_scale = 0.0;
+};
+
+/// Soft-step solver: its working state for one contact. Without rotation every point of a
+/// manifold has the same Jacobian, so a contact is one normal and one friction constraint.
+struct SoftConstraint {
+  BodyId a;
+  BodyId b;
+  std::uint32_t contact;  ///< index into the world's contacts, to store impulses back
+  Vec2 normal;
+  double inv_mass_a;
+  double inv_mass_b;
+  double normal_mass;      ///< 1 / (inv_mass_a + inv_mass_b)
+  double friction;
+  double restitution;
+  double base_separation;  ///< at the start of the step, m; negative when overlapping
+  double normal_impulse;   ///< accumulated per substep, warm-started from the last step
+  double tangent_impulse;
+  double impact_lag;       ///< m the impact pass asks the bodies to be moved apart after the step
+  Softness softness;
 };
 
 }  // namespace engine

@@ -25,6 +25,11 @@ enum class Integrator : std::uint8_t {
   kExplicitEuler,      ///< position with the old velocity, then velocity (the seed's)
 };
 
+enum class ContactSolver : std::uint8_t {
+  kSoftStep,  ///< impact pass, then substeps of soft contact constraints with warm starting
+  kSeed,      ///< the seed: one round of impulses per step, then projection; the baseline
+};
+
 enum class BroadPhaseType : std::uint8_t {
   kAuto,           ///< all pairs for a handful of bodies, sweep and prune beyond
   kAllPairs,
@@ -52,10 +57,18 @@ struct WorldDef {
   bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
   Integrator integrator = Integrator::kSemiImplicitEuler;
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;
-  int velocity_iterations = 10;         ///< passes of the contact solver per step
+  ContactSolver solver = ContactSolver::kSoftStep;
+  int substeps = 4;                     ///< soft step: substeps per step
+  double contact_hertz = 30.0;          ///< soft step: contact stiffness, as a frequency
+  double contact_damping_ratio = 10.0;  ///< soft step: contact damping (≫ 1: no rebound from push-out)
+  double max_push_out_speed = 3.0;      ///< soft step: m/s; overlap is resolved no faster than this
+  int velocity_iterations = 10;         ///< seed: passes of the contact solver per step
   double restitution_threshold = 1.0;   ///< m/s; slower impacts do not bounce, so rest is quiet
   double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
-  double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
+  double position_correction = 0.8;     ///< seed: fraction of the overlap beyond the slop removed
+  bool sleeping = true;                 ///< bodies at rest for a while stop costing work
+  double sleep_speed = 0.05;            ///< m/s below which a body counts as resting
+  double time_to_sleep = 0.5;           ///< s an island must rest before it sleeps
 };
 
 /// What every step writes.
@@ -99,32 +112,44 @@ class World {
   AABB BodyBounds(BodyId id) const;
   const WorldDef& Def() const { return def_; }
   std::int64_t StepCount() const { return step_count_; }
-  /// The contacts found in the last step, in body-pair order.
+  /// The contacts found in the last step, in body-pair order (with the soft-step solver these
+  /// include speculative ones, with a gap: negative depth).
   const std::vector<Contact>& Contacts() const { return contacts_; }
+  /// False while the body sleeps (and always for static bodies).
+  bool IsAwake(BodyId id) const { return awake_[id] != 0; }
 
   /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
   std::uint64_t StateHash() const;
 
  private:
-  void IntegrateVelocities();
   void FindCandidatePairs();
   void BuildContacts();
-  void SolveContacts();
-  void IntegratePositions();
-  void CorrectPositions();
+  void StepSeed();
+  void StepSoft();
+  void UpdateSleep();
+  /// How far a body may reach within a step (speculative margin), m.
+  double Reach(BodyId id) const;
 
   WorldDef def_;
   std::vector<BodyState> states_;
   std::vector<BodyInfo> infos_;
   std::int64_t step_count_ = 0;
+  // Sleep state per body; `awake` doubles as the "moving" mask the integrators read.
+  std::vector<double> rest_time_;
+  std::vector<std::uint8_t> awake_;
+  std::vector<std::uint32_t> island_;
 
   // Scratch reused across steps, so a step allocates nothing once the scene has settled in.
   std::vector<AABB> bounds_;
+  std::vector<double> reach_;
   std::vector<BodyPair> pairs_;
   std::vector<Contact> contacts_;
+  std::vector<Contact> previous_contacts_;
   std::vector<Vec2> positions_before_;
   std::vector<Vec2> start_velocities_;
-  std::vector<ContactConstraint> constraints_;
+  std::vector<Vec2> accelerations_;
+  std::vector<ContactConstraint> seed_constraints_;
+  std::vector<SoftConstraint> soft_constraints_;
   SweepAndPrune sweep_and_prune_;
 };
 

@@ -1,4 +1,4 @@
-// The contact solver (seed method): sequential normal and friction impulses per contact point,
+// The seed contact solver: sequential normal and friction impulses per contact point,
 // then a projection that removes overlap beyond the slop. Internal to the engine.
 #pragma once
 

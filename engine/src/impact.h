@@ -1,0 +1,28 @@
+// The impact pass: restitution resolved as a sequence of two-body impacts before the contact
+// solve. Internal to the engine.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "engine/world.h"
+
+namespace engine::detail {
+
+/// For each contact whose bodies would meet during this step faster than the restitution
+/// threshold, applies the bounce impulse and records in `impact_lag` how far to move the bodies
+/// apart after the step, so that they end where a bounce at the moment of impact would put them.
+/// Repeats over all contacts until no pair still approaches, so an impact travels along a chain
+/// of touching bodies one pair at a time, as in Newton's cradle (the propagation model; Smith et
+/// al., "Reflections on Simultaneous Impact", SIGGRAPH 2012, discuss why simultaneous models
+/// cannot do this).
+///
+/// The bounce keeps e² of the relative motion's energy exactly, as the integrator sees it:
+/// semi-implicit Euler with step h under a constant relative acceleration a conserves
+/// H = ½v² − a·s + ½·a·h·v (s the separation) in free flight, so mapping H to e²·H at the mirrored
+/// position −e·s makes every apex e² times the last, free of the step's phase.
+/// `accelerations` holds each body's acceleration (zero for static and sleeping ones).
+void ResolveImpacts(std::span<SoftConstraint> constraints, std::span<BodyState> states,
+                    std::span<const Vec2> accelerations, const WorldDef& def);
+
+}  // namespace engine::detail

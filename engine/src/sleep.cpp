@@ -1,0 +1,72 @@
+// Islands by union-find over touching contacts, in body-id order, so sleep is deterministic.
+#include "sleep.h"
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+namespace engine::detail {
+
+namespace {
+
+std::uint32_t Find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+}  // namespace
+
+void UpdateSleep(std::span<const Contact> contacts, std::span<BodyState> states,
+                 std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep) {
+  const std::size_t n = states.size();
+  const double speed_squared = def.sleep_speed * def.sleep_speed;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!sleep.awake[i]) continue;
+    const bool resting = LengthSquared(states[i].velocity) <= speed_squared &&
+                         states[i].angular_velocity * states[i].angular_velocity <= speed_squared;
+    sleep.rest_time[i] = resting ? sleep.rest_time[i] + def.dt : 0.0;
+  }
+
+  // The root of each island is its smallest body id: union always keeps the smaller root.
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const Contact& c : contacts) {
+    if (infos[c.a].is_static || infos[c.b].is_static) continue;
+    bool touching = false;
+    for (int p = 0; p < c.manifold.point_count; ++p) touching |= c.manifold.points[p].depth >= -def.linear_slop;
+    if (!touching) continue;
+    const std::uint32_t ra = Find(parent, c.a), rb = Find(parent, c.b);
+    if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  std::vector<double> island_rest(n, def.time_to_sleep);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!sleep.awake[i]) continue;
+    const std::uint32_t root = Find(parent, i);
+    island_rest[root] = std::min(island_rest[root], sleep.rest_time[i]);
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!sleep.awake[i]) continue;
+    const std::uint32_t root = Find(parent, i);
+    if (island_rest[root] < def.time_to_sleep) continue;
+    sleep.awake[i] = 0;
+    sleep.island[i] = root;
+    states[i].velocity = {};
+    states[i].angular_velocity = 0.0;
+  }
+}
+
+void WakeIsland(BodyId body, std::span<const BodyInfo> infos, SleepState sleep) {
+  if (sleep.awake[body] || infos[body].is_static) return;
+  const std::uint32_t island = sleep.island[body];
+  for (std::size_t i = 0; i < infos.size(); ++i) {
+    if (!sleep.awake[i] && !infos[i].is_static && sleep.island[i] == island) {
+      sleep.awake[i] = 1;
+      sleep.rest_time[i] = 0.0;
+    }
+  }
+}
+
+}  // namespace engine::detail

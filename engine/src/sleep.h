@@ -1,0 +1,28 @@
+// Sleeping: islands of touching bodies that have rested long enough stop being simulated.
+// Internal to the engine.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "engine/world.h"
+
+namespace engine::detail {
+
+/// Per body: `rest_time`, s it has moved slower than the sleep speed; `awake`, 0 for sleeping
+/// and static bodies; `island`, while asleep, the smallest body id of its island.
+struct SleepState {
+  std::span<double> rest_time;
+  std::span<std::uint8_t> awake;
+  std::span<std::uint32_t> island;
+};
+
+/// After a step: counts resting time and puts to sleep every island (bodies linked by touching
+/// contacts, static bodies excluded) whose bodies have all rested for `time_to_sleep`.
+void UpdateSleep(std::span<const Contact> contacts, std::span<BodyState> states,
+                 std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep);
+
+/// Wakes the sleeping island `body` belongs to (nothing if it is awake or static).
+void WakeIsland(BodyId body, std::span<const BodyInfo> infos, SleepState sleep);
+
+}  // namespace engine::detail

@@ -1,0 +1,112 @@
+// The soft-step solver with its impact pass: true restitution, Newton's cradle, friction, sleep.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "engine/world.h"
+#include "world_builders.h"
+
+using testing::Box;
+using testing::Circle;
+using testing::Static;
+using testing::WithMass;
+using testing::WithMaterial;
+
+namespace {
+
+// Apex heights (above the contact height) of a ball of restitution e dropped from h0 onto a
+// static floor, one per flight after each bounce, sampled at the end of every step.
+std::vector<double> BounceApexes(double e, double h0, int bounces, engine::WorldDef def) {
+  const double r = 0.5;
+  engine::World world(def);
+  world.CreateBody(Static(Box({0, -0.5}, {4, 1})));
+  world.CreateBody(WithMaterial(Circle({0, h0 + r}, r), e, 0.3));
+  std::vector<double> apexes;
+  double previous_vy = 0, highest = 0;
+  bool flying_up = false;
+  for (int i = 0; i < 120 / def.dt && static_cast<int>(apexes.size()) < bounces; ++i) {
+    world.Step();
+    const engine::BodyState& s = world.State(1);
+    if (previous_vy <= 0 && s.velocity.y > 0) flying_up = true, highest = 0;  // a bounce
+    highest = std::max(highest, s.position.y - r);
+    if (flying_up && s.velocity.y <= 0) {
+      apexes.push_back(highest);
+      flying_up = false;
+    }
+    previous_vy = s.velocity.y;
+  }
+  return apexes;
+}
+
+}  // namespace
+
+TEST_CASE("a ball dropped from 10 m bounces to e^2n·h within 0.5% for five bounces", "[solver]") {
+  engine::WorldDef def;
+  def.gravity = {0, -9.81};
+  // e = 0.5 bounces only three times above the 1 m/s restitution threshold: the fourth impact
+  // comes at √(2g·e⁶·h) = 0.87 m/s, and the ball then rests (the next test).
+  for (auto [e, bounces] : {std::pair{0.5, 3}, std::pair{0.8, 5}, std::pair{0.95, 5}}) {
+    const std::vector<double> apexes = BounceApexes(e, 10.0, bounces, def);
+    REQUIRE(static_cast<int>(apexes.size()) == bounces);
+    for (std::size_t n = 0; n < apexes.size(); ++n) {
+      const double expected = std::pow(e, 2.0 * (n + 1)) * 10.0;
+      INFO("e = " << e << ", bounce " << n + 1 << ": apex " << apexes[n] << " m, e^2n·h = " << expected);
+      CHECK(std::abs(apexes[n] - expected) / expected < 0.005);
+      // Never gains energy. Semi-implicit Euler keeps H = ½v² + g·y − ½·g·h·v, so a sampled
+      // height can exceed H/g by at most g·h²/8 (h the substep), never more.
+      const double h = def.dt / def.substeps;
+      CHECK(apexes[n] <= expected + 9.81 * h * h / 8);
+    }
+  }
+}
+
+TEST_CASE("a bouncing ball comes to rest and stays quiet (restitution threshold)", "[solver]") {
+  engine::WorldDef def;
+  def.sleeping = false;
+  engine::World world(def);
+  world.CreateBody(Static(Box({0, -0.5}, {4, 1})));
+  world.CreateBody(WithMaterial(Circle({0, 1.5}, 0.5), 0.8, 0.3));
+  for (int i = 0; i < 600; ++i) world.Step();
+  // e = 0.8 from 1 m: impacts slower than 1 m/s stop bouncing; long before 10 s it rests.
+  for (int i = 0; i < 60; ++i) {
+    world.Step();
+    REQUIRE(std::abs(world.State(1).velocity.y) < 1e-6);
+    // A soft contact settles a hair past the slop it leaves alone (0.07 mm here).
+    REQUIRE(std::abs(world.State(1).position.y - 0.5) < def.linear_slop + 5e-4);
+  }
+}
+
+TEST_CASE("Newton's cradle: the last ball leaves at the striker's speed", "[solver]") {
+  for (double gap : {0.0, 1e-3}) {
+    engine::WorldDef def;
+    def.gravity = {0, 0};
+    engine::World world(def);
+    const double v0 = 3.0;
+    world.CreateBody(WithMaterial(Circle({-3, 0}, 0.5, {v0, 0}), 1.0, 0.0));
+    for (int i = 0; i < 5; ++i) world.CreateBody(WithMaterial(Circle({i * (1.0 + gap), 0}, 0.5), 1.0, 0.0));
+    double momentum_before = v0;
+    for (int i = 0; i < 120; ++i) world.Step();
+    INFO("gap " << gap);
+    CHECK(world.State(5).velocity.x == Approx(v0).epsilon(0.01));
+    double momentum = 0, energy = 0;
+    for (engine::BodyId id = 0; id < 6; ++id) {
+      if (id < 5) CHECK(std::abs(world.State(id).velocity.x) < 0.01 * v0);
+      CHECK(world.State(id).velocity.y == 0.0);
+      momentum += world.Info(id).mass * world.State(id).velocity.x;
+      energy += 0.5 * world.Info(id).mass * world.State(id).velocity.x * world.State(id).velocity.x;
+    }
+    const double mass = world.Info(0).mass;
+    CHECK(momentum == Approx(mass * momentum_before).epsilon(1e-12));
+    CHECK(energy == Approx(0.5 * mass * v0 * v0).epsilon(0.01));
+  }
+}
+
+TEST_CASE("soft step: head-on collision of masses 1 and 3 follows the collision law", "[solver]") {
+  engine::World world(testing::NoGravity());
+  world.CreateBody(WithMaterial(WithMass(Circle({0, 0}, 0.5, {4, 0}), 1), 1.0, 0));
+  world.CreateBody(WithMaterial(WithMass(Circle({1, 0}, 0.5, {-2, 0}), 3), 1.0, 0));
+  world.Step();
+  CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
+  CHECK(world.State(1).velocity.x == Approx(1.0).epsilon(1e-12));
+}
