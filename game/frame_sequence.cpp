@@ -104,7 +104,6 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
   if (Status removed = RemoveStaleFrames(options.out_dir, options.frames)) return *removed;
 
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.gl_description = renderer->Description();
   return stats;
 }
 

@@ -24,7 +24,6 @@ struct FrameSequenceStats {
   std::int64_t frames = 0;
   std::int64_t steps = 0;  ///< (N − 1)·K: the last frame is the last state simulated
   double seconds = 0.0;    ///< wall time, from context creation to the last file on disk
-  std::string gl_description;
 };
 
 /// Writes out_dir/frame_00000.png … for frames k = 0 … N−1, frame k showing the session after

@@ -19,7 +19,9 @@ std::string FrameFileName(std::int64_t index) {
 
 FrameWriter::FrameWriter(std::string dir, render::PngEncoding encoding, int threads,
                          std::size_t queue_capacity)
-    : dir_(std::move(dir)), encoding_(encoding), queue_capacity_(std::max<std::size_t>(1, queue_capacity)) {
+    : dir_(std::move(dir)),
+      encoding_(encoding),
+      queue_capacity_(std::max<std::size_t>(1, queue_capacity)) {
   for (int i = 0; i < std::max(1, threads); ++i) workers_.emplace_back([this] { WorkerLoop(); });
 }
 

@@ -18,12 +18,12 @@ namespace {
 constexpr float kQuadCorners[] = {-1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f};
 
 // What the shaders draw, per body.
-enum class Kind : int { kDisc = 0, kDiscWithSpoke = 1, kBox = 2 };
+enum class Kind { kDisc = 0, kDiscWithSpoke = 1, kBox = 2 };
 
 struct Instance {
   float center[2];      // m, relative to the camera centre (subtracted in double, so far-away
                         // scenes keep their precision in float)
-  float half_size[2];   // m; a disc's radius twice
+  float half_size[2];   // m; a disc has its radius in both
   float rotation[2];    // cos and sin of the body's angle
   std::uint8_t color[4];
   float kind;           // a Kind
