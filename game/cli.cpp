@@ -135,9 +135,10 @@ Expected<CommandLine> ParseCommandLine(const std::vector<std::string>& args) {
       value = flag.substr(eq + 1);
       flag.erase(eq);
     }
+    // A following flag is not a value: `--script --steps 5` lacks the script.
     auto take_value = [&]() -> std::optional<std::string> {
       if (value) return value;
-      if (i + 1 < args.size()) return args[++i];
+      if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) return args[++i];
       return std::nullopt;
     };
     auto known = [&](std::initializer_list<const char*> for_commands) {

@@ -26,6 +26,11 @@ std::string Join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
+// Text from the file, quoted and escaped as JSON, so a message stays on one line.
+std::string Quote(const std::string& text) {
+  return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 // Edit distance, to suggest the key a typo meant.
 std::size_t EditDistance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -54,7 +59,7 @@ void RejectUnknownKeys(const Json& object, const std::string& path,
       if (distance < best) best = distance, suggestion = k;
     }
     if (is_known) continue;
-    std::string message = "unknown key \"" + item.key() + "\"";
+    std::string message = "unknown key " + Quote(item.key());
     if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
     throw SceneError{path, message};
   }
@@ -108,7 +113,7 @@ Enum ReadChoice(const Json& value, const std::string& path,
     if (name == label) return choice;
     expected += (expected.empty() ? "\"" : ", \"") + std::string(label) + "\"";
   }
-  throw SceneError{path, "unknown value \"" + name + "\" (expected one of " + expected + ")"};
+  throw SceneError{path, "unknown value " + Quote(name) + " (expected one of " + expected + ")"};
 }
 
 int HexDigit(char c) {
@@ -124,7 +129,7 @@ render::Color ReadColor(const Json& value, const std::string& path) {
   const bool valid_shape = text.size() >= 1 && text[0] == '#' && (short_form || text.size() == 7);
   bool valid_digits = valid_shape;
   for (std::size_t i = 1; valid_digits && i < text.size(); ++i) valid_digits = HexDigit(text[i]) >= 0;
-  if (!valid_digits) throw SceneError{path, "must be a colour \"#rgb\" or \"#rrggbb\", got \"" + text + "\""};
+  if (!valid_digits) throw SceneError{path, "must be a colour \"#rgb\" or \"#rrggbb\", got " + Quote(text)};
   auto channel = [&](int i) -> std::uint8_t {
     if (short_form) return static_cast<std::uint8_t>(HexDigit(text[1 + i]) * 17);
     return static_cast<std::uint8_t>(HexDigit(text[1 + 2 * i]) * 16 + HexDigit(text[2 + 2 * i]));
@@ -165,6 +170,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   auto key = [&](const char* k) { return Join(path, k); };
 
   out.id = "body" + std::to_string(index);
+  out.id_given = Find(body, "id") != nullptr;
   if (const Json* v = Find(body, "id")) {
     out.id = ReadString(*v, key("id"));
     if (out.id.empty()) throw SceneError{key("id"), "must not be empty"};
@@ -278,8 +284,12 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
     SceneBody body = ReadBody((*bodies)[i], path, i, world.rotation);
     const auto [it, inserted] = first_use.emplace(body.id, i);
     if (!inserted) {
-      throw SceneError{path + ".id", "duplicate id \"" + body.id + "\" (also bodies[" +
-                                         std::to_string(it->second) + "])"};
+      const std::string other = "bodies[" + std::to_string(it->second) + "]";
+      if (!body.id_given) {
+        throw SceneError{path, "its default id " + Quote(body.id) + " is taken by " + other +
+                                   "; give one of them an \"id\""};
+      }
+      throw SceneError{path + ".id", "duplicate id " + Quote(body.id) + " (also " + other + ")"};
     }
     scene.bodies.push_back(std::move(body));
   }
@@ -313,6 +323,11 @@ Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
     std::string reason = e.what();
     if (const auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
     return BadInput(file_label + ":" + LineColumn(json, at) + ": " + reason);
+  } catch (const Json::exception& e) {
+    // A number too large for a double (1e999) is an out_of_range error without a position.
+    std::string reason = e.what();
+    if (const auto bracket = reason.find("] "); bracket != std::string::npos) reason.erase(0, bracket + 2);
+    return BadInput(file_label + ": " + reason);
   }
   try {
     return ReadScene(root, default_name);

@@ -15,6 +15,7 @@ namespace game {
 
 struct SceneBody {
   std::string id;
+  bool id_given = false;  ///< false: the id is the default body<index>
   engine::BodyDef def;
   render::Color color;
 };

@@ -19,8 +19,10 @@ bool ParseWholeNumber(const std::string& s, std::int64_t* out) {
 }
 
 bool ParseFiniteNumber(const std::string& s, double* out) {
+  // from_chars takes no leading '+', which people write.
+  const char* begin = s.data() + (s.size() > 1 && s[0] == '+' && s[1] != '-' ? 1 : 0);
   const char* end = s.data() + s.size();
-  auto [ptr, ec] = std::from_chars(s.data(), end, *out);
+  auto [ptr, ec] = std::from_chars(begin, end, *out);
   return ec == std::errc() && ptr == end && std::isfinite(*out);
 }
 

@@ -3,6 +3,8 @@
 #include <cinttypes>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "game/commands.h"
 #include "game/output_file.h"
@@ -12,7 +14,15 @@ namespace game {
 
 namespace {
 
-void DumpStep(std::FILE* out, const Session& session) {
+// An id as a CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+void DumpStep(std::FILE* out, const Session& session, const std::vector<std::string>& ids) {
   const engine::World& world = session.World();
   const std::int64_t step = session.StepIndex();
   // Time as step·dt rather than a running sum, so it carries no accumulated rounding.
@@ -20,7 +30,7 @@ void DumpStep(std::FILE* out, const Session& session) {
   for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
     const engine::BodyState& s = world.State(id);
     std::fprintf(out, "%" PRId64 ",%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time,
-                 session.SceneDef().bodies[id].id.c_str(), s.position.x, s.position.y,
+                 ids[id].c_str(), s.position.x, s.position.y,
                  s.velocity.x, s.velocity.y, s.angle, s.angular_velocity);
   }
 }
@@ -34,18 +44,20 @@ Status RunSim(const SimOptions& options) {
                   options.run.height);
 
   std::optional<AtomicOutputFile> dump;
+  std::vector<std::string> ids;
+  for (const SceneBody& body : session.SceneDef().bodies) ids.push_back(CsvField(body.id));
   if (options.dump_path) {
     Expected<AtomicOutputFile> file = AtomicOutputFile::Open(*options.dump_path);
     if (!file.HasValue()) return file.Error();
     dump.emplace(std::move(file.Value()));
     std::fputs("step,time,id,x,y,vx,vy,angle,omega\n", dump->Stream());
-    DumpStep(dump->Stream(), session);
+    DumpStep(dump->Stream(), session, ids);
   }
 
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t step = 1; step <= options.steps; ++step) {
     session.Step();
-    if (dump && step % options.dump_every == 0) DumpStep(dump->Stream(), session);
+    if (dump && step % options.dump_every == 0) DumpStep(dump->Stream(), session, ids);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

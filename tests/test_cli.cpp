@@ -232,9 +232,8 @@ TEST_CASE("cli error: bad --size", "[cli]") {
   }
 }
 
-TEST_CASE("cli error: a flag where a value belongs is a missing value", "[cli][!mayfail]") {
-  // Today "--steps" becomes the script path and "5" the scene, and the message blames a missing
-  // --steps that was given (reported).
+TEST_CASE("cli error: a flag where a value belongs is a missing value", "[cli]") {
+  // "--steps" must not be taken as the script path (and "5" as the scene).
   RequireUsageError({"sim", "--script", "--steps", "5"}, "--script needs a value (see: ballbox sim --help)");
 }
 
@@ -344,8 +343,8 @@ TEST_CASE("ballbox sim: a missing scene file is exit 2", "[cli][exe]") {
 }
 
 TEST_CASE("ballbox sim: a scene number too large for a double is exit 2, not a crash",
-          "[cli][exe][!mayfail]") {
-  // Fails today: the uncaught nlohmann out_of_range aborts the program (exit 134). Reported.
+          "[cli][exe]") {
+  // nlohmann reports 1e999 as out_of_range, which must not escape and abort the program.
   const std::string scene = DataPath("scene_non_finite.json");
   const Run run = RunBallbox(ScratchDir("non_finite"), {"sim", scene, "--steps", "1"});
   CHECK(run.exit_code == 2);
@@ -434,9 +433,8 @@ TEST_CASE("ballbox sim: the same command twice gives the same hash and dump", "[
   CHECK(dumps[0] == dumps[1]);
 }
 
-TEST_CASE("ballbox sim --dump: an id with a comma still gives 9 CSV fields a row", "[cli][exe][!mayfail]") {
-  // Fails today: ids are written raw, so "ball,1" splits into 10 fields. Reported; either the loader
-  // rejects such ids (exit 2) or the CSV quotes them.
+TEST_CASE("ballbox sim --dump: an id with a comma still gives 9 CSV fields a row", "[cli][exe]") {
+  // Written raw, "ball,1" would split into 10 fields; the CSV quotes it (RFC 4180).
   const fs::path dir = ScratchDir("comma_id");
   const Run run = RunBallbox(
       dir, {"sim", DataPath("cli_comma_id.json"), "--steps", "0", "--dump", (dir / "d.csv").string()});

@@ -99,8 +99,8 @@ TEST_CASE("scene unknown key in solver", "[scene]") {
                     "solver: unknown key \"iteration\" (did you mean \"iterations\"?)");
 }
 
-TEST_CASE("scene unknown key with a newline in it still gives a one-line message", "[scene][!mayfail]") {
-  // The key is echoed raw, so "x\ny" splits the error over two lines of stderr (reported).
+TEST_CASE("scene unknown key with a newline in it still gives a one-line message", "[scene]") {
+  // Echoed keys are quoted as JSON strings, so "x\ny" stays on one line as "x\\ny".
   const game::Expected<game::Scene> scene = game::LoadScene(DataPath("scene_unknown_key_newline.json"));
   REQUIRE_FALSE(scene.HasValue());
   CHECK(scene.Error().message.find("unknown key") != std::string::npos);
@@ -109,9 +109,9 @@ TEST_CASE("scene unknown key with a newline in it still gives a one-line message
 
 // --- Values of the wrong kind.
 
-TEST_CASE("scene number too large for a double is bad input, not a crash", "[scene][!mayfail]") {
+TEST_CASE("scene number too large for a double is bad input, not a crash", "[scene]") {
   // JSON has no infinity; 1e999 is how a non-finite number reaches the loader. nlohmann throws
-  // out_of_range (not parse_error) for it, which ParseScene does not catch (reported bug).
+  // out_of_range (not parse_error) for it, which ParseScene must catch too.
   const std::string path = DataPath("scene_non_finite.json");
   game::Expected<game::Scene> scene{game::Failure{}};
   REQUIRE_NOTHROW(scene = game::LoadScene(path));
@@ -228,9 +228,9 @@ TEST_CASE("scene explicit id clashing with an earlier default id", "[scene]") {
 }
 
 TEST_CASE("scene default id clashing with an earlier explicit id names the body, not a missing key",
-          "[scene][!mayfail]") {
-  // bodies[1] has no "id" key; its default "body1" is taken by bodies[0]. The message should point
-  // at bodies[1] itself (today it says "bodies[1].id:", a key that is not in the file: reported).
+          "[scene]") {
+  // bodies[1] has no "id" key; its default "body1" is taken by bodies[0]. The message points at
+  // bodies[1] itself, not at a "bodies[1].id" key that is not in the file.
   const std::string path = DataPath("scene_duplicate_default_id_later.json");
   const game::Expected<game::Scene> scene = game::LoadScene(path);
   REQUIRE_FALSE(scene.HasValue());
