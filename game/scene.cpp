@@ -140,13 +140,24 @@ render::Color ReadColor(const Json& value, const std::string& path) {
 void ReadSolver(const Json& solver, const std::string& path, engine::WorldDef* world) {
   if (!solver.is_object()) throw SceneError{path, "must be an object"};
   RejectUnknownKeys(solver, path,
-                    {"iterations", "restitution_threshold", "slop", "position_correction"});
-  if (const Json* v = Find(solver, "iterations")) {
-    const double n = ReadPositive(*v, Join(path, "iterations"));
-    if (n != std::floor(n) || n > 1000) {
-      throw SceneError{Join(path, "iterations"), "must be a whole number from 1 to 1000"};
+                    {"method", "substeps", "push_out_speed",
+                     "iterations", "restitution_threshold", "slop", "position_correction"});
+  auto read_count = [&](const char* key, int* out) {
+    if (const Json* v = Find(solver, key)) {
+      const double n = ReadPositive(*v, Join(path, key));
+      if (n != std::floor(n) || n > 1000) throw SceneError{Join(path, key), "must be a whole number from 1 to 1000"};
+      *out = static_cast<int>(n);
     }
-    world->velocity_iterations = static_cast<int>(n);
+  };
+  if (const Json* v = Find(solver, "method")) {
+    world->solver = ReadChoice<engine::ContactSolver>(
+        *v, Join(path, "method"),
+        {{"substep", engine::ContactSolver::kSubstep}, {"seed", engine::ContactSolver::kSeed}});
+  }
+  read_count("substeps", &world->substeps);
+  read_count("iterations", &world->velocity_iterations);
+  if (const Json* v = Find(solver, "push_out_speed")) {
+    world->max_push_out_speed = ReadPositive(*v, Join(path, "push_out_speed"));
   }
   if (const Json* v = Find(solver, "restitution_threshold")) {
     world->restitution_threshold = ReadNonNegative(*v, Join(path, "restitution_threshold"));
@@ -235,7 +246,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   if (!root.is_object()) throw SceneError{"", "a scene must be a JSON object"};
   RejectUnknownKeys(root, "",
                     {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
-                     "broad_phase", "solver"});
+                     "broad_phase", "solver", "sleep"});
   Scene scene;
   scene.name = default_name;
   if (const Json* v = Find(root, "name")) {
@@ -260,6 +271,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
          {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune}});
   }
   if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
+  if (const Json* v = Find(root, "sleep")) world.sleeping = ReadBool(*v, "sleep");
 
   if (const Json* camera = Find(root, "camera")) {
     if (!camera->is_object()) throw SceneError{"camera", "must be an object"};

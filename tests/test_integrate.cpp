@@ -23,8 +23,8 @@ TEST_CASE("free fall matches each integrator's discrete closed form", "[integrat
   using engine::Integrator;
   for (FallCase c : {FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSeed, 1},
                      FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSeed, 1},
-                     FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSoftStep, 4},
-                     FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSoftStep, 4}}) {
+                     FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSubstep, 4},
+                     FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSubstep, 4}}) {
     engine::WorldDef def;
     def.gravity = {0, g};
     def.dt = dt;

@@ -40,12 +40,12 @@ bool ComputeBounce(double s0, double vn, double a, double e, int n, double h, do
 
 }  // namespace
 
-void ResolveImpacts(std::span<SoftConstraint> constraints, std::span<BodyState> states,
+void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def) {
   const double h = def.dt / def.substeps;
   for (int pass = 0; pass < kMaxImpactPasses; ++pass) {
     bool any = false;
-    for (SoftConstraint& sc : constraints) {
+    for (SubstepConstraint& sc : constraints) {
       if (sc.restitution == 0.0) continue;
       BodyState& a = states[sc.a];
       BodyState& b = states[sc.b];

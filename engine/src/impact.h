@@ -22,7 +22,7 @@ namespace engine::detail {
 /// H = ½v² − a·s + ½·a·h·v (s the separation) in free flight, so mapping H to e²·H at the mirrored
 /// position −e·s makes every apex e² times the last, free of the step's phase.
 /// `accelerations` holds each body's acceleration (zero for static and sleeping ones).
-void ResolveImpacts(std::span<SoftConstraint> constraints, std::span<BodyState> states,
+void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def);
 
 }  // namespace engine::detail

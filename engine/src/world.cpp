@@ -9,8 +9,9 @@
 #include "impact.h"
 #include "integrate.h"
 #include "seed_solver.h"
+#include "shock_propagation.h"
 #include "sleep.h"
-#include "soft_step.h"
+#include "substep_solver.h"
 
 namespace engine {
 
@@ -47,8 +48,6 @@ World::World(const WorldDef& def) : def_(def) {
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 1, "WorldDef::velocity_iterations must be >= 1");
   Require(def.substeps >= 1, "WorldDef::substeps must be >= 1");
-  Require(IsNonNegativeFinite(def.contact_hertz) && IsNonNegativeFinite(def.contact_damping_ratio),
-          "WorldDef contact softness must be finite and >= 0");
   Require(IsPositiveFinite(def.max_push_out_speed), "WorldDef::max_push_out_speed must be > 0");
   Require(IsNonNegativeFinite(def.restitution_threshold),
           "WorldDef::restitution_threshold must be finite and >= 0");
@@ -134,7 +133,7 @@ void World::Step() {
   if (def_.solver == ContactSolver::kSeed) {
     StepSeed();
   } else {
-    StepSoft();
+    StepSubstep();
   }
   if (def_.sleeping) UpdateSleep();  // islands at rest long enough go to sleep
   ++step_count_;
@@ -230,25 +229,33 @@ void World::StepSeed() {
                            def_.position_correction);
 }
 
-void World::StepSoft() {
+void World::StepSubstep() {
   const double h = def_.dt / def_.substeps;
   const double inv_h = 1.0 / h;
   accelerations_.resize(states_.size());
   for (std::size_t i = 0; i < states_.size(); ++i) accelerations_[i] = awake_[i] ? def_.gravity : Vec2{};
 
-  detail::PrepareSoftConstraints(contacts_, infos_, def_, &soft_constraints_);
-  detail::ResolveImpacts(soft_constraints_, states_, accelerations_, def_);  // bounces first
+  detail::PrepareSubstepConstraints(contacts_, infos_, &substep_constraints_);
+  detail::BuildShockOrder(substep_constraints_, infos_, &shock_level_, &shock_order_);
+  detail::ResolveImpacts(substep_constraints_, states_, accelerations_, def_);  // bounces first
+  push_velocities_.resize(states_.size());
+  // Remove the same fraction of the overlap per step as the seed does, spread over the substeps:
+  // 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is that times the overlap / h.
+  const double push_out_rate =
+      (1.0 - std::pow(1.0 - def_.position_correction, 1.0 / def_.substeps)) * inv_h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::IntegrateVelocities(states_, awake_, def_.gravity, h, start_velocities_);
-    detail::WarmStart(soft_constraints_, states_);
-    detail::SolveSoftConstraints(soft_constraints_, states_, positions_before_, inv_h,
-                                 def_.max_push_out_speed, def_.linear_slop, /*use_bias=*/true);
+    detail::WarmStart(substep_constraints_, states_);
+    detail::SolveContacts(substep_constraints_, states_, positions_before_, inv_h);
+    detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, positions_before_,
+                           inv_h, def_.linear_slop);
     detail::IntegratePositions(def_.integrator, states_, awake_, start_velocities_, def_.gravity, h);
-    detail::SolveSoftConstraints(soft_constraints_, states_, positions_before_, inv_h,
-                                 def_.max_push_out_speed, def_.linear_slop, /*use_bias=*/false);
+    detail::PushOut(substep_constraints_, states_, positions_before_, push_velocities_, push_out_rate,
+                    def_.max_push_out_speed, def_.linear_slop);
+    detail::MoveByPush(states_, push_velocities_, h);
   }
-  detail::ApplyImpactLags(soft_constraints_, states_);
-  detail::StoreImpulses(soft_constraints_, contacts_);
+  detail::ApplyImpactLags(substep_constraints_, states_);
+  detail::StoreImpulses(substep_constraints_, contacts_);
 }
 
 void World::UpdateSleep() {

@@ -39,18 +39,9 @@ struct ContactConstraint {
   PointConstraint points[2];
 };
 
-/// Soft contact parameters for one substep size (Catto, "Solver2D", 2024): a spring-damper
-/// expressed as a bias rate and how much of the rigid impulse and of the accumulated impulse
-/// to apply, so that stiffness does not depend on mass.
-struct Softness {
-  double bias_rate = 0.0;
-  double mass_scale = 1.0;
-  double impulse_scale = 0.0;
-};
-
-/// Soft-step solver: its working state for one contact. Without rotation every point of a
+/// Substep solver: its working state for one contact. Without rotation every point of a
 /// manifold has the same Jacobian, so a contact is one normal and one friction constraint.
-struct SoftConstraint {
+struct SubstepConstraint {
   BodyId a;
   BodyId b;
   std::uint32_t contact;  ///< index into the world's contacts, to store impulses back
@@ -63,8 +54,8 @@ struct SoftConstraint {
   double base_separation;  ///< at the start of the step, m; negative when overlapping
   double normal_impulse;   ///< accumulated per substep, warm-started from the last step
   double tangent_impulse;
+  double push_impulse;     ///< accumulated this substep by the push-out (split impulse)
   double impact_lag;       ///< m the impact pass asks the bodies to be moved apart after the step
-  Softness softness;
 };
 
 }  // namespace engine

@@ -26,8 +26,10 @@ enum class Integrator : std::uint8_t {
 };
 
 enum class ContactSolver : std::uint8_t {
-  kSoftStep,  ///< impact pass, then substeps of soft contact constraints with warm starting
-  kSeed,      ///< the seed: one round of impulses per step, then projection; the baseline
+  /// An impact pass for bounces, then substeps of warm-started rigid contacts with shock
+  /// propagation and a split-impulse push-out (after Catto's "soft step")
+  kSubstep,
+  kSeed,  ///< the seed: rounds of impulses per step, then a projection; the baseline
 };
 
 enum class BroadPhaseType : std::uint8_t {
@@ -57,15 +59,13 @@ struct WorldDef {
   bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
   Integrator integrator = Integrator::kSemiImplicitEuler;
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;
-  ContactSolver solver = ContactSolver::kSoftStep;
-  int substeps = 4;                     ///< soft step: substeps per step
-  double contact_hertz = 30.0;          ///< soft step: contact stiffness, as a frequency
-  double contact_damping_ratio = 10.0;  ///< soft step: contact damping (≫ 1: no rebound from push-out)
-  double max_push_out_speed = 3.0;      ///< soft step: m/s; overlap is resolved no faster than this
+  ContactSolver solver = ContactSolver::kSubstep;
+  int substeps = 4;                     ///< substep solver: substeps per step
+  double max_push_out_speed = 3.0;      ///< substep solver: m/s; overlap goes no faster than this
   int velocity_iterations = 10;         ///< seed: passes of the contact solver per step
   double restitution_threshold = 1.0;   ///< m/s; slower impacts do not bounce, so rest is quiet
   double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
-  double position_correction = 0.8;     ///< seed: fraction of the overlap beyond the slop removed
+  double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
   bool sleeping = true;                 ///< bodies at rest for a while stop costing work
   double sleep_speed = 0.05;            ///< m/s below which a body counts as resting
   double time_to_sleep = 0.5;           ///< s an island must rest before it sleeps
@@ -112,7 +112,7 @@ class World {
   AABB BodyBounds(BodyId id) const;
   const WorldDef& Def() const { return def_; }
   std::int64_t StepCount() const { return step_count_; }
-  /// The contacts found in the last step, in body-pair order (with the soft-step solver these
+  /// The contacts found in the last step, in body-pair order (with the substep solver these
   /// include speculative ones, with a gap: negative depth).
   const std::vector<Contact>& Contacts() const { return contacts_; }
   /// False while the body sleeps (and always for static bodies).
@@ -125,7 +125,7 @@ class World {
   void FindCandidatePairs();
   void BuildContacts();
   void StepSeed();
-  void StepSoft();
+  void StepSubstep();
   void UpdateSleep();
   /// How far a body may reach within a step (speculative margin), m.
   double Reach(BodyId id) const;
@@ -148,8 +148,11 @@ class World {
   std::vector<Vec2> positions_before_;
   std::vector<Vec2> start_velocities_;
   std::vector<Vec2> accelerations_;
+  std::vector<Vec2> push_velocities_;
   std::vector<ContactConstraint> seed_constraints_;
-  std::vector<SoftConstraint> soft_constraints_;
+  std::vector<SubstepConstraint> substep_constraints_;
+  std::vector<std::uint32_t> shock_level_;
+  std::vector<std::uint32_t> shock_order_;
   SweepAndPrune sweep_and_prune_;
 };
 

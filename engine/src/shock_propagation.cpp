@@ -1,0 +1,78 @@
+// Levels by breadth-first search from the static bodies; a stable sort keeps ties in contact
+// (body-pair) order, so the pass is deterministic.
+#include "shock_propagation.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace engine::detail {
+
+namespace {
+
+constexpr std::uint32_t kUnreached = std::numeric_limits<std::uint32_t>::max();
+
+}  // namespace
+
+void BuildShockOrder(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                     std::vector<std::uint32_t>* level, std::vector<std::uint32_t>* order) {
+  const std::size_t n = infos.size();
+  (*level).assign(n, kUnreached);
+  // Adjacency as a compressed list, built in constraint order.
+  std::vector<std::uint32_t> start(n + 1, 0), neighbours(2 * constraints.size());
+  for (const SubstepConstraint& c : constraints) ++start[c.a + 1], ++start[c.b + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (const SubstepConstraint& c : constraints) {
+    neighbours[fill[c.a]++] = c.b;
+    neighbours[fill[c.b]++] = c.a;
+  }
+  std::vector<std::uint32_t> queue;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (infos[i].is_static) (*level)[i] = 0, queue.push_back(i);
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::uint32_t body = queue[head];
+    for (std::uint32_t k = start[body]; k < start[body + 1]; ++k) {
+      const std::uint32_t other = neighbours[k];
+      if ((*level)[other] != kUnreached) continue;
+      (*level)[other] = (*level)[body] + 1;
+      queue.push_back(other);
+    }
+  }
+  (*order).resize(constraints.size());
+  for (std::uint32_t i = 0; i < constraints.size(); ++i) (*order)[i] = i;
+  auto lower = [&](std::uint32_t i) {
+    return std::min((*level)[constraints[i].a], (*level)[constraints[i].b]);
+  };
+  std::stable_sort((*order).begin(), (*order).end(),
+                   [&](std::uint32_t i, std::uint32_t j) { return lower(i) < lower(j); });
+}
+
+void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::uint32_t> order,
+                    std::span<const SubstepConstraint> constraints,
+                    std::span<BodyState> states, std::span<const Vec2> step_start_positions,
+                    double inv_h, double linear_slop) {
+  for (std::uint32_t index : order) {
+    const SubstepConstraint& sc = constraints[index];
+    BodyState& a = states[sc.a];
+    BodyState& b = states[sc.b];
+    const Vec2 n = sc.normal;
+    const Vec2 moved = (b.position - step_start_positions[sc.b]) - (a.position - step_start_positions[sc.a]);
+    const double s = sc.base_separation + Dot(moved, n);
+    // Overlap still being pushed out is the solver's: its push-out speed, carried up a stack
+    // here, could not be taken back by the relax pass.
+    if (s < -linear_slop) continue;
+    const double min_vn = -std::max(s, 0.0) * inv_h;
+    const double vn = Dot(b.velocity - a.velocity, n);
+    if (vn >= min_vn) continue;
+    // Which body gives: the upper one alone, or both by mass on one level.
+    const std::uint32_t level_a = level[sc.a], level_b = level[sc.b];
+    const double inv_a = level_a < level_b ? 0.0 : sc.inv_mass_a;
+    const double inv_b = level_b < level_a ? 0.0 : sc.inv_mass_b;
+    const double impulse = (min_vn - vn) / (inv_a + inv_b);
+    a.velocity -= (impulse * inv_a) * n;
+    b.velocity += (impulse * inv_b) * n;
+  }
+}
+
+}  // namespace engine::detail

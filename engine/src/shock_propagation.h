@@ -1,0 +1,28 @@
+// Shock propagation (Guendelman, Bridson and Fedkiw, "Nonconvex Rigid Bodies with Stacking",
+// SIGGRAPH 2003): contacts visited from the ground up with the lower body held fixed, so that a
+// stack cannot sink whatever its mass ratios. Internal to the engine.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/world.h"
+
+namespace engine::detail {
+
+/// Builds each body's `level` (graph distance through contacts from a static body: static
+/// bodies 0, bodies touching nothing static the highest) and the `order` of the constraints by
+/// their lower level, breadth-first in body-id order.
+void BuildShockOrder(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                     std::vector<std::uint32_t>* level, std::vector<std::uint32_t>* order);
+
+/// One pass in that order: no contact within the slop may approach faster than its gap allows
+/// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse
+/// by mass. Leaves the accumulated impulses alone: this pass only keeps stacks from sinking.
+void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::uint32_t> order,
+                    std::span<const SubstepConstraint> constraints,
+                    std::span<BodyState> states, std::span<const Vec2> step_start_positions,
+                    double inv_h, double linear_slop);
+
+}  // namespace engine::detail

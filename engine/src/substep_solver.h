@@ -1,0 +1,42 @@
+// The substepping contact solver, after Erin Catto's "soft step" (Solver2D, 2024): per substep
+// integrate velocities, warm start, solve, integrate positions, push out. Internal.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/world.h"
+
+namespace engine::detail {
+
+/// One constraint per contact, with the impulses carried over from the last step.
+void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
+                            std::vector<SubstepConstraint>* constraints);
+
+/// Applies the accumulated impulses again, so the solve starts from last step's answer.
+void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);
+
+/// One Gauss-Seidel pass over all contacts: touching bodies may not approach, bodies with a gap
+/// may close no more than it this substep (speculative contact), friction within Coulomb's cone.
+void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+                   std::span<const Vec2> step_start_positions, double inv_h);
+
+/// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
+/// out through separate push velocities at `push_out_rate` per second of overlap, at most
+/// `max_push_out_speed`. They move positions this substep and are then dropped, so resolving an
+/// overlap never launches a body.
+void PushOut(std::span<SubstepConstraint> constraints, std::span<const BodyState> states,
+             std::span<const Vec2> step_start_positions, std::span<Vec2> push_velocities,
+             double push_out_rate, double max_push_out_speed, double linear_slop);
+
+/// Moves every body by its push velocity for one substep.
+void MoveByPush(std::span<BodyState> states, std::span<const Vec2> push_velocities, double h);
+
+/// Moves each pair of bodies apart by what the impact pass asked for.
+void ApplyImpactLags(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);
+
+/// Stores the accumulated impulses back on the contacts for the next step's warm start.
+void StoreImpulses(std::span<const SubstepConstraint> constraints, std::span<Contact> contacts);
+
+}  // namespace engine::detail
