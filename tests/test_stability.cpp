@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/world.h"
-#include "stress_scenes.h"
+#include "bench/stress_scenes.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The solver stress scenes (accuracy.md §3), shared by the stability tests and the benchmark.
+// The solver stress scenes (accuracy.md §3), shared by the benchmark and the stability tests.
 #pragma once
 
 #include <cmath>
