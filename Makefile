@@ -24,7 +24,7 @@ build: deps
 	cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	./$(BUILD)/ballbox sim --steps 600
+	./$(BUILD)/ballbox render
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

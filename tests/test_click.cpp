@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "game/click.h"
+#include "game/commands.h"
 #include "game/scene.h"
 #include "game/session.h"
 #include "render/camera.h"
@@ -115,5 +116,26 @@ TEST_CASE("without a scene camera, the fit shows every body inside the image", "
     CHECK(px.x < 800);
     CHECK(px.y > 0);
     CHECK(px.y < 600);
+  }
+}
+
+TEST_CASE("every demo click of the default scene hits a ball inside the image", "[click]") {
+  game::Expected<game::RunInput> input = game::LoadRunInput({});
+  REQUIRE(input.HasValue());
+  const std::vector<game::InputEvent> events = input.Value().events;
+  REQUIRE(events.size() >= 5);
+  game::Session session(input.Value().scene, {}, 800, 600);  // replayed by hand below
+  for (const game::InputEvent& event : events) {
+    while (session.StepIndex() < event.step) session.Step();
+    REQUIRE(event.kind == game::EventKind::kClickPixel);
+    CHECK(event.at.x >= 0);
+    CHECK(event.at.x <= 800);
+    CHECK(event.at.y >= 0);
+    CHECK(event.at.y <= 600);
+    const Vec2 p = render::PixelToWorld(session.Camera(), 800, 600, event.at.x, event.at.y);
+    INFO("click at step " << event.step);
+    const auto hit = game::ResolveClick(session.World(), p, session.SceneDef().click_max_impulse);
+    REQUIRE(hit);
+    session.ApplyEvent(event);
   }
 }
