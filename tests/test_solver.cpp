@@ -110,3 +110,95 @@ TEST_CASE("soft step: head-on collision of masses 1 and 3 follows the collision 
   CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
   CHECK(world.State(1).velocity.x == Approx(1.0).epsilon(1e-12));
 }
+
+TEST_CASE("a sliding box stops after v²/(2μg) within v·dt, then stays put", "[solver][friction]") {
+  for (auto solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSeed}) {
+    engine::WorldDef def;
+    def.gravity = {0, -9.81};
+    def.solver = solver;
+    engine::World world(def);
+    world.CreateBody(WithMaterial(Static(Box({0, -0.5}, {100, 1})), 0, 0.5));
+    const double v0 = 10, mu = 0.5;
+    world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}, {v0, 0}), 0, 0.5));
+    for (int i = 0; i < 180; ++i) world.Step();
+    const double stop = world.State(1).position.x;
+    INFO("solver " << static_cast<int>(solver) << ": stopped at " << stop << " m, v²/(2μg) = "
+                   << v0 * v0 / (2 * mu * 9.81));
+    CHECK(std::abs(stop - v0 * v0 / (2 * mu * 9.81)) <= v0 * def.dt);
+    for (int i = 0; i < 120; ++i) world.Step();  // 2 s more: no creep
+    CHECK(std::abs(world.State(1).position.x - stop) <= 1e-6);
+    CHECK(world.State(1).velocity.x == 0.0);
+  }
+}
+
+TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][friction]") {
+  // A steady sideways push of 0.9·μ·m·g, as gravity tilted so: tan θ = 0.9·μ < μ (S10, static).
+  const double mu = 0.6, g = 9.81;
+  engine::WorldDef def;
+  def.gravity = {0.9 * mu * g, -g};
+  engine::World world(def);
+  world.CreateBody(WithMaterial(Static(Box({0, -0.5}, {20, 1})), 0, mu));
+  world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
+  for (int i = 0; i < 120; ++i) world.Step();
+  CHECK(std::abs(world.State(1).position.x) <= 1e-9);
+
+  // The same push a little over μmg slides, at (1.1 − 1)·μ·g.
+  engine::WorldDef slipping = def;
+  slipping.gravity = {1.1 * mu * g, -g};
+  engine::World sliding(slipping);
+  sliding.CreateBody(WithMaterial(Static(Box({0, -0.5}, {200, 1})), 0, mu));
+  sliding.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
+  for (int i = 0; i < 60; ++i) sliding.Step();
+  CHECK(sliding.State(1).velocity.x == Approx(0.1 * mu * g * 1.0).epsilon(1e-9));
+}
+
+TEST_CASE("resting bodies fall asleep after half a second and stop costing work", "[solver][sleep]") {
+  engine::World world(engine::WorldDef{});
+  world.CreateBody(Static(Box({0, -0.5}, {20, 1})));
+  for (int i = 0; i < 3; ++i) world.CreateBody(Box({0, 0.5 + i}, {1, 1}));
+  int first_asleep = -1;
+  for (int i = 1; i <= 60 && first_asleep < 0; ++i) {
+    world.Step();
+    if (!world.IsAwake(1)) first_asleep = i;
+  }
+  // Resting from the start, they sleep once 0.5 s (30 steps) of rest have been counted.
+  CHECK(first_asleep == 30);
+  for (engine::BodyId id = 1; id < 4; ++id) CHECK_FALSE(world.IsAwake(id));
+  world.Step();
+  CHECK(world.Contacts().empty());  // nothing left to collide or solve
+  for (engine::BodyId id = 1; id < 4; ++id) CHECK(world.State(id).position.y == 0.5 + (id - 1));
+}
+
+TEST_CASE("a sleeping stack wakes when something lands on it, and a click wakes a body", "[solver][sleep]") {
+  engine::World world(engine::WorldDef{});
+  world.CreateBody(Static(Box({0, -0.5}, {20, 1})));
+  for (int i = 0; i < 3; ++i) world.CreateBody(Box({0, 0.5 + i}, {1, 1}));
+  world.CreateBody(Box({8, 0.5}, {1, 1}));  // a separate island
+  for (int i = 0; i < 40; ++i) world.Step();
+  REQUIRE_FALSE(world.IsAwake(1));
+  const engine::BodyId ball = world.CreateBody(Circle({0, 6}, 0.5));
+  bool woke = false;
+  for (int i = 0; i < 90 && !woke; ++i) {
+    world.Step();
+    woke = world.IsAwake(1) && world.IsAwake(2) && world.IsAwake(3);
+  }
+  CHECK(woke);                      // the whole island, down to the bottom box
+  CHECK_FALSE(world.IsAwake(4));    // but not the box standing apart
+  CHECK(world.State(ball).position.y > 3.0);  // the ball rests on the stack, not in it
+
+  world.ApplyLinearImpulse(4, {1, 0});
+  CHECK(world.IsAwake(4));
+  world.Step();
+  CHECK(world.State(4).position.x > 8.0);
+}
+
+TEST_CASE("with sleeping off, nothing sleeps", "[solver][sleep]") {
+  engine::WorldDef def;
+  def.sleeping = false;
+  engine::World world(def);
+  world.CreateBody(Static(Box({0, -0.5}, {20, 1})));
+  world.CreateBody(Box({0, 0.5}, {1, 1}));
+  for (int i = 0; i < 120; ++i) world.Step();
+  CHECK(world.IsAwake(1));
+  CHECK(world.Contacts().size() == 1);
+}

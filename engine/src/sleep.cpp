@@ -50,7 +50,8 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<BodyState> states,
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!sleep.awake[i]) continue;
     const std::uint32_t root = Find(parent, i);
-    if (island_rest[root] < def.time_to_sleep) continue;
+    // Half a step of tolerance: thirty sixtieths add up to a hair under 0.5.
+    if (island_rest[root] < def.time_to_sleep - 0.5 * def.dt) continue;
     sleep.awake[i] = 0;
     sleep.island[i] = root;
     states[i].velocity = {};
