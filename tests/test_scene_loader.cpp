@@ -203,6 +203,19 @@ TEST_CASE("scene solver iterations above 1000", "[scene]") {
                     "solver.iterations: must be a whole number from 1 to 1000");
 }
 
+TEST_CASE("scene solver method that does not exist", "[scene]") {
+  RequireSceneError("scene_unknown_solver_method.json",
+                    "solver.method: unknown value \"soft\" (expected one of \"substep\", \"seed\")");
+}
+
+TEST_CASE("scene solver substeps of 0", "[scene]") {
+  RequireSceneError("scene_substeps_zero.json", "solver.substeps: must be > 0");
+}
+
+TEST_CASE("scene sleep that is not true or false", "[scene]") {
+  RequireSceneError("scene_sleep_not_bool.json", "sleep: must be true or false");
+}
+
 TEST_CASE("scene solver iterations of 0", "[scene]") {
   RequireSceneError("scene_iterations_zero.json", "solver.iterations: must be > 0");
 }
@@ -364,6 +377,11 @@ TEST_CASE("scene defaults: name, world, click, camera", "[scene]") {
   CHECK(scene.click_max_impulse == 10.0);
   CHECK_FALSE(scene.camera.center.has_value());
   CHECK_FALSE(scene.camera.width.has_value());
+  // The project's own defaults (docs/scene-format.md).
+  CHECK(scene.world.solver == engine::ContactSolver::kSubstep);
+  CHECK(scene.world.substeps == 4);
+  CHECK(scene.world.sleeping);
+  CHECK(scene.world.restitution_threshold == 1.0);
 }
 
 TEST_CASE("scene defaults: a body's id, velocity, angle, material and colour", "[scene]") {
@@ -427,6 +445,10 @@ TEST_CASE("scene with every documented and extra key reads each value", "[scene]
   CHECK(scene.world.restitution_threshold == 0.5);
   CHECK(scene.world.linear_slop == 0.01);
   CHECK(scene.world.position_correction == 0.3);
+  CHECK(scene.world.solver == engine::ContactSolver::kSeed);
+  CHECK(scene.world.substeps == 3);
+  CHECK(scene.world.max_push_out_speed == 2.5);
+  CHECK_FALSE(scene.world.sleeping);
 }
 
 TEST_CASE("scene with every key reads each body value", "[scene]") {
