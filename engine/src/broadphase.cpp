@@ -9,7 +9,20 @@ namespace engine {
 
 namespace {
 
-bool PairLess(BodyPair p, BodyPair q) { return p.a != q.a ? p.a < q.a : p.b < q.b; }
+// Sorts pairs by (a, b) in linear time: counting sort by b, then a stable counting sort by a.
+// Both keys are body indices below `body_count`.
+void SortPairs(std::size_t body_count, std::vector<BodyPair>* pairs, std::vector<BodyPair>* scratch,
+               std::vector<std::uint32_t>* counts) {
+  scratch->resize(pairs->size());
+  auto pass = [&](const std::vector<BodyPair>& from, std::vector<BodyPair>& to, bool by_a) {
+    counts->assign(body_count + 1, 0);
+    for (const BodyPair& p : from) ++(*counts)[(by_a ? p.a : p.b) + 1];
+    for (std::size_t i = 1; i <= body_count; ++i) (*counts)[i] += (*counts)[i - 1];
+    for (const BodyPair& p : from) to[(*counts)[by_a ? p.a : p.b]++] = p;
+  };
+  pass(*pairs, *scratch, false);
+  pass(*scratch, *pairs, true);
+}
 
 BodyPair MakePair(std::uint32_t i, std::uint32_t j) { return i < j ? BodyPair{i, j} : BodyPair{j, i}; }
 
@@ -78,7 +91,7 @@ void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>
     }
     active_.push_back(e.body);
   }
-  std::sort(pairs->begin(), pairs->end(), PairLess);
+  SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
 }
 
 }  // namespace engine

@@ -1,4 +1,4 @@
-// Levels by breadth-first search from the static bodies; a stable sort keeps ties in contact
+// Levels by breadth-first search from the static bodies; a counting sort keeps ties in contact
 // (body-pair) order, so the pass is deterministic.
 #include "shock_propagation.h"
 
@@ -39,13 +39,17 @@ void BuildShockOrder(std::span<const SubstepConstraint> constraints, std::span<c
       queue.push_back(other);
     }
   }
-  (*order).resize(constraints.size());
-  for (std::uint32_t i = 0; i < constraints.size(); ++i) (*order)[i] = i;
-  auto lower = [&](std::uint32_t i) {
-    return std::min((*level)[constraints[i].a], (*level)[constraints[i].b]);
+  // Counting sort by the lower level of each pair: linear, and stable, so ties stay in contact
+  // (body-pair) order. Pairs touching nothing static come last.
+  auto lower = [&](const SubstepConstraint& c) {
+    const std::uint32_t l = std::min((*level)[c.a], (*level)[c.b]);
+    return l == kUnreached ? static_cast<std::uint32_t>(queue.size()) : l;
   };
-  std::stable_sort((*order).begin(), (*order).end(),
-                   [&](std::uint32_t i, std::uint32_t j) { return lower(i) < lower(j); });
+  std::vector<std::uint32_t> first(queue.size() + 2, 0);
+  for (const SubstepConstraint& c : constraints) ++first[lower(c) + 1];
+  for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
+  order->resize(constraints.size());
+  for (std::uint32_t i = 0; i < constraints.size(); ++i) (*order)[first[lower(constraints[i])]++] = i;
 }
 
 void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::uint32_t> order,

@@ -39,6 +39,8 @@ class SweepAndPrune {
 
   std::vector<Endpoint> endpoints_;
   std::vector<std::uint32_t> active_;
+  std::vector<BodyPair> sorted_scratch_;
+  std::vector<std::uint32_t> counts_;
   std::int64_t last_swap_count_ = 0;
 };
 
