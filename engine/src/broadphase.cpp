@@ -3,7 +3,6 @@
 #include "engine/broadphase.h"
 
 #include <algorithm>
-#include <cassert>
 
 namespace engine {
 
@@ -71,25 +70,27 @@ void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>
   }
   last_swap_count_ = swaps;
 
-  // Sweep x: every body whose interval is open when another's opens overlaps it in x.
+  // Sweep x: every body whose interval is open when another's opens overlaps it in x. The open
+  // intervals keep their y extents inline, so the inner loop reads memory in order.
   pairs->clear();
   active_.clear();
+  active_slot_.resize(boxes.size());
   for (const Endpoint& e : endpoints_) {
     if (e.is_max) {
-      auto it = std::find(active_.begin(), active_.end(), e.body);
-      assert(it != active_.end());
-      *it = active_.back();
+      const std::uint32_t slot = active_slot_[e.body];
+      active_[slot] = active_.back();
+      active_slot_[active_[slot].body] = slot;
       active_.pop_back();
       continue;
     }
     const AABB& box = boxes[e.body];
-    for (std::uint32_t other : active_) {
-      const AABB& o = boxes[other];
-      if (box.lower.y <= o.upper.y && o.lower.y <= box.upper.y) {
-        pairs->push_back(MakePair(e.body, other));
+    for (const ActiveInterval& other : active_) {
+      if (box.lower.y <= other.upper_y && other.lower_y <= box.upper.y) {
+        pairs->push_back(MakePair(e.body, other.body));
       }
     }
-    active_.push_back(e.body);
+    active_slot_[e.body] = static_cast<std::uint32_t>(active_.size());
+    active_.push_back({box.lower.y, box.upper.y, e.body});
   }
   SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
 }

@@ -35,10 +35,16 @@ class SweepAndPrune {
     std::uint32_t body;
     bool is_max;
   };
+  struct ActiveInterval {
+    double lower_y;
+    double upper_y;
+    std::uint32_t body;
+  };
   void Rebuild(std::span<const AABB> boxes);
 
   std::vector<Endpoint> endpoints_;
-  std::vector<std::uint32_t> active_;
+  std::vector<ActiveInterval> active_;
+  std::vector<std::uint32_t> active_slot_;  ///< where each open body sits in active_
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
   std::int64_t last_swap_count_ = 0;
