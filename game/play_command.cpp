@@ -1,10 +1,294 @@
-// `ballbox play`: the windowed game. Not built yet: the window issue brings GLFW play.
+// `ballbox play`: the scene in a window in real time, drawn by the same renderer as `ballbox
+// render` (its picture copied to the window), with clicks, keys, recording and replay.
+#include <atomic>
+#include <chrono>
+#include <cinttypes>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "game/commands.h"
+#include "game/output_file.h"
+#include "game/play_controller.h"
+#include "game/play_view.h"
+#include "game/screenshot.h"
+#include "render/bitmap_text.h"
+#include "render/renderer.h"
+#include "render/window.h"
 
 namespace game {
 
-Status RunPlay(const PlayOptions&) {
-  return RuntimeFailure("ballbox play is not available in this build yet; use `ballbox render`");
+namespace {
+
+constexpr const char* kScreenshotDir = "screenshots";
+constexpr render::Color kBarColor{0x20, 0x23, 0x28};
+constexpr render::Color kStatusBackdrop{0x20, 0x23, 0x28};
+constexpr render::Color kStatusText{0xf4, 0xf1, 0xea};
+
+// Ctrl-C in the terminal ends the run as Esc does: the recording is written, the hash printed.
+std::atomic<bool> g_interrupted{false};
+extern "C" void OnInterrupt(int) { g_interrupted = true; }
+
+Failure NoDisplay(const std::string& reason) {
+  return RuntimeFailure("ballbox play needs a window, and there is no display (" + reason +
+                        "); try ballbox render to write the frames as PNG files instead");
+}
+
+// A step count from the environment: the hooks tests and demos use (docs/play.md).
+Expected<std::optional<std::int64_t>> StepFromEnvironment(const char* name) {
+  const char* text = std::getenv(name);
+  if (text == nullptr) return std::optional<std::int64_t>();
+  const std::string value = text;
+  std::int64_t step = 0;
+  bool ok = !value.empty() && value.size() <= 15;
+  for (const char c : value) {
+    ok = ok && c >= '0' && c <= '9';
+    if (ok) step = step * 10 + (c - '0');
+  }
+  if (!ok) {
+    return BadInput(std::string(name) + ": expected a step number (a whole number >= 0), got \"" +
+                    value + "\"");
+  }
+  return std::optional<std::int64_t>(step);
+}
+
+// Frames drawn per second, measured over half a second so the number can be read.
+class FpsMeter {
+ public:
+  void Frame(std::chrono::steady_clock::time_point now) {
+    if (frames_ == 0 && !started_) {
+      start_ = now;
+      started_ = true;
+    }
+    ++frames_;
+    const double seconds = std::chrono::duration<double>(now - start_).count();
+    if (seconds >= 0.5) {
+      fps_ = frames_ / seconds;
+      frames_ = 0;
+      start_ = now;
+    }
+  }
+  double Fps() const { return fps_; }
+
+ private:
+  bool started_ = false;
+  int frames_ = 0;
+  std::chrono::steady_clock::time_point start_;
+  double fps_ = 0.0;
+};
+
+std::vector<render::FilledRect> StatusOverlay(const std::string& text, int framebuffer_width) {
+  // Twice the font's cells on a window wide enough; the line stays small either way.
+  const int cell = framebuffer_width >= 480 ? 2 : 1;
+  const int pad = 2 * cell;
+  std::vector<render::FilledRect> overlay;
+  overlay.push_back({{pad, pad, render::TextWidth(text, cell) + 2 * pad,
+                      render::kGlyphRows * cell + 2 * pad},
+                     kStatusBackdrop});
+  for (const render::FilledRect& r : render::LayoutText(text, 2 * pad, 2 * pad, cell, kStatusText)) {
+    overlay.push_back(r);
+  }
+  return overlay;
+}
+
+std::string Title(const PlayController& controller) {
+  std::string title = "ballbox play: " + controller.GetSession().SceneDef().name;
+  if (controller.Paused()) {
+    title += " (paused at step " + std::to_string(controller.GetSession().StepIndex()) + ")";
+  }
+  return title;
+}
+
+void TakeScreenshot(render::Renderer& renderer, const PlayController& controller,
+                    const std::vector<render::Color>& colors) {
+  // Drawn afresh from the current state, so the file shows exactly the step its name says.
+  const Session& session = controller.GetSession();
+  renderer.Draw(session.World(), colors, session.Camera());
+  render::Image image;
+  renderer.ReadImage(image);
+  Expected<std::string> path = SaveScreenshot(
+      image, kScreenshotDir, ScreenshotStem(session.SceneDef().name, session.StepIndex()));
+  if (path.HasValue()) {
+    std::printf("play: screenshot at step %" PRId64 " -> %s\n", session.StepIndex(),
+                path.Value().c_str());
+  } else {
+    std::fprintf(stderr, "play: no screenshot: %s\n", path.Error().message.c_str());
+  }
+  std::fflush(stdout);
+}
+
+std::string RecordingHeader(const PlayOptions& options, const PlayController& controller) {
+  const Session& session = controller.GetSession();
+  char line[200];
+  std::snprintf(line, sizeof line, "# stopped at step %" PRId64 ", state-hash: %016" PRIx64 "\n",
+                session.StepIndex(), session.World().StateHash());
+  const std::string scene =
+      options.run.scene_path ? *options.run.scene_path : std::string("(the built-in scene)");
+  return "# recorded by ballbox play: " + scene + "\n" + line +
+         "# every click applied, live or scripted, as the world point it acted on\n";
+}
+
+// The window loop. Returns when the user quits, the stop step is reached, or GL fails.
+Status RunWindow(render::Window& window, render::Renderer& renderer, PlayController& controller,
+                 const std::vector<render::Color>& colors) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last = Clock::now();
+  FpsMeter fps;
+  std::string title;
+  int framebuffer_width = 0;
+  int framebuffer_height = 0;
+  window.FramebufferSize(framebuffer_width, framebuffer_height);
+  render::PixelRect picture = Letterbox(framebuffer_width, framebuffer_height, renderer.Width(),
+                                        renderer.Height());
+  const int image_width = controller.GetSession().ImageWidth();
+  const int image_height = controller.GetSession().ImageHeight();
+
+  while (!g_interrupted) {
+    // Nothing changes before the next step is due, so wait for it (or for input) rather than
+    // redraw the same state; a paused game only waits for input.
+    const bool idle = controller.Paused() || controller.Finished();
+    bool quit = false;
+    for (const render::WindowEvent& event :
+         window.TakeEvents(idle ? 0.25 : controller.SecondsToNextStep())) {
+      if (event.type == render::WindowEvent::Type::kClose) {
+        quit = true;
+      } else if (event.type == render::WindowEvent::Type::kMouseDown) {
+        if (event.button != 0) continue;
+        // Clicks on the letterbox bars are on no part of the picture and do nothing.
+        const Session& session = controller.GetSession();
+        if (auto p = WindowPointToWorld(session.Camera(), picture, event.x, event.y)) {
+          controller.Click(*p);
+        }
+      } else if (event.key == "escape") {
+        quit = true;
+      } else if (event.key == ".") {
+        controller.StepOnce();  // held down, it keeps stepping
+      } else if (event.repeat) {
+        continue;  // the other keys act once per press
+      } else if (event.key == "space") {
+        controller.TogglePause();
+      } else if (event.key == "r") {
+        std::printf("play: restart at step %" PRId64 ": back to step 0, the recording starts over\n",
+                    controller.GetSession().StepIndex());
+        std::fflush(stdout);
+        controller.Restart();
+      } else if (event.key == "s") {
+        TakeScreenshot(renderer, controller, colors);
+      }
+      if (quit) break;  // what follows Esc in the same batch is not acted on
+    }
+    if (quit) break;
+
+    const Clock::time_point now = Clock::now();
+    controller.Advance(std::chrono::duration<double>(now - last).count());
+    last = now;
+    if (controller.Finished()) break;
+
+    window.FramebufferSize(framebuffer_width, framebuffer_height);
+    picture = Letterbox(framebuffer_width, framebuffer_height, image_width, image_height);
+    if (picture.width == 0) continue;  // minimised: nothing to draw into
+    if (picture.width != renderer.Width() || picture.height != renderer.Height()) {
+      // Drawn at the size it is shown, so it stays sharp; on failure the old size is scaled.
+      std::string error;
+      if (!renderer.Resize(picture.width, picture.height, error)) {
+        std::fprintf(stderr, "play: %s\n", error.c_str());
+      }
+    }
+    const Session& session = controller.GetSession();
+    renderer.Draw(session.World(), colors, session.Camera());
+    const double time = static_cast<double>(session.StepIndex()) * session.World().Def().dt;
+    const std::vector<render::FilledRect> overlay = StatusOverlay(
+        StatusLine(session.StepIndex(), time, fps.Fps(), controller.Paused()), framebuffer_width);
+    renderer.Present(framebuffer_width, framebuffer_height, picture, overlay, kBarColor);
+    window.SwapBuffers();
+    fps.Frame(Clock::now());
+    if (std::string now_title = Title(controller); now_title != title) {
+      window.SetTitle(now_title);
+      title = std::move(now_title);
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Status RunPlay(const PlayOptions& options) {
+  // Bad input is reported first (exit 2), as in every command, and before anything opens.
+  Expected<RunInput> input = LoadRunInput(options.run);
+  if (!input.HasValue()) return input.Error();
+  Expected<std::optional<std::int64_t>> stop_at = StepFromEnvironment("BALLBOX_PLAY_STOP_AT");
+  if (!stop_at.HasValue()) return stop_at.Error();
+  Expected<std::optional<std::int64_t>> pause_at = StepFromEnvironment("BALLBOX_PLAY_PAUSE_AT");
+  if (!pause_at.HasValue()) return pause_at.Error();
+
+  if (!render::WindowSupportBuilt()) {
+    return RuntimeFailure(
+        "ballbox play is not available: this ballbox was built without GLFW (install "
+        "libglfw3-dev and rebuild with -DBALLBOX_WITH_GLFW=ON); try ballbox render to write the "
+        "frames as PNG files instead");
+  }
+  std::string reason;
+  if (!render::DisplayConfigured(reason)) return NoDisplay(reason);
+
+  // Opened before the window, so an unwritable path fails at once; it appears only on Commit.
+  std::optional<AtomicOutputFile> record;
+  if (options.record_path) {
+    Expected<AtomicOutputFile> file = AtomicOutputFile::Open(*options.record_path);
+    if (!file.HasValue()) return file.Error();
+    record.emplace(std::move(file.Value()));
+  }
+
+  const int width = options.run.width;
+  const int height = options.run.height;
+  PlayController controller(std::move(input.Value().scene), std::move(input.Value().events),
+                            width, height, PlayLimits{stop_at.Value(), pause_at.Value()});
+  std::string error;
+  render::Window::Failure failure = render::Window::Failure::kNone;
+  std::unique_ptr<render::Window> window =
+      render::Window::Open(width, height, Title(controller), failure, error);
+  if (!window) {
+    return failure == render::Window::Failure::kNoDisplay ? NoDisplay(error)
+                                                          : RuntimeFailure(error);
+  }
+  std::unique_ptr<render::Renderer> renderer =
+      render::Renderer::Create(*window, width, height, error);
+  if (!renderer) return RuntimeFailure(error);
+  std::vector<render::Color> colors;
+  for (const SceneBody& body : controller.GetSession().SceneDef().bodies) {
+    colors.push_back(body.color);
+  }
+
+  g_interrupted = false;
+  auto previous_int = std::signal(SIGINT, OnInterrupt);
+  auto previous_term = std::signal(SIGTERM, OnInterrupt);
+  Status status = RunWindow(*window, *renderer, controller, colors);
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
+  renderer.reset();
+  window.reset();
+  if (status) return status;
+
+  const Session& session = controller.GetSession();
+  if (record) {
+    std::fputs(RecordingHeader(options, controller).c_str(), record->Stream());
+    std::fputs(FormatScript(controller.Recorded()).c_str(), record->Stream());
+    if (Status failed = record->Commit()) return failed;
+    std::printf("play: %zu events recorded -> %s\n", controller.Recorded().size(),
+                options.record_path->c_str());
+  }
+  if (controller.PendingClicks() > 0) {
+    std::printf("play: %zu clicks at step %" PRId64
+                " were not applied (the run ended before that step) and are not recorded\n",
+                controller.PendingClicks(), session.StepIndex());
+  }
+  std::printf("play: stopped at step %" PRId64 " (%.3f s simulated)\n", session.StepIndex(),
+              static_cast<double>(session.StepIndex()) * session.World().Def().dt);
+  std::printf("state-hash: %016" PRIx64 "\n", session.World().StateHash());
+  return std::nullopt;
 }
 
 }  // namespace game

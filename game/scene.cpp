@@ -175,7 +175,8 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   RejectUnknownKeys(body, path,
                     {"id", "shape", "radius", "size", "position", "velocity", "angle",
                      "angular_velocity", "mass", "density", "static", "restitution", "friction",
-                     "fixed_rotation", "bullet", "color"});
+                     "fixed_rotation", "bullet", "color", "linear_damping", "angular_damping",
+                     "drag_coefficient"});
   SceneBody out;
   engine::BodyDef& def = out.def;
   auto key = [&](const char* k) { return Join(path, k); };
@@ -236,17 +237,65 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (const Json* v = Find(body, "friction")) def.friction = ReadNonNegative(*v, key("friction"));
   if (const Json* v = Find(body, "fixed_rotation")) def.fixed_rotation = ReadBool(*v, key("fixed_rotation"));
   if (const Json* v = Find(body, "bullet")) def.bullet = ReadBool(*v, key("bullet"));
+  if (const Json* v = Find(body, "linear_damping")) def.linear_damping = ReadNonNegative(*v, key("linear_damping"));
+  if (const Json* v = Find(body, "angular_damping")) def.angular_damping = ReadNonNegative(*v, key("angular_damping"));
+  if (const Json* v = Find(body, "drag_coefficient")) def.drag_coefficient = ReadNonNegative(*v, key("drag_coefficient"));
 
   out.color = def.is_static ? render::kStaticColor : render::PaletteColor(index);
   if (const Json* v = Find(body, "color")) out.color = ReadColor(*v, key("color"));
   return out;
 }
 
+// A spring between two bodies named by id, or from one body to a fixed world point.
+engine::SpringDef ReadSpring(const Json& spring, const std::string& path,
+                             const std::map<std::string, std::size_t>& ids,
+                             const std::vector<SceneBody>& bodies) {
+  if (!spring.is_object()) throw SceneError{path, "must be an object"};
+  RejectUnknownKeys(spring, path, {"a", "b", "anchor_a", "anchor_b", "rest_length", "stiffness", "damping"});
+  auto key = [&](const char* k) { return Join(path, k); };
+  auto body_index = [&](const char* k) {
+    const std::string id = ReadString(spring.at(k), key(k));
+    const auto it = ids.find(id);
+    if (it == ids.end()) throw SceneError{key(k), "no body has the id " + Quote(id)};
+    if (bodies[it->second].def.is_static) {
+      throw SceneError{key(k), "body " + Quote(id) + " is static: anchor the spring with \"anchor_b\" instead"};
+    }
+    return static_cast<engine::BodyId>(it->second);
+  };
+  engine::SpringDef def;
+  if (!Find(spring, "a")) throw SceneError{path, "needs \"a\", the id of the body it pulls"};
+  def.body_a = body_index("a");
+  if (const Json* v = Find(spring, "anchor_a")) def.local_a = ReadVec2(*v, key("anchor_a"));
+  if (Find(spring, "b")) {
+    def.body_b = body_index("b");
+    if (const Json* v = Find(spring, "anchor_b")) def.local_b = ReadVec2(*v, key("anchor_b"));
+  } else {
+    const Json* anchor = Find(spring, "anchor_b");
+    if (!anchor) throw SceneError{path, "needs \"b\" (a body id) or \"anchor_b\" (a fixed world point)"};
+    def.local_b = ReadVec2(*anchor, key("anchor_b"));
+  }
+  const Json* stiffness = Find(spring, "stiffness");
+  if (!stiffness) throw SceneError{path, "needs \"stiffness\" (N/m)"};
+  def.stiffness = ReadNonNegative(*stiffness, key("stiffness"));
+  if (const Json* v = Find(spring, "damping")) def.damping = ReadNonNegative(*v, key("damping"));
+  // The rest length defaults to the distance between the attachment points as placed.
+  auto world_point = [&](engine::BodyId id, engine::Vec2 local) {
+    const engine::BodyDef& b = bodies[id].def;
+    return b.position + engine::Rotate(engine::MakeRot(b.angle), local);
+  };
+  const engine::Vec2 pa = world_point(def.body_a, def.local_a);
+  const engine::Vec2 pb = def.body_b ? world_point(*def.body_b, def.local_b) : def.local_b;
+  def.rest_length = engine::Length(pb - pa);
+  if (const Json* v = Find(spring, "rest_length")) def.rest_length = ReadNonNegative(*v, key("rest_length"));
+  return def;
+}
+
 Scene ReadScene(const Json& root, const std::string& default_name) {
   if (!root.is_object()) throw SceneError{"", "a scene must be a JSON object"};
   RejectUnknownKeys(root, "",
                     {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
-                     "broad_phase", "solver", "sleep"});
+                     "broad_phase", "solver", "sleep", "springs", "fluid_density",
+                     "gravitational_constant"});
   Scene scene;
   scene.name = default_name;
   if (const Json* v = Find(root, "name")) {
@@ -261,7 +310,10 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
     world.integrator = ReadChoice<engine::Integrator>(
         *v, "integrator",
         {{"semi_implicit_euler", engine::Integrator::kSemiImplicitEuler},
-         {"explicit_euler", engine::Integrator::kExplicitEuler}});
+         {"explicit_euler", engine::Integrator::kExplicitEuler},
+         {"velocity_verlet", engine::Integrator::kVelocityVerlet},
+         {"midpoint", engine::Integrator::kMidpoint},
+         {"rk4", engine::Integrator::kRungeKutta4}});
   }
   if (const Json* v = Find(root, "broad_phase")) {
     world.broad_phase = ReadChoice<engine::BroadPhaseType>(
@@ -272,6 +324,10 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   }
   if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
   if (const Json* v = Find(root, "sleep")) world.sleeping = ReadBool(*v, "sleep");
+  if (const Json* v = Find(root, "fluid_density")) world.fluid_density = ReadNonNegative(*v, "fluid_density");
+  if (const Json* v = Find(root, "gravitational_constant")) {
+    world.gravitational_constant = ReadNonNegative(*v, "gravitational_constant");
+  }
 
   if (const Json* camera = Find(root, "camera")) {
     if (!camera->is_object()) throw SceneError{"camera", "must be an object"};
@@ -304,6 +360,12 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
       throw SceneError{path + ".id", "duplicate id " + Quote(body.id) + " (also " + other + ")"};
     }
     scene.bodies.push_back(std::move(body));
+  }
+  if (const Json* springs = Find(root, "springs")) {
+    if (!springs->is_array()) throw SceneError{"springs", "must be an array"};
+    for (std::size_t i = 0; i < springs->size(); ++i) {
+      scene.springs.push_back(ReadSpring((*springs)[i], "springs[" + std::to_string(i) + "]", first_use, scene.bodies));
+    }
   }
   return scene;
 }
@@ -357,6 +419,7 @@ Expected<Scene> LoadScene(const std::string& path) {
 engine::World BuildWorld(const Scene& scene) {
   engine::World world(scene.world);
   for (const SceneBody& body : scene.bodies) world.CreateBody(body.def);
+  for (const engine::SpringDef& spring : scene.springs) world.AddSpring(spring);
   return world;
 }
 

@@ -32,6 +32,7 @@ struct Scene {
   CameraDef camera;
   double click_max_impulse = 10.0;       ///< N·s at a ball's rim
   std::vector<SceneBody> bodies;
+  std::vector<engine::SpringDef> springs;  ///< bodies named by index into `bodies`
 };
 
 /// Parses scene JSON. `file_label` names the source in messages; `default_name` is used when

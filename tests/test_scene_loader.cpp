@@ -322,7 +322,8 @@ TEST_CASE("scene colour with a non-hex digit", "[scene]") {
 TEST_CASE("scene unknown integrator lists the integrators", "[scene]") {
   RequireSceneError(
       "scene_unknown_integrator.json",
-      "integrator: unknown value \"rk4\" (expected one of \"semi_implicit_euler\", \"explicit_euler\")");
+      "integrator: unknown value \"leapfrog\" (expected one of \"semi_implicit_euler\", "
+      "\"explicit_euler\", \"velocity_verlet\", \"midpoint\", \"rk4\")");
 }
 
 TEST_CASE("scene unknown broad phase lists the broad phases", "[scene]") {

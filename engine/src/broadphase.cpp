@@ -1,15 +1,15 @@
-// All-pairs and sweep-and-prune broad phases. Both emit pairs sorted by (a, b), so what the
-// solver sees never depends on how the pairs were found.
+// All-pairs and sweep-and-prune broad phases, and the pair sort every broad phase ends with:
+// pairs sorted by (a, b), so what the solver sees never depends on how the pairs were found.
 #include "engine/broadphase.h"
 
 #include <algorithm>
 
+#include "pair_sort.h"
+
 namespace engine {
 
-namespace {
+namespace detail {
 
-// Sorts pairs by (a, b) in linear time: counting sort by b, then a stable counting sort by a.
-// Both keys are body indices below `body_count`.
 void SortPairs(std::size_t body_count, std::vector<BodyPair>* pairs, std::vector<BodyPair>* scratch,
                std::vector<std::uint32_t>* counts) {
   scratch->resize(pairs->size());
@@ -23,9 +23,7 @@ void SortPairs(std::size_t body_count, std::vector<BodyPair>* pairs, std::vector
   pass(*scratch, *pairs, true);
 }
 
-BodyPair MakePair(std::uint32_t i, std::uint32_t j) { return i < j ? BodyPair{i, j} : BodyPair{j, i}; }
-
-}  // namespace
+}  // namespace detail
 
 void FindPairsAllPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
   pairs->clear();
@@ -86,13 +84,13 @@ void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>
     const AABB& box = boxes[e.body];
     for (const ActiveInterval& other : active_) {
       if (box.lower.y <= other.upper_y && other.lower_y <= box.upper.y) {
-        pairs->push_back(MakePair(e.body, other.body));
+        pairs->push_back(detail::MakePair(e.body, other.body));
       }
     }
     active_slot_[e.body] = static_cast<std::uint32_t>(active_.size());
     active_.push_back({box.lower.y, box.upper.y, e.body});
   }
-  SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
+  detail::SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
 }
 
 }  // namespace engine

@@ -1,39 +1,127 @@
-// Semi-implicit and explicit Euler for bodies under gravity.
+// Explicit and semi-implicit Euler, velocity Verlet, midpoint and RK4 over the whole system:
+// springs and gravitation couple bodies, so every stage evaluates the forces on all of them.
 #include "integrate.h"
 
 namespace engine::detail {
 
 namespace {
 
-// The kicked velocity, written once so both phases compute it to the same bits.
-Vec2 Kick(Vec2 velocity, Vec2 gravity, double dt) { return velocity + gravity * dt; }
-
-}  // namespace
-
-void IntegrateVelocities(std::span<BodyState> states, std::span<const std::uint8_t> moving,
-                         Vec2 gravity, double dt, std::span<Vec2> start_velocities) {
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    start_velocities[i] = states[i].velocity;
+// stage = base + c·(velocity k, acceleration k) for every moving body.
+void Offset(std::span<const BodyState> base, std::span<const std::uint8_t> moving, bool rotation, double c,
+            std::span<const Vec2> k_velocity, std::span<const double> k_angular_velocity,
+            std::span<const Vec2> k_linear, std::span<const double> k_angular,
+            std::vector<BodyState>* stage) {
+  stage->assign(base.begin(), base.end());
+  for (std::size_t i = 0; i < base.size(); ++i) {
     if (!moving[i]) continue;
-    states[i].velocity = Kick(states[i].velocity, gravity, dt);
+    BodyState& s = (*stage)[i];
+    s.position += c * k_velocity[i];
+    s.velocity += c * k_linear[i];
+    if (!rotation) continue;
+    s.angle += c * k_angular_velocity[i];
+    s.angular_velocity += c * k_angular[i];
   }
 }
 
-void IntegratePositions(Integrator integrator, std::span<BodyState> states,
-                        std::span<const std::uint8_t> moving, std::span<const Vec2> start_velocities,
-                        Vec2 gravity, double dt) {
+}  // namespace
+
+void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
+              double h, FreeMotion* m) {
+  const std::size_t n = states.size();
+  m->velocity.resize(n);
+  m->drift.resize(n);
+  m->angular_velocity.resize(n);
+  m->angular_drift.resize(n);
+  for (int k = 0; k < 4; ++k) {
+    m->stage_velocity[k].resize(n);
+    m->stage_angular_velocity[k].resize(n);
+    m->linear[k].resize(n);
+    m->angular[k].resize(n);
+  }
+  std::vector<Vec2>* v = m->stage_velocity;
+  std::vector<double>* w = m->stage_angular_velocity;
+  std::vector<Vec2>* a = m->linear;
+  std::vector<double>* alpha = m->angular;
+  for (std::size_t i = 0; i < n; ++i) v[0][i] = states[i].velocity, w[0][i] = states[i].angular_velocity;
+  const std::vector<Vec2>& v0 = v[0];
+  const std::vector<double>& w0 = w[0];
+  forces.Evaluate(states, a[0], alpha[0]);
+
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kExplicitEuler:
+      for (std::size_t i = 0; i < n; ++i) {
+        m->velocity[i] = states[i].velocity + a[0][i] * h;
+        m->angular_velocity[i] = states[i].angular_velocity + alpha[0][i] * h;
+        const bool semi_implicit = integrator == Integrator::kSemiImplicitEuler;
+        m->drift[i] = semi_implicit ? m->velocity[i] : v0[i];
+        m->angular_drift[i] = semi_implicit ? m->angular_velocity[i] : w0[i];
+      }
+      break;
+    case Integrator::kVelocityVerlet: {
+      // x₁ = x₀ + h·v₀ + ½h²·a₀; a₁ at x₁ (and a predicted v₀ + h·a₀, for velocity-dependent
+      // forces); v₁ = v₀ + ½h·(a₀ + a₁).
+      Offset(states, forces.moving, forces.rotation, h, v0, w0, a[0], alpha[0], &m->stage);
+      for (std::size_t i = 0; i < n; ++i) {
+        m->stage[i].position = states[i].position + h * (v0[i] + 0.5 * h * a[0][i]);
+        if (forces.rotation) m->stage[i].angle = states[i].angle + h * (w0[i] + 0.5 * h * alpha[0][i]);
+      }
+      forces.Evaluate(m->stage, a[1], alpha[1]);
+      for (std::size_t i = 0; i < n; ++i) {
+        m->drift[i] = v0[i] + 0.5 * h * a[0][i];
+        m->angular_drift[i] = w0[i] + 0.5 * h * alpha[0][i];
+        m->velocity[i] = v0[i] + 0.5 * h * (a[0][i] + a[1][i]);
+        m->angular_velocity[i] = w0[i] + 0.5 * h * (alpha[0][i] + alpha[1][i]);
+      }
+      break;
+    }
+    case Integrator::kMidpoint: {
+      Offset(states, forces.moving, forces.rotation, 0.5 * h, v0, w0, a[0], alpha[0], &m->stage);
+      forces.Evaluate(m->stage, a[1], alpha[1]);
+      for (std::size_t i = 0; i < n; ++i) {
+        m->drift[i] = m->stage[i].velocity;
+        m->angular_drift[i] = m->stage[i].angular_velocity;
+        m->velocity[i] = v0[i] + h * a[1][i];
+        m->angular_velocity[i] = w0[i] + h * alpha[1][i];
+      }
+      break;
+    }
+    case Integrator::kRungeKutta4: {
+      // k_i = (velocity, acceleration) at each stage, the next stage offset by c·k_i.
+      const double c[3] = {0.5 * h, 0.5 * h, h};
+      for (int k = 1; k < 4; ++k) {
+        Offset(states, forces.moving, forces.rotation, c[k - 1], v[k - 1], w[k - 1], a[k - 1], alpha[k - 1], &m->stage);
+        forces.Evaluate(m->stage, a[k], alpha[k]);
+        for (std::size_t i = 0; i < n; ++i) v[k][i] = m->stage[i].velocity, w[k][i] = m->stage[i].angular_velocity;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        m->drift[i] = (v[0][i] + 2.0 * v[1][i] + 2.0 * v[2][i] + v[3][i]) / 6.0;
+        m->angular_drift[i] = (w[0][i] + 2.0 * w[1][i] + 2.0 * w[2][i] + w[3][i]) / 6.0;
+        m->velocity[i] = v0[i] + h * ((a[0][i] + 2.0 * a[1][i] + 2.0 * a[2][i] + a[3][i]) / 6.0);
+        m->angular_velocity[i] = w0[i] + h * ((alpha[0][i] + 2.0 * alpha[1][i] + 2.0 * alpha[2][i] + alpha[3][i]) / 6.0);
+      }
+      break;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!forces.moving[i]) continue;
+    states[i].velocity = m->velocity[i];
+    if (forces.rotation) states[i].angular_velocity = m->angular_velocity[i];
+  }
+}
+
+void MoveBodies(Integrator integrator, std::span<BodyState> states,
+                std::span<const std::uint8_t> moving, bool rotation, const FreeMotion& m,
+                double h) {
   for (std::size_t i = 0; i < states.size(); ++i) {
     if (!moving[i]) continue;
     BodyState& s = states[i];
-    switch (integrator) {
-      case Integrator::kSemiImplicitEuler:
-        s.position += s.velocity * dt;
-        break;
-      case Integrator::kExplicitEuler: {
-        const Vec2 contact_change = s.velocity - Kick(start_velocities[i], gravity, dt);
-        s.position += (start_velocities[i] + contact_change) * dt;
-        break;
-      }
+    if (integrator == Integrator::kSemiImplicitEuler) {
+      s.position += s.velocity * h;
+      if (rotation) s.angle += s.angular_velocity * h;
+    } else {
+      s.position += (m.drift[i] + (s.velocity - m.velocity[i])) * h;
+      if (rotation) s.angle += (m.angular_drift[i] + (s.angular_velocity - m.angular_velocity[i])) * h;
     }
   }
 }

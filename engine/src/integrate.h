@@ -1,23 +1,41 @@
-// Time integration of free motion (forces and velocities to positions). Internal to the engine.
+// Time integration of free motion, for every integrator the engine offers. Internal.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "engine/world.h"
+#include "force_model.h"
 
 namespace engine::detail {
 
-/// v += g·dt for every moving (awake, dynamic) body. Saves each body's velocity from before the
-/// kick in `start_velocities` (explicit Euler moves bodies with it).
-void IntegrateVelocities(std::span<BodyState> states, std::span<const std::uint8_t> moving,
-                         Vec2 gravity, double dt, std::span<Vec2> start_velocities);
+/// One free step of every moving body, as velocities: where the integrator would leave the
+/// velocity (`velocity`), and the mean velocity it would move the body with over the step
+/// (`drift`, so that x_{n+1} = x_n + h·drift). Contacts then change the velocity, and the body
+/// moves by that change too (MoveBodies).
+struct FreeMotion {
+  std::vector<Vec2> velocity;
+  std::vector<Vec2> drift;
+  std::vector<double> angular_velocity;
+  std::vector<double> angular_drift;
+  // Scratch for the stages: each stage's state, and its velocities and accelerations (k).
+  std::vector<BodyState> stage;
+  std::vector<Vec2> stage_velocity[4];
+  std::vector<double> stage_angular_velocity[4];
+  std::vector<Vec2> linear[4];
+  std::vector<double> angular[4];
+};
 
-/// Moves every dynamic body by its velocity. Semi-implicit Euler uses the velocity after the kick
-/// and the contact impulses; explicit Euler the velocity from before the kick, plus the change
-/// the contact impulses made (without it, bodies would sink into what they rest on).
-void IntegratePositions(Integrator integrator, std::span<BodyState> states,
-                        std::span<const std::uint8_t> moving, std::span<const Vec2> start_velocities,
-                        Vec2 gravity, double dt);
+/// Computes the free step of length h from `states` and sets each moving body's velocity to its
+/// end-of-step value (positions stay, for the contact solver to see).
+void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
+              double h, FreeMotion* motion);
+
+/// Moves every moving body: by h·drift, plus h times whatever the contacts changed its velocity
+/// by since FreeStep. Semi-implicit Euler moves by h·v exactly.
+void MoveBodies(Integrator integrator, std::span<BodyState> states,
+                std::span<const std::uint8_t> moving, bool rotation, const FreeMotion& motion,
+                double h);
 
 }  // namespace engine::detail

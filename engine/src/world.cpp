@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "impact.h"
+#include "force_model.h"
 #include "integrate.h"
 #include "seed_solver.h"
 #include "shock_propagation.h"
@@ -34,6 +35,17 @@ double Area(const Shape& shape) {
                                           : 4.0 * shape.half_extents.x * shape.half_extents.y;
 }
 
+// Moment of inertia about the centre: a disc ½·m·r², a box m·(w² + h²)/12.
+double Inertia(const Shape& shape, double mass) {
+  if (shape.type == ShapeType::kCircle) return 0.5 * mass * shape.radius * shape.radius;
+  const double w = 2.0 * shape.half_extents.x, h = 2.0 * shape.half_extents.y;
+  return mass * (w * w + h * h) / 12.0;
+}
+
+// Drag coefficients of a long cylinder and a square bar across a flow (textbook values).
+constexpr double kCircleDrag = 0.47;
+constexpr double kBoxDrag = 1.05;
+
 // Up to this many bodies, testing every pair is cheaper than keeping sorted endpoint lists.
 constexpr std::size_t kAllPairsMaxBodies = 16;
 
@@ -43,7 +55,11 @@ constexpr double kSpeculativeSlops = 4.0;
 
 }  // namespace
 
-World::World(const WorldDef& def) : def_(def) {
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+World::World(const WorldDef& def) : def_(def), free_motion_(std::make_unique<detail::FreeMotion>()) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 1, "WorldDef::velocity_iterations must be >= 1");
@@ -69,6 +85,9 @@ BodyId World::CreateBody(const BodyDef& def) {
           "BodyDef state must be finite");
   Require(IsNonNegativeFinite(def.restitution) && IsNonNegativeFinite(def.friction),
           "BodyDef restitution and friction must be finite and >= 0");
+  Require(IsNonNegativeFinite(def.linear_damping) && IsNonNegativeFinite(def.angular_damping) &&
+              std::isfinite(def.drag_coefficient),
+          "BodyDef damping must be finite and >= 0, the drag coefficient finite");
 
   BodyInfo info;
   info.shape = shape;
@@ -77,6 +96,11 @@ BodyId World::CreateBody(const BodyDef& def) {
   info.is_static = def.is_static;
   info.fixed_rotation = def.fixed_rotation;
   info.bullet = def.bullet;
+  info.linear_damping = def.linear_damping;
+  info.angular_damping = def.angular_damping;
+  info.drag_coefficient = def.drag_coefficient >= 0.0 ? def.drag_coefficient
+                          : shape.type == ShapeType::kCircle ? kCircleDrag
+                                                              : kBoxDrag;
   BodyState state;
   state.position = def.position;
   state.angle = def.angle;
@@ -85,6 +109,9 @@ BodyId World::CreateBody(const BodyDef& def) {
     Require(IsPositiveFinite(mass), "BodyDef mass (or density) must be positive and finite");
     info.mass = mass;
     info.inv_mass = 1.0 / mass;
+    info.inertia = Inertia(shape, mass);
+    // Without rotation (world or body) nothing can turn the body: infinite inertia.
+    info.inv_inertia = def_.rotation && !def.fixed_rotation ? 1.0 / info.inertia : 0.0;
     state.velocity = def.velocity;
     state.angular_velocity = def.angular_velocity;
   }
@@ -103,6 +130,16 @@ void World::ApplyLinearImpulse(BodyId id, Vec2 impulse) {
   if (info.is_static) return;
   detail::WakeIsland(id, infos_, {rest_time_, awake_, island_});
   states_[id].velocity += impulse / info.mass;
+}
+
+void World::AddSpring(const SpringDef& def) {
+  Require(def.body_a < states_.size() && (!def.body_b || *def.body_b < states_.size()),
+          "AddSpring: no such body");
+  Require(IsFinite(def.local_a) && IsFinite(def.local_b), "AddSpring: attachment points must be finite");
+  Require(IsNonNegativeFinite(def.rest_length) && IsNonNegativeFinite(def.stiffness) &&
+              IsNonNegativeFinite(def.damping),
+          "AddSpring: rest length, stiffness and damping must be finite and >= 0");
+  springs_.push_back(def);
 }
 
 AABB World::BodyBounds(BodyId id) const {
@@ -125,7 +162,6 @@ double World::Reach(BodyId id) const {
 void World::Step() {
   const std::size_t n = states_.size();
   positions_before_.resize(n);
-  start_velocities_.resize(n);
   for (std::size_t i = 0; i < n; ++i) positions_before_[i] = states_[i].position;
 
   FindCandidatePairs();  // broad phase: pairs whose grown bounds overlap; wakes touched sleepers
@@ -219,12 +255,16 @@ void World::BuildContacts() {
   }
 }
 
+detail::ForceModel World::Forces() const {
+  return {def_, infos_, springs_, awake_, def_.rotation};
+}
+
 void World::StepSeed() {
   const double dt = def_.dt;
-  detail::IntegrateVelocities(states_, awake_, def_.gravity, dt, start_velocities_);
+  detail::FreeStep(def_.integrator, Forces(), states_, dt, free_motion_.get());
   detail::PrepareContacts(contacts_, states_, infos_, def_.restitution_threshold, &seed_constraints_);
   detail::SolveVelocities(seed_constraints_, states_, infos_, def_.velocity_iterations);
-  detail::IntegratePositions(def_.integrator, states_, awake_, start_velocities_, def_.gravity, dt);
+  detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, dt);
   detail::CorrectPositions(contacts_, positions_before_, states_, infos_, def_.linear_slop,
                            def_.position_correction);
 }
@@ -232,8 +272,10 @@ void World::StepSeed() {
 void World::StepSubstep() {
   const double h = def_.dt / def_.substeps;
   const double inv_h = 1.0 / h;
+  // What free flight would do to each body this step: the impact pass places bounces with it.
   accelerations_.resize(states_.size());
-  for (std::size_t i = 0; i < states_.size(); ++i) accelerations_[i] = awake_[i] ? def_.gravity : Vec2{};
+  angular_accelerations_.resize(states_.size());
+  Forces().Evaluate(states_, accelerations_, angular_accelerations_);
 
   detail::PrepareSubstepConstraints(contacts_, infos_, &substep_constraints_);
   detail::BuildShockOrder(substep_constraints_, infos_, &shock_level_, &shock_order_);
@@ -244,12 +286,12 @@ void World::StepSubstep() {
   const double push_out_rate =
       (1.0 - std::pow(1.0 - def_.position_correction, 1.0 / def_.substeps)) * inv_h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
-    detail::IntegrateVelocities(states_, awake_, def_.gravity, h, start_velocities_);
+    detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
     detail::WarmStart(substep_constraints_, states_);
     detail::SolveContacts(substep_constraints_, states_, positions_before_, inv_h);
     detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, positions_before_,
                            inv_h, def_.linear_slop);
-    detail::IntegratePositions(def_.integrator, states_, awake_, start_velocities_, def_.gravity, h);
+    detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, h);
     detail::PushOut(substep_constraints_, states_, positions_before_, push_velocities_, push_out_rate,
                     def_.max_push_out_speed, def_.linear_slop);
     detail::MoveByPush(states_, push_velocities_, h);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/math.h"
@@ -48,6 +49,138 @@ class SweepAndPrune {
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
   std::int64_t last_swap_count_ = 0;
+};
+
+/// A uniform grid, hashed: each box goes into every cell it touches, and a pair is reported only
+/// by the cell holding the lower corner of the two boxes' overlap, so a pair spanning several
+/// shared cells comes out once. The cell size follows the boxes (twice their median extent) and is
+/// chosen again only when the median drifts by more than a factor of two. Boxes that would touch
+/// many cells (floors, walls) stay out of the cells and are tested on their own. O(n + pairs) for
+/// similar-sized boxes. Pairs come out sorted by (a, b).
+class UniformGrid {
+ public:
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+
+  /// m; 0 before the first call.
+  double CellSize() const { return cell_size_; }
+  /// Boxes the last call kept out of the cells because they touch too many.
+  std::size_t LargeCount() const { return large_.size(); }
+
+ private:
+  struct CellRange {
+    std::int32_t x0, y0, x1, y1;
+  };
+  struct Entry {
+    AABB box;
+    std::int32_t x, y;  ///< the cell
+    std::uint32_t body;
+    std::uint8_t first;  ///< bit 0: the box's leftmost column of cells; bit 1: its bottom row
+  };
+  bool CellSizeFits(std::span<const AABB> boxes) const;
+  void ChooseCellSize(std::span<const AABB> boxes);
+  CellRange Cells(const AABB& box) const;
+  std::uint32_t Bucket(std::int32_t x, std::int32_t y) const;
+  void FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) const;
+
+  double cell_size_ = 0.0;
+  double inv_cell_size_ = 0.0;
+  std::vector<CellRange> ranges_;       ///< per body
+  std::vector<std::uint32_t> large_;    ///< bodies tested on their own, in id order
+  std::vector<std::uint32_t> small_;    ///< bodies in the cells, in id order
+  // The occupied cells' bounds; when they hold few cells more than entries, buckets are the cells
+  // themselves (dense), otherwise a hash of the cell picks the bucket.
+  CellRange occupied_{};
+  bool dense_ = false;
+  std::uint32_t hash_shift_ = 0;
+  std::vector<std::uint32_t> bucket_start_;
+  std::vector<Entry> entries_;
+  std::vector<double> extent_scratch_;
+  std::vector<BodyPair> sorted_scratch_;
+  std::vector<std::uint32_t> counts_;
+};
+
+/// A quadtree built top-down each step from reused buffers: a node with more than a few boxes
+/// splits into four quadrants at the centre of its boxes' centres, down to a bounded depth. A box
+/// goes into every quadrant it touches; a pair is reported only by the node whose region holds the
+/// lower corner of the pair's overlap, so it comes out once. A box big for its node that straddles
+/// the split stays in the node and is tested against the whole subtree. Pairs come out sorted.
+class Quadtree {
+ public:
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+
+  /// The deepest node the last call made (the root is 0).
+  int LastDepth() const { return last_depth_; }
+
+  static constexpr std::size_t kLeafCapacity = 8;  ///< a node with more boxes splits
+  static constexpr int kMaxDepth = 24;
+
+ private:
+  struct Region {
+    Vec2 lower;  ///< inclusive; -inf at the outer edge
+    Vec2 upper;  ///< exclusive; +inf at the outer edge
+  };
+  void Build(int depth, const Region& region, std::size_t begin, std::size_t end);
+  void TestAllPairs(const Region& region, const std::uint32_t* items, std::size_t count);
+
+  std::span<const AABB> boxes_;
+  std::vector<BodyPair>* pairs_ = nullptr;
+  /// levels_[d] holds the item lists of the nodes at depth d being worked on: the four children
+  /// of one node, side by side.
+  std::vector<std::vector<std::uint32_t>> levels_;
+  std::vector<std::uint32_t> residents_;
+  std::vector<std::uint8_t> quadrants_;
+  int last_depth_ = 0;
+  std::vector<BodyPair> sorted_scratch_;
+  std::vector<std::uint32_t> counts_;
+};
+
+/// A dynamic AABB tree (after Box2D's b2DynamicTree, Erin Catto): one leaf per body holding a
+/// fattened box, internal nodes holding the union of their children, kept balanced by rotations.
+/// A body is removed and reinserted only when its box leaves its fat box, so a step of small
+/// motions touches few nodes. Pairs come from one traversal of the tree against itself, then an
+/// exact test of the bodies' own boxes. Deterministic: node slots come from a free list, new bodies
+/// are inserted and moved ones reinserted in id order. Pairs come out sorted by (a, b).
+class AabbTree {
+ public:
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+
+  /// Leaves removed and inserted again by the last call (new bodies included).
+  std::size_t LastReinsertCount() const { return last_reinserts_; }
+  /// The longest path from the root to a leaf (a single leaf is 0; -1 when empty).
+  int Height() const;
+  /// Checks parent links, unions and heights; for tests.
+  bool IsValid() const;
+
+ private:
+  static constexpr std::int32_t kNull = -1;
+  struct Node {
+    AABB box;                    ///< leaves: the fat box; internal nodes: the union of children
+    std::int32_t parent = kNull;
+    std::int32_t child1 = kNull;  ///< kNull for a leaf
+    std::int32_t child2 = kNull;
+    std::int32_t height = 0;     ///< 0 for a leaf
+    std::uint32_t body = 0;      ///< leaves only
+    bool IsLeaf() const { return child1 == kNull; }
+  };
+  std::int32_t Allocate();
+  void Free(std::int32_t node);
+  void InsertLeaf(std::int32_t leaf);
+  void RemoveLeaf(std::int32_t leaf);
+  /// Refits unions and heights from `node` to the root, rotating where one side is two taller.
+  void RefitUpward(std::int32_t node);
+  std::int32_t Balance(std::int32_t node);
+  AABB FatBox(const AABB& box, const AABB& previous) const;
+  void Clear();
+
+  std::vector<Node> nodes_;
+  std::int32_t root_ = kNull;
+  std::int32_t free_list_ = kNull;
+  std::vector<std::int32_t> leaf_of_;  ///< per body
+  std::vector<AABB> previous_;         ///< each body's box at the last call, for its motion
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack_;
+  std::size_t last_reinserts_ = 0;
+  std::vector<BodyPair> sorted_scratch_;
+  std::vector<std::uint32_t> counts_;
 };
 
 }  // namespace engine

@@ -32,6 +32,18 @@ inline double Length(Vec2 a) { return std::sqrt(Dot(a, a)); }
 constexpr double Clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
 inline bool IsFinite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
 
+/// A rotation by an angle, kept as its cosine and sine.
+struct Rot {
+  double c = 1.0;
+  double s = 0.0;
+};
+
+inline Rot MakeRot(double angle) { return {std::cos(angle), std::sin(angle)}; }
+/// The vector turned by the rotation (local to world).
+constexpr Vec2 Rotate(Rot q, Vec2 v) { return {q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y}; }
+/// The vector turned back by the rotation (world to local).
+constexpr Vec2 InvRotate(Rot q, Vec2 v) { return {q.c * v.x + q.s * v.y, -q.s * v.x + q.c * v.y}; }
+
 /// Axis-aligned bounding box; touching boxes (shared edge) count as overlapping.
 struct AABB {
   Vec2 lower;

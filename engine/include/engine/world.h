@@ -3,14 +3,21 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "engine/broadphase.h"
 #include "engine/collide.h"
 #include "engine/contact.h"
+#include "engine/forces.h"
 #include "engine/math.h"
 
 namespace engine {
+
+namespace detail {
+struct FreeMotion;
+struct ForceModel;
+}  // namespace detail
 
 enum class ShapeType : std::uint8_t { kCircle, kBox };
 
@@ -23,6 +30,9 @@ struct Shape {
 enum class Integrator : std::uint8_t {
   kSemiImplicitEuler,  ///< velocity first, then position with the new velocity (symplectic)
   kExplicitEuler,      ///< position with the old velocity, then velocity (the seed's)
+  kVelocityVerlet,     ///< position by the old acceleration, velocity by the mean of old and new
+  kMidpoint,           ///< explicit second-order Runge-Kutta through the midpoint
+  kRungeKutta4,        ///< the classic fourth-order Runge-Kutta
 };
 
 enum class ContactSolver : std::uint8_t {
@@ -51,10 +61,17 @@ struct BodyDef {
   double friction = 0.3;
   bool fixed_rotation = false;
   bool bullet = false;
+  double linear_damping = 0.0;    ///< 1/s: a force −c·m·v
+  double angular_damping = 0.0;   ///< 1/s: a torque −c·I·ω
+  /// Quadratic drag coefficient C_d in a fluid; negative means the shape's usual value
+  /// (0.47 for a circle, 1.05 for a box).
+  double drag_coefficient = -1.0;
 };
 
 struct WorldDef {
   Vec2 gravity{0.0, -9.8};              ///< m/s²
+  double fluid_density = 0.0;           ///< kg/m³ of the air or water around; 0: vacuum, no drag
+  double gravitational_constant = 0.0;  ///< N·m²/kg² between bodies; 0: no mutual gravitation
   double dt = 1.0 / 60.0;               ///< the fixed step, s
   bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
   Integrator integrator = Integrator::kSemiImplicitEuler;
@@ -84,6 +101,11 @@ struct BodyInfo {
   Shape shape;
   double mass = 0.0;      ///< kg; 0 for static bodies
   double inv_mass = 0.0;  ///< 1/kg; 0 for static bodies, so impulses never move them
+  double inertia = 0.0;      ///< kg·m² about the centre; 0 for static bodies
+  double inv_inertia = 0.0;  ///< 0 for static bodies, fixed rotation, or a world without rotation
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
+  double drag_coefficient = 0.0;
   double restitution = 0.0;
   double friction = 0.0;
   bool is_static = false;
@@ -95,6 +117,9 @@ class World {
  public:
   /// Preconditions: dt > 0 and finite, finite gravity, iterations ≥ 1, slop and correction ≥ 0.
   explicit World(const WorldDef& def);
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
 
   /// Preconditions: positive finite size and mass (or density) for dynamic bodies, finite state.
   BodyId CreateBody(const BodyDef& def);
@@ -105,6 +130,11 @@ class World {
   /// Changes a dynamic body's velocity by impulse / mass (N·s, applied at the centre); static
   /// bodies ignore it.
   void ApplyLinearImpulse(BodyId id, Vec2 impulse);
+
+  /// Adds a spring (preconditions: existing bodies, finite non-negative parameters). Springs act
+  /// from the next step on.
+  void AddSpring(const SpringDef& def);
+  const std::vector<SpringDef>& Springs() const { return springs_; }
 
   std::size_t BodyCount() const { return states_.size(); }
   const BodyState& State(BodyId id) const { return states_[id]; }
@@ -129,10 +159,12 @@ class World {
   void UpdateSleep();
   /// How far a body may reach within a step (speculative margin), m.
   double Reach(BodyId id) const;
+  detail::ForceModel Forces() const;
 
   WorldDef def_;
   std::vector<BodyState> states_;
   std::vector<BodyInfo> infos_;
+  std::vector<SpringDef> springs_;
   std::int64_t step_count_ = 0;
   // Sleep state per body; `awake` doubles as the "moving" mask the integrators read.
   std::vector<double> rest_time_;
@@ -146,8 +178,9 @@ class World {
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
   std::vector<Vec2> positions_before_;
-  std::vector<Vec2> start_velocities_;
+  std::unique_ptr<detail::FreeMotion> free_motion_;
   std::vector<Vec2> accelerations_;
+  std::vector<double> angular_accelerations_;
   std::vector<Vec2> push_velocities_;
   std::vector<ContactConstraint> seed_constraints_;
   std::vector<SubstepConstraint> substep_constraints_;

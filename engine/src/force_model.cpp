@@ -1,0 +1,92 @@
+// Force generators, each a short loop; the ones a scene does not use cost nothing.
+#include "force_model.h"
+
+#include <cmath>
+
+namespace engine::detail {
+
+namespace {
+
+// The length of a body's outline seen along `direction` (unit), m: what a 2D fluid pushes on.
+double ProjectedLength(const BodyInfo& info, double angle, Vec2 direction) {
+  if (info.shape.type == ShapeType::kCircle) return 2.0 * info.shape.radius;
+  const Vec2 across = InvRotate(MakeRot(angle), LeftPerp(direction));
+  return 2.0 * (std::abs(across.x) * info.shape.half_extents.x + std::abs(across.y) * info.shape.half_extents.y);
+}
+
+}  // namespace
+
+void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
+                          std::span<double> angular) const {
+  const std::size_t n = states.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    linear[i] = moving[i] ? def.gravity : Vec2{};
+    angular[i] = 0.0;
+  }
+
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!moving[i]) continue;
+    const BodyInfo& info = infos[i];
+    const BodyState& s = states[i];
+    if (info.linear_damping != 0.0) linear[i] -= info.linear_damping * s.velocity;
+    if (rotation && info.angular_damping != 0.0) angular[i] -= info.angular_damping * s.angular_velocity;
+    if (def.fluid_density != 0.0) {
+      // F = −½·ρ·C_d·L·|v|·v (per metre of depth), the drag of a body much faster than creep.
+      const double speed = Length(s.velocity);
+      if (speed > 0.0) {
+        const double length = ProjectedLength(info, s.angle, s.velocity / speed);
+        const double c = 0.5 * def.fluid_density * info.drag_coefficient * length;
+        linear[i] -= (c * speed * info.inv_mass) * s.velocity;
+      }
+    }
+  }
+
+  if (def.gravitational_constant != 0.0) {
+    // Every pair of dynamic bodies, in id order: a_i += G·m_j·(r_j − r_i)/|r|³.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (infos[i].is_static) continue;
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (infos[j].is_static) continue;
+        const Vec2 d = states[j].position - states[i].position;
+        const double r2 = LengthSquared(d);
+        if (r2 == 0.0) continue;
+        const Vec2 pull = (def.gravitational_constant / (r2 * std::sqrt(r2))) * d;
+        if (moving[i]) linear[i] += infos[j].mass * pull;
+        if (moving[j]) linear[j] -= infos[i].mass * pull;
+      }
+    }
+  }
+
+  for (const SpringDef& spring : springs) {
+    const BodyState& a = states[spring.body_a];
+    const Vec2 ra = Rotate(MakeRot(a.angle), spring.local_a);
+    const Vec2 pa = a.position + ra;
+    const Vec2 va = a.velocity + Cross(a.angular_velocity, ra);
+    Vec2 pb = spring.local_b, vb, rb;
+    if (spring.body_b) {
+      const BodyState& b = states[*spring.body_b];
+      rb = Rotate(MakeRot(b.angle), spring.local_b);
+      pb = b.position + rb;
+      vb = b.velocity + Cross(b.angular_velocity, rb);
+    }
+    const Vec2 d = pb - pa;
+    const double length = Length(d);
+    if (length == 0.0) continue;  // no direction to pull in
+    const Vec2 dir = d / length;
+    // Positive tension pulls A towards B and B towards A.
+    const double tension = spring.stiffness * (length - spring.rest_length) + spring.damping * Dot(vb - va, dir);
+    const Vec2 force = tension * dir;
+    const BodyInfo& ia = infos[spring.body_a];
+    if (moving[spring.body_a]) {
+      linear[spring.body_a] += ia.inv_mass * force;
+      angular[spring.body_a] += ia.inv_inertia * Cross(ra, force);
+    }
+    if (spring.body_b && moving[*spring.body_b]) {
+      const BodyInfo& ib = infos[*spring.body_b];
+      linear[*spring.body_b] -= ib.inv_mass * force;
+      angular[*spring.body_b] -= ib.inv_inertia * Cross(rb, force);
+    }
+  }
+}
+
+}  // namespace engine::detail

@@ -1,0 +1,24 @@
+// The forces on every body, as accelerations: gravity, springs, damping, quadratic drag and
+// mutual gravitation. Internal to the engine; integrators evaluate it at their stages.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "engine/world.h"
+
+namespace engine::detail {
+
+struct ForceModel {
+  const WorldDef& def;
+  std::span<const BodyInfo> infos;
+  std::span<const SpringDef> springs;
+  std::span<const std::uint8_t> moving;  ///< bodies that are integrated (awake and dynamic)
+  bool rotation;                         ///< torques turn into angular acceleration
+
+  /// Linear and angular acceleration of every body in `states` (zero for bodies not moving).
+  void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
+                std::span<double> angular) const;
+};
+
+}  // namespace engine::detail

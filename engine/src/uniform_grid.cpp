@@ -1,0 +1,207 @@
+// The uniform-grid broad phase: boxes binned into square cells sized from the boxes, a pair
+// reported once by the cell that holds the lower corner of its overlap.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "engine/broadphase.h"
+#include "pair_sort.h"
+
+namespace engine {
+
+namespace {
+
+// Cell coordinates are clamped here, so that far-away boxes stay countable in 64 bits. The clamp
+// keeps the map from coordinates to cells monotone, which is all the one-cell rule needs.
+constexpr double kCellLimit = 1 << 29;
+// A box touching more cells than this is "large": binning it would cost more than testing it
+// alone. With cells twice the median extent, a typical box touches one to four.
+constexpr std::int64_t kMaxCellsPerBox = 16;
+
+double Extent(const AABB& box) { return std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y); }
+
+}  // namespace
+
+// The size is kept while the median extent stays within a factor of two of the one it was chosen
+// for; the test costs a pass of comparisons, a new choice a selection (nth_element).
+bool UniformGrid::CellSizeFits(std::span<const AABB> boxes) const {
+  if (cell_size_ == 0.0) return false;
+  const double median = 0.5 * cell_size_;
+  std::size_t bigger = 0;
+  std::size_t smaller = 0;
+  for (const AABB& box : boxes) {
+    const double e = Extent(box);
+    bigger += e > 2.0 * median;
+    smaller += e < 0.5 * median;
+  }
+  return 2 * bigger <= boxes.size() && 2 * smaller <= boxes.size();
+}
+
+void UniformGrid::ChooseCellSize(std::span<const AABB> boxes) {
+  extent_scratch_.resize(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) extent_scratch_[i] = Extent(boxes[i]);
+  const auto middle = extent_scratch_.begin() + static_cast<std::ptrdiff_t>(boxes.size() / 2);
+  std::nth_element(extent_scratch_.begin(), middle, extent_scratch_.end());
+  double size = 2.0 * *middle;
+  if (!(size > 0.0 && std::isfinite(size))) {
+    // Points (or nothing finite to go by): about one box per cell over the area they cover.
+    AABB bounds = boxes[0];
+    for (const AABB& box : boxes) {
+      bounds.lower = {std::min(bounds.lower.x, box.lower.x), std::min(bounds.lower.y, box.lower.y)};
+      bounds.upper = {std::max(bounds.upper.x, box.upper.x), std::max(bounds.upper.y, box.upper.y)};
+    }
+    size = Extent(bounds) / std::sqrt(static_cast<double>(boxes.size()));
+    if (!(size > 0.0 && std::isfinite(size))) size = 1.0;
+  }
+  cell_size_ = size;
+  inv_cell_size_ = 1.0 / size;
+}
+
+UniformGrid::CellRange UniformGrid::Cells(const AABB& box) const {
+  auto cell = [this](double v) {
+    const double c = std::floor(v * inv_cell_size_);
+    if (!(c > -kCellLimit)) return static_cast<std::int32_t>(-kCellLimit);
+    if (c > kCellLimit) return static_cast<std::int32_t>(kCellLimit);
+    return static_cast<std::int32_t>(c);
+  };
+  return {cell(box.lower.x), cell(box.lower.y), cell(box.upper.x), cell(box.upper.y)};
+}
+
+std::uint32_t UniformGrid::Bucket(std::int32_t x, std::int32_t y) const {
+  if (dense_) {
+    const auto width = static_cast<std::uint32_t>(occupied_.x1 - occupied_.x0 + 1);
+    return static_cast<std::uint32_t>(y - occupied_.y0) * width + static_cast<std::uint32_t>(x - occupied_.x0);
+  }
+  // Fibonacci hashing of the packed cell: neighbouring cells land in unrelated buckets.
+  const std::uint64_t key = (std::uint64_t{static_cast<std::uint32_t>(x)} << 32) | static_cast<std::uint32_t>(y);
+  return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> hash_shift_);
+}
+
+void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+  pairs->clear();
+  const std::size_t n = boxes.size();
+  large_.clear();
+  small_.clear();
+  entries_.clear();
+  if (n < 2) return;
+  if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
+
+  // Which cells each box touches; large boxes set aside.
+  ranges_.resize(n);
+  std::int64_t entry_count = 0;
+  occupied_ = {std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+               std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const CellRange r = Cells(boxes[i]);
+    ranges_[i] = r;
+    const std::int64_t cells = (std::int64_t{r.x1} - r.x0 + 1) * (std::int64_t{r.y1} - r.y0 + 1);
+    if (cells > kMaxCellsPerBox) {
+      large_.push_back(i);
+      continue;
+    }
+    small_.push_back(i);
+    entry_count += cells;
+    occupied_ = {std::min(occupied_.x0, r.x0), std::min(occupied_.y0, r.y0), std::max(occupied_.x1, r.x1),
+                 std::max(occupied_.y1, r.y1)};
+  }
+
+  if (!small_.empty()) {
+    // Buckets: the cells themselves when the occupied area is compact, else a hash table at
+    // load one or less, so that bodies spread thin or flung far cost no memory for empty space.
+    const std::int64_t occupied_cells =
+        (std::int64_t{occupied_.x1} - occupied_.x0 + 1) * (std::int64_t{occupied_.y1} - occupied_.y0 + 1);
+    dense_ = occupied_cells <= 2 * entry_count + 64;
+    std::size_t bucket_count;
+    if (dense_) {
+      bucket_count = static_cast<std::size_t>(occupied_cells);
+    } else {
+      bucket_count = std::bit_ceil(static_cast<std::size_t>(std::max<std::int64_t>(entry_count, 2)));
+      hash_shift_ = 64 - static_cast<std::uint32_t>(std::countr_zero(bucket_count));
+    }
+
+    // Counting sort of (box, cell) entries into buckets, boxes in id order: within a bucket the
+    // entries are in id order too, so each pair comes out as (smaller, larger).
+    bucket_start_.assign(bucket_count + 1, 0);
+    for (std::uint32_t i : small_) {
+      const CellRange& r = ranges_[i];
+      for (std::int32_t y = r.y0; y <= r.y1; ++y) {
+        for (std::int32_t x = r.x0; x <= r.x1; ++x) ++bucket_start_[Bucket(x, y) + 1];
+      }
+    }
+    for (std::size_t b = 1; b <= bucket_count; ++b) bucket_start_[b] += bucket_start_[b - 1];
+    entries_.resize(static_cast<std::size_t>(entry_count));
+    for (std::uint32_t i : small_) {
+      const CellRange& r = ranges_[i];
+      for (std::int32_t y = r.y0; y <= r.y1; ++y) {
+        for (std::int32_t x = r.x0; x <= r.x1; ++x) {
+          const auto first = static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0));
+          entries_[bucket_start_[Bucket(x, y)]++] = {boxes[i], x, y, i, first};
+        }
+      }
+    }
+    // Now bucket b spans [start[b - 1], start[b]) (the scatter advanced each start to the next).
+
+    // Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower
+    // corner: the corner's column is the larger of the two first columns, so one of the boxes
+    // must start in this column, and likewise for the row.
+    std::uint32_t begin = 0;
+    for (std::size_t b = 0; b < bucket_count; ++b) {
+      const std::uint32_t end = bucket_start_[b];
+      for (std::uint32_t i = begin; i + 1 < end; ++i) {
+        const Entry& p = entries_[i];
+        for (std::uint32_t j = i + 1; j < end; ++j) {
+          const Entry& q = entries_[j];
+          if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) {
+            pairs->push_back({p.body, q.body});
+          }
+        }
+      }
+      begin = end;
+    }
+  }
+
+  FindLargePairs(boxes, pairs);
+  detail::SortPairs(n, pairs, &sorted_scratch_, &counts_);
+}
+
+void UniformGrid::FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) const {
+  for (std::size_t i = 0; i < large_.size(); ++i) {
+    const std::uint32_t a = large_[i];
+    const AABB& box = boxes[a];
+    for (std::size_t j = i + 1; j < large_.size(); ++j) {
+      if (Overlaps(box, boxes[large_[j]])) pairs->push_back({a, large_[j]});
+    }
+    if (small_.empty()) continue;
+
+    // Against the binned boxes: walk the occupied cells under the large box when they are fewer
+    // than the binned boxes (a floor covers one row of cells), else test each binned box.
+    const CellRange& r = ranges_[a];
+    const CellRange walk{std::max(r.x0, occupied_.x0), std::max(r.y0, occupied_.y0),
+                         std::min(r.x1, occupied_.x1), std::min(r.y1, occupied_.y1)};
+    if (walk.x0 > walk.x1 || walk.y0 > walk.y1) continue;
+    const std::int64_t cells = (std::int64_t{walk.x1} - walk.x0 + 1) * (std::int64_t{walk.y1} - walk.y0 + 1);
+    if (cells > static_cast<std::int64_t>(small_.size())) {
+      for (std::uint32_t s : small_) {
+        if (Overlaps(box, boxes[s])) pairs->push_back(detail::MakePair(a, s));
+      }
+      continue;
+    }
+    for (std::int32_t y = walk.y0; y <= walk.y1; ++y) {
+      for (std::int32_t x = walk.x0; x <= walk.x1; ++x) {
+        const std::uint32_t b = Bucket(x, y);
+        const std::uint32_t end = bucket_start_[b];
+        for (std::uint32_t k = b == 0 ? 0 : bucket_start_[b - 1]; k < end; ++k) {
+          const Entry& e = entries_[k];
+          // The same one-cell rule, with the large box's first column and row.
+          if (e.x == x && e.y == y && (r.x0 == x || (e.first & 1)) && (r.y0 == y || (e.first & 2)) &&
+              Overlaps(box, e.box)) {
+            pairs->push_back(detail::MakePair(a, e.body));
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace engine

@@ -1,0 +1,105 @@
+// The play loop's logic. Every click, live or scripted, goes through Apply right before its step
+// is simulated, which turns it into the world point it acts on and records exactly that point:
+// replay cannot depend on window size, camera fitting or rounding of pixels.
+#include "game/play_controller.h"
+
+#include "render/camera.h"
+
+namespace game {
+
+PlayController::PlayController(Scene scene, std::vector<InputEvent> script, int image_width,
+                               int image_height, PlayLimits limits, double max_frame_seconds)
+    : scene_(std::move(scene)),
+      script_(std::move(script)),
+      image_width_(image_width),
+      image_height_(image_height),
+      limits_(limits),
+      // The session gets no events: this class applies them, so it can record each one.
+      session_(std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width,
+                                         image_height)),
+      clock_(session_->World().Def().dt, max_frame_seconds) {}
+
+bool PlayController::Finished() const {
+  return limits_.stop_at && session_->StepIndex() >= *limits_.stop_at;
+}
+
+bool PlayController::PauseDue() const {
+  return limits_.pause_at && !pause_at_done_ && session_->StepIndex() == *limits_.pause_at;
+}
+
+int PlayController::Advance(double frame_seconds) {
+  if (PauseDue()) {
+    paused_ = true;
+    pause_at_done_ = true;
+  }
+  if (paused_ || Finished()) {
+    // Time spent paused is not owed: resuming must not burst through a backlog of steps.
+    clock_.Reset();
+    return 0;
+  }
+  const int due = clock_.Advance(frame_seconds);
+  int taken = 0;
+  while (taken < due && !Finished()) {
+    StepOne();
+    ++taken;
+    if (PauseDue()) {
+      paused_ = true;
+      pause_at_done_ = true;
+      break;
+    }
+  }
+  if (taken < due) clock_.Reset();
+  return taken;
+}
+
+void PlayController::Click(engine::Vec2 p) {
+  if (Finished()) return;
+  pending_clicks_.push_back(p);
+}
+
+void PlayController::TogglePause() {
+  paused_ = !paused_;
+  clock_.Reset();
+}
+
+bool PlayController::StepOnce() {
+  if (!paused_ || Finished()) return false;
+  StepOne();
+  return true;
+}
+
+void PlayController::Restart() {
+  session_ = std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width_,
+                                       image_height_);
+  next_script_event_ = 0;
+  pending_clicks_.clear();
+  recorded_.clear();
+  clock_.Reset();
+}
+
+void PlayController::StepOne() {
+  // As Session::Step does with its own events: everything due at or before this step first.
+  while (next_script_event_ < script_.size() &&
+         script_[next_script_event_].step <= session_->StepIndex()) {
+    Apply(script_[next_script_event_++]);
+  }
+  for (const engine::Vec2& p : pending_clicks_) {
+    Apply(InputEvent{session_->StepIndex(), EventKind::kClickWorld, p});
+  }
+  pending_clicks_.clear();
+  session_->Step();
+}
+
+void PlayController::Apply(const InputEvent& event) {
+  // The same mapping Session::ApplyEvent uses for pixel clicks, so the point is bit-identical.
+  const engine::Vec2 p =
+      event.kind == EventKind::kClickPixel
+          ? render::PixelToWorld(session_->Camera(), session_->ImageWidth(),
+                                 session_->ImageHeight(), event.at.x, event.at.y)
+          : event.at;
+  const InputEvent applied{session_->StepIndex(), EventKind::kClickWorld, p};
+  session_->ApplyEvent(applied);
+  recorded_.push_back(applied);
+}
+
+}  // namespace game

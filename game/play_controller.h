@@ -1,0 +1,85 @@
+// What `ballbox play` does with time and input, apart from any window: the session, the fixed
+// step clock, pause and single steps, restart, script replay and the recording. Testable
+// without a display; the window loop only feeds it frame times and clicks.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "engine/math.h"
+#include "game/frame_clock.h"
+#include "game/scene.h"
+#include "game/script.h"
+#include "game/session.h"
+
+namespace game {
+
+/// Stops for tests and demos (docs/play.md: BALLBOX_PLAY_STOP_AT, BALLBOX_PLAY_PAUSE_AT).
+struct PlayLimits {
+  std::optional<std::int64_t> stop_at;   ///< the run ends once this step index is reached
+  std::optional<std::int64_t> pause_at;  ///< pause (once per run) when this step is reached
+};
+
+class PlayController {
+ public:
+  /// `script`: events to replay (pixel clicks map through the camera of an image_width ×
+  /// image_height picture, as in sim and render).
+  PlayController(Scene scene, std::vector<InputEvent> script, int image_width, int image_height,
+                 PlayLimits limits = {}, double max_frame_seconds = kMaxFrameSeconds);
+
+  /// One frame's real time: takes the steps the clock says are due, unless paused or
+  /// finished. Returns the number of steps taken.
+  int Advance(double frame_seconds);
+
+  /// A live click at world point `p`, for the current step: applied just before that step is
+  /// simulated (the script rule), after the script's events of the same step, and recorded
+  /// then. A run that ends first never applies it, so the live state and a replay of the
+  /// recording agree at every step. Ignored once finished.
+  void Click(engine::Vec2 p);
+
+  void TogglePause();
+  /// While paused and not finished: one step. Returns whether it stepped.
+  bool StepOnce();
+  /// Starts over: the scene's initial state at step 0, the script from its first event, and an
+  /// empty recording (the recording always describes the run since the last start). Paused or
+  /// running stays as it was.
+  void Restart();
+
+  bool Paused() const { return paused_; }
+  /// The stop_at step is reached: the run is over.
+  bool Finished() const;
+  const Session& GetSession() const { return *session_; }
+  /// Live clicks not applied yet (they wait for the current step to be simulated).
+  std::size_t PendingClicks() const { return pending_clicks_.size(); }
+  /// Every event applied since the last start, in the order applied, as world-point clicks:
+  /// FormatScript of this replays to the same state in sim and render, at any --size.
+  const std::vector<InputEvent>& Recorded() const { return recorded_; }
+  /// Real time until the next step is due (for waiting on input in between).
+  double SecondsToNextStep() const { return clock_.SecondsToNextStep(); }
+  int MaxStepsPerFrame() const { return clock_.MaxStepsPerFrame(); }
+
+ private:
+  /// Applies the script events due now, then the live clicks, then simulates one step.
+  void StepOne();
+  /// Applies `event` at the current step as a world-point click and records it.
+  void Apply(const InputEvent& event);
+  bool PauseDue() const;
+
+  Scene scene_;
+  std::vector<InputEvent> script_;
+  std::size_t next_script_event_ = 0;
+  int image_width_;
+  int image_height_;
+  PlayLimits limits_;
+  bool pause_at_done_ = false;
+  std::unique_ptr<Session> session_;
+  FrameClock clock_;
+  bool paused_ = false;
+  std::vector<engine::Vec2> pending_clicks_;  ///< live clicks waiting for the next step
+  std::vector<InputEvent> recorded_;
+};
+
+}  // namespace game

@@ -1,0 +1,48 @@
+// Every scene of bench_solver, under every solver setting it compares, builds and steps briefly
+// to a finite state and finite figures, so the benchmark cannot rot unnoticed. No timing here.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bench/solver_scenes.h"
+#include "engine/world.h"
+
+TEST_CASE("every solver benchmark scene builds and steps 10 times to finite figures", "[bench]") {
+  for (const solver_bench::Scene& scene : solver_bench::Scenes()) {
+    for (solver_bench::Setting setting : solver_bench::Settings()) {
+      INFO(scene.name << ", " << (setting.solver == engine::ContactSolver::kSeed ? "seed" : "substep")
+                      << " " << setting.substeps << " substeps");
+      engine::World world = solver_bench::MakeWorld(scene, setting);
+      REQUIRE(world.BodyCount() > 1);
+      REQUIRE(world.Def().solver == setting.solver);
+      REQUIRE_FALSE(world.Def().sleeping);  // the figures are measured awake
+      const std::vector<solver_bench::Figure> figures = scene.measure(world, 10);
+      REQUIRE(world.StepCount() == 10);
+      bool finite = true;
+      for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+        const engine::BodyState& s = world.State(id);
+        finite = finite && engine::IsFinite(s.position) && engine::IsFinite(s.velocity);
+      }
+      REQUIRE(finite);
+      REQUIRE_FALSE(figures.empty());
+      for (const solver_bench::Figure& f : figures) {
+        INFO(f.name << " = " << f.value);
+        // NaN only where 10 steps cannot show the figure: the ball has not bounced yet.
+        if (f.name == "max apex error") continue;
+        CHECK(std::isfinite(f.value));
+      }
+    }
+  }
+}
+
+TEST_CASE("the bouncing-ball benchmark scene sees its five bounces in its own run length", "[bench]") {
+  // The one figure 10 steps cannot show; a single ball is cheap enough to run in full.
+  for (const solver_bench::Scene& scene : solver_bench::Scenes()) {
+    if (scene.name.find("bouncing ball") == std::string::npos) continue;
+    engine::World world = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 4});
+    for (const solver_bench::Figure& f : scene.measure(world, scene.steps)) {
+      INFO(f.name << " = " << f.value);
+      CHECK(std::isfinite(f.value));
+    }
+  }
+}
