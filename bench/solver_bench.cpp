@@ -1,0 +1,277 @@
+// Milliseconds per step and stability figures of the seed solver against the substep solver at
+// 1, 2, 4 and 8 substeps, for every stress scene of issue 4, measured in one run.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/solver_scenes.h"
+#include "engine/world.h"
+
+#ifndef BALLBOX_BUILD_TYPE
+#define BALLBOX_BUILD_TYPE "unknown"
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  bool quick = false;
+  int repeats = 5;
+  int steps = 0;              // 0: each scene's own
+  std::string scene_filter;   // run only scenes whose name contains this
+  std::string solver_filter;  // "seed", "substep" or empty for both
+  int substeps_filter = 0;    // 0: every substep count
+  std::string out_dir = "bench-out";
+};
+
+// Quick mode: enough steps to touch every phase (contacts form in the first step), one repeat.
+constexpr int kQuickSteps = 10;
+
+struct Result {
+  std::string scene;
+  int steps = 0;
+  solver_bench::Setting setting;
+  std::vector<solver_bench::Figure> figures;
+  std::vector<double> ms_per_step;  // one per timed repeat
+  bool same_state = true;           // every timed run ended in the figure run's state
+};
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::string CpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown CPU";
+}
+
+std::string LoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+std::string Compiler() {
+#if defined(__clang__)
+  return std::string("clang ") + __VERSION__;
+#elif defined(__GNUC__)
+  return std::string("g++ ") + __VERSION__;
+#else
+  return __VERSION__;
+#endif
+}
+
+std::string SolverName(solver_bench::Setting s) {
+  return s.solver == engine::ContactSolver::kSeed ? "seed" : "substep";
+}
+
+std::string SubstepsText(solver_bench::Setting s) {
+  return s.solver == engine::ContactSolver::kSeed ? "-" : std::to_string(s.substeps);
+}
+
+std::string Number(double value) {
+  if (std::isnan(value)) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+std::string FiguresText(const std::vector<solver_bench::Figure>& figures) {
+  std::string text;
+  for (const solver_bench::Figure& f : figures) {
+    if (!text.empty()) text += "; ";
+    text += f.name + " " + Number(f.value) + (f.unit.empty() ? "" : " " + f.unit) + " (" + f.threshold + ")";
+  }
+  return text;
+}
+
+std::string Verdict(const std::vector<solver_bench::Figure>& figures) {
+  std::string failed;
+  for (const solver_bench::Figure& f : figures) {
+    if (f.pass) continue;
+    failed += (failed.empty() ? "" : ", ") + f.name;
+  }
+  return failed.empty() ? "pass" : "FAIL: " + failed;
+}
+
+bool Selected(const Options& options, solver_bench::Setting s) {
+  if (!options.solver_filter.empty() && options.solver_filter != SolverName(s)) return false;
+  return s.solver == engine::ContactSolver::kSeed || options.substeps_filter == 0 ||
+         options.substeps_filter == s.substeps;
+}
+
+// Progress goes to a terminal only, so redirected output holds the results alone.
+void Progress(const std::string& text) {
+  static const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) std::fprintf(stderr, "\r\033[K%s", text.c_str());
+}
+
+// One scene: a warm-up run per setting that also measures the figures (outside any timed
+// region), then the timed repeats, settings interleaved so drifting machine load hits all alike.
+std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& options) {
+  const int steps = options.quick ? std::min(scene.steps, kQuickSteps)
+                                  : (options.steps > 0 ? options.steps : scene.steps);
+  const int repeats = options.quick ? 1 : options.repeats;
+  std::vector<Result> results;
+  std::vector<std::uint64_t> hashes;
+  for (solver_bench::Setting setting : solver_bench::Settings()) {
+    if (!Selected(options, setting)) continue;
+    Progress(scene.name + ": " + SolverName(setting) + " " + SubstepsText(setting) + ", figures");
+    engine::World world = solver_bench::MakeWorld(scene, setting);
+    Result result{scene.name, steps, setting, scene.measure(world, steps), {}, true};
+    results.push_back(result);
+    hashes.push_back(world.StateHash());
+  }
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      Result& result = results[k];
+      Progress(scene.name + ": " + SolverName(result.setting) + " " + SubstepsText(result.setting) +
+               ", run " + std::to_string(r + 1) + "/" + std::to_string(repeats));
+      engine::World world = solver_bench::MakeWorld(scene, result.setting);
+      // The first step sorts the broad phase from scratch; Box2D's benchmark leaves it out too.
+      world.Step();
+      const Clock::time_point start = Clock::now();
+      for (int i = 1; i < steps; ++i) world.Step();
+      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      result.ms_per_step.push_back(1000.0 * seconds / std::max(1, steps - 1));
+      // The engine is deterministic: a timed run that ended elsewhere did other work.
+      result.same_state = result.same_state && world.StateHash() == hashes[k];
+    }
+  }
+  Progress("");
+  return results;
+}
+
+void PrintTable(const std::vector<Result>& results, bool quick) {
+  std::printf("| scene | steps | solver | substeps | ms/step median | ms/step min "
+              "| stability figures (test threshold) | verdict |\n");
+  std::printf("|---|---:|---|---:|---:|---:|---|---|\n");
+  for (const Result& r : results) {
+    const double min = *std::min_element(r.ms_per_step.begin(), r.ms_per_step.end());
+    std::printf("| %s | %d | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(), r.steps,
+                SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(),
+                Number(Median(r.ms_per_step)).c_str(), Number(min).c_str(),
+                FiguresText(r.figures).c_str(), quick ? "- (quick)" : Verdict(r.figures).c_str());
+  }
+}
+
+bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  std::FILE* csv = std::fopen((dir + "/solver_bench.csv").c_str(), "w");
+  std::FILE* runs = std::fopen((dir + "/solver_bench_runs.csv").c_str(), "w");
+  if (csv == nullptr || runs == nullptr) {
+    if (csv) std::fclose(csv);
+    if (runs) std::fclose(runs);
+    return false;
+  }
+  // Long form, one row per figure, so scenes with different figures share one file.
+  std::fprintf(csv, "scene,solver,substeps,steps,repeats,ms_per_step_median,ms_per_step_min,"
+                    "figure,value,unit,threshold,pass\n");
+  std::fprintf(runs, "scene,solver,substeps,steps,repeat,ms_per_step\n");
+  for (const Result& r : results) {
+    const double min = *std::min_element(r.ms_per_step.begin(), r.ms_per_step.end());
+    for (const solver_bench::Figure& f : r.figures) {
+      std::fprintf(csv, "\"%s\",%s,%s,%d,%zu,%.6g,%.6g,\"%s\",%.9g,%s,\"%s\",%d\n", r.scene.c_str(),
+                   SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(), r.steps,
+                   r.ms_per_step.size(), Median(r.ms_per_step), min, f.name.c_str(), f.value,
+                   f.unit.c_str(), f.threshold.c_str(), f.pass ? 1 : 0);
+    }
+    for (std::size_t k = 0; k < r.ms_per_step.size(); ++k) {
+      std::fprintf(runs, "\"%s\",%s,%s,%d,%zu,%.6g\n", r.scene.c_str(), SolverName(r.setting).c_str(),
+                   SubstepsText(r.setting).c_str(), r.steps, k, r.ms_per_step[k]);
+    }
+  }
+  std::fclose(csv);
+  std::fclose(runs);
+  return true;
+}
+
+bool ParseArgs(int argc, char** argv, Options& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--quick") {
+      options.quick = true;
+    } else if (arg == "--repeats" && has_value) {
+      options.repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--steps" && has_value) {
+      options.steps = std::max(2, std::atoi(argv[++i]));
+    } else if (arg == "--scene" && has_value) {
+      options.scene_filter = argv[++i];
+    } else if (arg == "--solver" && has_value &&
+               (std::string(argv[i + 1]) == "seed" || std::string(argv[i + 1]) == "substep")) {
+      options.solver_filter = argv[++i];
+    } else if (arg == "--substeps" && has_value) {
+      options.substeps_filter = std::max(0, std::atoi(argv[++i]));
+    } else if (arg == "--out" && has_value) {
+      options.out_dir = argv[++i];
+    } else {
+      std::fprintf(stderr,
+                   "usage: bench_solver [--quick] [--repeats R] [--out DIR]\n"
+                   "                    [--scene TEXT] [--solver seed|substep] [--substeps N] [--steps N]\n");
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!ParseArgs(argc, argv, options)) return 2;
+  const std::string load_before = LoadAverage();
+
+  std::vector<Result> results;
+  for (const solver_bench::Scene& scene : solver_bench::Scenes()) {
+    if (scene.name.find(options.scene_filter) == std::string::npos) continue;
+    for (Result& r : RunScene(scene, options)) results.push_back(std::move(r));
+  }
+
+  const int repeats = options.quick ? 1 : options.repeats;
+  std::printf("bench_solver%s: contact solvers side by side on the axis-aligned stress scenes, 60 Hz, "
+              "sleeping off\n", options.quick ? " --quick (smoke run: figures are not the tests')" : "");
+  std::printf("timing: one thread; ms/step over steps 2..N (step 1 sorts the broad phase from scratch); "
+              "a warm-up run per row measures the figures, then median and min of %d timed run%s\n",
+              repeats, repeats == 1 ? "" : "s");
+  std::printf("machine: %s, %u cores; compiler: %s; build: %s\n", CpuModel().c_str(),
+              std::thread::hardware_concurrency(), Compiler().c_str(), BALLBOX_BUILD_TYPE);
+  std::printf("load average (1, 5, 15 min) at start: %s, at end: %s\n\n", load_before.c_str(),
+              LoadAverage().c_str());
+  PrintTable(results, options.quick);
+  std::printf("\nseed: %d velocity iterations and a projection per step; substep: the default "
+              "solver (4 substeps by default)\n", engine::WorldDef{}.velocity_iterations);
+
+  int status = 0;
+  for (const Result& r : results) {
+    if (r.same_state) continue;
+    std::fprintf(stderr, "error: %s, %s %s: a timed run ended in a different state\n", r.scene.c_str(),
+                 SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str());
+    status = 1;
+  }
+  if (!WriteCsv(results, options.out_dir)) {
+    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
+    return 1;
+  }
+  std::printf("CSV: %s/solver_bench.csv (one row per figure), %s/solver_bench_runs.csv (every timed run)\n",
+              options.out_dir.c_str(), options.out_dir.c_str());
+  return status;
+}
