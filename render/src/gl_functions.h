@@ -59,7 +59,9 @@ namespace render {
   X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                  \
   X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                  \
   X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)            \
-  X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)
+  X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)            \
+  X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                    \
+  X(PFNGLSCISSORPROC, Scissor)
 
 struct GlFunctions {
 #define BALLBOX_GL_MEMBER(type, name) type name = nullptr;

@@ -143,6 +143,26 @@ void SetInstanceAttribute(const GlFunctions& fn, GLuint location, GLint size, GL
   fn.VertexAttribDivisor(location, 1);
 }
 
+bool SizeAllowed(const GlFunctions& fn, int width, int height, std::string& error) {
+  GLint max_renderbuffer = 0;
+  GLint max_viewport[2] = {};
+  fn.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer);
+  fn.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+  if (width < 1 || height < 1 || width > max_renderbuffer || height > max_renderbuffer ||
+      width > max_viewport[0] || height > max_viewport[1]) {
+    error = "cannot render " + std::to_string(width) + "x" + std::to_string(height) +
+            " pixels: this OpenGL allows 1 to " + std::to_string(max_renderbuffer) +
+            " pixels a side";
+    return false;
+  }
+  return true;
+}
+
+void ClearTo(const GlFunctions& fn, Color color) {
+  fn.ClearColor(color.r / 255.0f, color.g / 255.0f, color.b / 255.0f, 1.0f);
+  fn.Clear(GL_COLOR_BUFFER_BIT);
+}
+
 }  // namespace
 
 struct Renderer::Gl {
@@ -181,17 +201,7 @@ std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, 
   auto gl = std::make_unique<Gl>(functions);
   const GlFunctions& fn = gl->fn;
 
-  GLint max_renderbuffer = 0;
-  GLint max_viewport[2] = {};
-  fn.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer);
-  fn.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
-  if (width < 1 || height < 1 || width > max_renderbuffer || height > max_renderbuffer ||
-      width > max_viewport[0] || height > max_viewport[1]) {
-    error = "cannot render " + std::to_string(width) + "x" + std::to_string(height) +
-            " pixels: this OpenGL allows 1 to " + std::to_string(max_renderbuffer) +
-            " pixels a side";
-    return nullptr;
-  }
+  if (!SizeAllowed(fn, width, height, error)) return nullptr;
   gl->width = width;
   gl->height = height;
 
@@ -322,6 +332,51 @@ void Renderer::ReadImage(Image& image) {
     std::memcpy(image.rgb.data() + row * row_bytes,
                 gl.readback.data() + (gl.height - 1 - row) * row_bytes, row_bytes);
   }
+}
+
+bool Renderer::Resize(int width, int height, std::string& error) {
+  Gl& gl = *gl_;
+  if (width == gl.width && height == gl.height) return true;
+  if (!SizeAllowed(gl.fn, width, height, error)) return false;
+  // The framebuffer object keeps its attachment; only the storage behind it changes.
+  gl.fn.BindRenderbuffer(GL_RENDERBUFFER, gl.color_buffer);
+  gl.fn.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  if (const GLenum code = gl.fn.GetError(); code != GL_NO_ERROR) {
+    // Back to the old size, so the renderer stays usable.
+    gl.fn.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, gl.width, gl.height);
+    error = "OpenGL error " + std::to_string(code) + " while resizing to " +
+            std::to_string(width) + "x" + std::to_string(height) + " pixels";
+    return false;
+  }
+  gl.width = width;
+  gl.height = height;
+  return true;
+}
+
+void Renderer::Present(int framebuffer_width, int framebuffer_height, const PixelRect& picture,
+                       std::span<const FilledRect> overlay, Color border) {
+  Gl& gl = *gl_;
+  const GlFunctions& fn = gl.fn;
+  // Framebuffer 0 is the window's; GL counts its rows from the bottom, PixelRect from the top.
+  auto bottom = [&](const PixelRect& r) { return framebuffer_height - r.y - r.height; };
+  fn.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  fn.Viewport(0, 0, framebuffer_width, framebuffer_height);
+  ClearTo(fn, border);
+  fn.BindFramebuffer(GL_READ_FRAMEBUFFER, gl.framebuffer);
+  const bool same_size = picture.width == gl.width && picture.height == gl.height;
+  fn.BlitFramebuffer(0, 0, gl.width, gl.height, picture.x, bottom(picture),
+                     picture.x + picture.width, bottom(picture) + picture.height,
+                     GL_COLOR_BUFFER_BIT, same_size ? GL_NEAREST : GL_LINEAR);
+  fn.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  // The overlay is a handful of rectangles: scissored clears need no shader of their own.
+  fn.Enable(GL_SCISSOR_TEST);
+  for (const FilledRect& filled : overlay) {
+    fn.Scissor(filled.rect.x, bottom(filled.rect), filled.rect.width, filled.rect.height);
+    ClearTo(fn, filled.color);
+  }
+  // Draw sets everything else it needs, but not the scissor test: leave it off.
+  fn.Disable(GL_SCISSOR_TEST);
+  fn.BindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
 }
 
 }  // namespace render

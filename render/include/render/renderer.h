@@ -12,6 +12,7 @@
 #include "render/color.h"
 #include "render/context.h"
 #include "render/image.h"
+#include "render/rect.h"
 
 namespace render {
 
@@ -37,6 +38,17 @@ class Renderer {
 
   /// The last drawn picture, rows top-down; reuses `image`'s storage.
   void ReadImage(Image& image);
+
+  /// Draws `width` × `height` pixel images from now on (the camera keeps its width in metres).
+  /// False, with `error` set and the size unchanged, when GL does not allow that size.
+  bool Resize(int width, int height, std::string& error);
+
+  /// For a window: fills the context's default framebuffer (`framebuffer_width` ×
+  /// `framebuffer_height`) with `border`, copies the last drawn picture into `picture`
+  /// (scaled when the sizes differ), then fills `overlay` in order on top. The picture itself,
+  /// and so ReadImage, never holds the overlay.
+  void Present(int framebuffer_width, int framebuffer_height, const PixelRect& picture,
+               std::span<const FilledRect> overlay, Color border);
 
  private:
   struct Gl;  // the function table and the GL objects
