@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace engine::detail {
 
@@ -49,7 +50,25 @@ void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyStat
       if (sc.restitution == 0.0) continue;
       BodyState& a = states[sc.a];
       BodyState& b = states[sc.b];
-      const double vn = Dot(b.velocity - a.velocity, sc.normal);
+      // A turning pair is struck at the middle of its manifold, so a box landing flat stays flat.
+      Vec2 anchor_a, anchor_b;
+      double separation = sc.points[0].base_separation;
+      double normal_mass = sc.points[0].normal_mass;
+      if (sc.angular) {
+        separation = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < sc.point_count; ++k) {
+          const SubstepPoint& p = sc.points[k];
+          anchor_a += p.anchor_a / sc.point_count;
+          anchor_b += p.anchor_b / sc.point_count;
+          separation = std::min(separation, p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal));
+        }
+        const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
+        normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
+                             sc.inv_inertia_b * rb * rb);
+      }
+      Vec2 relative = b.velocity - a.velocity;
+      if (sc.angular) relative += Cross(b.angular_velocity, anchor_b) - Cross(a.angular_velocity, anchor_a);
+      const double vn = Dot(relative, sc.normal);
       // Slow impacts, and bounces that would come out slower than the threshold, are left to
       // the contact solver as inelastic: a resting body must not buzz.
       if (vn >= -def.restitution_threshold || sc.restitution * -vn < def.restitution_threshold) {
@@ -57,13 +76,17 @@ void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyStat
       }
       const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
       Bounce bounce;
-      if (!ComputeBounce(sc.base_separation, vn, relative_acceleration, sc.restitution,
+      if (!ComputeBounce(separation, vn, relative_acceleration, sc.restitution,
                          def.substeps, h, def.linear_slop, &bounce)) {
         continue;
       }
-      const double impulse = (bounce.start_velocity - vn) * sc.normal_mass;
+      const double impulse = (bounce.start_velocity - vn) * normal_mass;
       a.velocity -= (impulse * sc.inv_mass_a) * sc.normal;
       b.velocity += (impulse * sc.inv_mass_b) * sc.normal;
+      if (sc.angular) {
+        a.angular_velocity -= sc.inv_inertia_a * Cross(anchor_a, impulse * sc.normal);
+        b.angular_velocity += sc.inv_inertia_b * Cross(anchor_b, impulse * sc.normal);
+      }
       sc.impact_lag = bounce.lag;
       any = true;
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/world.h"
+#include "substep_solver.h"
 
 namespace engine::detail {
 
@@ -21,8 +22,7 @@ void BuildShockOrder(std::span<const SubstepConstraint> constraints, std::span<c
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse
 /// by mass. Leaves the accumulated impulses alone: this pass only keeps stacks from sinking.
 void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::uint32_t> order,
-                    std::span<const SubstepConstraint> constraints,
-                    std::span<BodyState> states, std::span<const Vec2> step_start_positions,
-                    double inv_h, double linear_slop);
+                    std::span<const SubstepConstraint> constraints, std::span<BodyState> states,
+                    const StepStart& start, double inv_h, double linear_slop);
 
 }  // namespace engine::detail

@@ -1,6 +1,6 @@
 // Substepped contact constraints: rigid and warm-started for velocities, with overlap pushed out
-// through separate push velocities (a split impulse). Rotation-free for now: impulses act at the
-// centres.
+// through separate push velocities (a split impulse). Pairs that cannot turn take a linear-only
+// path: no angular arithmetic at all, one constraint per contact.
 #include "substep_solver.h"
 
 #include <algorithm>
@@ -8,8 +8,42 @@
 
 namespace engine::detail {
 
+namespace {
+
+// How far point `p` of `sc` has moved apart along the normal since the step's start.
+Vec2 AnchorOffset(const SubstepConstraint& sc, const SubstepPoint& p, std::span<const BodyState> states,
+                  const StepStart& start) {
+  const Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
+                     (states[sc.a].position - start.positions[sc.a]);
+  if (!sc.angular) return moved;
+  return moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
+}
+
+// Velocity of B's anchor relative to A's.
+Vec2 RelativeVelocity(const SubstepPoint& p, const BodyState& a, const BodyState& b) {
+  return (b.velocity + Cross(b.angular_velocity, p.anchor_b)) -
+         (a.velocity + Cross(a.angular_velocity, p.anchor_a));
+}
+
+void ApplyImpulse(const SubstepConstraint& sc, const SubstepPoint& p, Vec2 impulse, BodyState& a,
+                  BodyState& b) {
+  a.velocity -= sc.inv_mass_a * impulse;
+  a.angular_velocity -= sc.inv_inertia_a * Cross(p.anchor_a, impulse);
+  b.velocity += sc.inv_mass_b * impulse;
+  b.angular_velocity += sc.inv_inertia_b * Cross(p.anchor_b, impulse);
+}
+
+// 1 / (m_a⁻¹ + m_b⁻¹ + I_a⁻¹·(r_a × d)² + I_b⁻¹·(r_b × d)²): the effective mass along d.
+double EffectiveMass(const SubstepConstraint& sc, Vec2 anchor_a, Vec2 anchor_b, Vec2 d) {
+  const double ra = Cross(anchor_a, d), rb = Cross(anchor_b, d);
+  return 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra + sc.inv_inertia_b * rb * rb);
+}
+
+}  // namespace
+
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                            std::vector<SubstepConstraint>* constraints) {
+                               std::span<const BodyState> states,
+                               std::vector<SubstepConstraint>* constraints) {
   constraints->clear();
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
@@ -20,92 +54,160 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
     sc.normal = c.manifold.normal;
     sc.inv_mass_a = infos[c.a].inv_mass;
     sc.inv_mass_b = infos[c.b].inv_mass;
-    sc.normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b);
+    sc.inv_inertia_a = infos[c.a].inv_inertia;
+    sc.inv_inertia_b = infos[c.b].inv_inertia;
     sc.friction = c.friction;
     sc.restitution = c.restitution;
-    double depth = c.manifold.points[0].depth;
-    for (int p = 1; p < c.manifold.point_count; ++p) depth = std::max(depth, c.manifold.points[p].depth);
-    sc.base_separation = -depth;
-    sc.normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
-    sc.tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
     sc.impact_lag = 0.0;
+    sc.angular = sc.inv_inertia_a != 0.0 || sc.inv_inertia_b != 0.0;
+    if (!sc.angular) {
+      SubstepPoint& p = sc.points[0];
+      p.anchor_a = p.anchor_b = Vec2{};
+      p.normal_mass = p.tangent_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b);
+      double depth = c.manifold.points[0].depth;
+      for (int k = 1; k < c.manifold.point_count; ++k) depth = std::max(depth, c.manifold.points[k].depth);
+      p.base_separation = -depth;
+      p.normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
+      p.tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
+      p.push_impulse = 0.0;
+      sc.point_count = 1;
+    } else {
+      const Vec2 t = LeftPerp(sc.normal);
+      sc.point_count = c.manifold.point_count;
+      for (int k = 0; k < sc.point_count; ++k) {
+        SubstepPoint& p = sc.points[k];
+        const ContactPoint& cp = c.manifold.points[k];
+        p.anchor_a = cp.point - states[c.a].position;
+        p.anchor_b = cp.point - states[c.b].position;
+        p.base_separation = -cp.depth - Dot(p.anchor_b - p.anchor_a, sc.normal);
+        p.normal_mass = EffectiveMass(sc, p.anchor_a, p.anchor_b, sc.normal);
+        p.tangent_mass = EffectiveMass(sc, p.anchor_a, p.anchor_b, t);
+        p.normal_impulse = c.normal_impulse[k];
+        p.tangent_impulse = c.tangent_impulse[k];
+        p.push_impulse = 0.0;
+      }
+    }
     constraints->push_back(sc);
   }
 }
 
+double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
+                         std::span<const BodyState> states, const StepStart& start) {
+  return p.base_separation + Dot(AnchorOffset(sc, p, states, start), sc.normal);
+}
+
 void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {
   for (const SubstepConstraint& sc : constraints) {
-    const Vec2 impulse = sc.normal_impulse * sc.normal + sc.tangent_impulse * LeftPerp(sc.normal);
-    states[sc.a].velocity -= sc.inv_mass_a * impulse;
-    states[sc.b].velocity += sc.inv_mass_b * impulse;
+    const Vec2 t = LeftPerp(sc.normal);
+    if (!sc.angular) {
+      const SubstepPoint& p = sc.points[0];
+      const Vec2 impulse = p.normal_impulse * sc.normal + p.tangent_impulse * t;
+      states[sc.a].velocity -= sc.inv_mass_a * impulse;
+      states[sc.b].velocity += sc.inv_mass_b * impulse;
+      continue;
+    }
+    for (int k = 0; k < sc.point_count; ++k) {
+      const SubstepPoint& p = sc.points[k];
+      ApplyImpulse(sc, p, p.normal_impulse * sc.normal + p.tangent_impulse * t, states[sc.a], states[sc.b]);
+    }
   }
 }
 
 void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
-                   std::span<const Vec2> step_start_positions, double inv_h) {
+                   const StepStart& start, double inv_h) {
   for (SubstepConstraint& sc : constraints) {
     BodyState& a = states[sc.a];
     BodyState& b = states[sc.b];
     const Vec2 n = sc.normal;
-
-    // The separation now: at the step's start, plus how far the bodies have moved apart since.
-    const Vec2 moved = (b.position - step_start_positions[sc.b]) - (a.position - step_start_positions[sc.a]);
-    const double s = sc.base_separation + Dot(moved, n);
-    // Rigid: no approach at all when touching; across a gap, no more than closes it this substep.
-    const double min_vn = -std::max(s, 0.0) * inv_h;
-    const double vn = Dot(b.velocity - a.velocity, n);
-    const double new_normal = std::max(sc.normal_impulse + sc.normal_mass * (min_vn - vn), 0.0);
-    const double dn = new_normal - sc.normal_impulse;
-    sc.normal_impulse = new_normal;
-    a.velocity -= (sc.inv_mass_a * dn) * n;
-    b.velocity += (sc.inv_mass_b * dn) * n;
-
-    // Coulomb friction: the tangent impulse stays inside the cone of the normal impulse.
     const Vec2 t = LeftPerp(n);
-    const double vt = Dot(b.velocity - a.velocity, t);
-    const double max_friction = sc.friction * sc.normal_impulse;
-    const double new_tangent = Clamp(sc.tangent_impulse - sc.normal_mass * vt, -max_friction, max_friction);
-    const double dt_impulse = new_tangent - sc.tangent_impulse;
-    sc.tangent_impulse = new_tangent;
-    a.velocity -= (sc.inv_mass_a * dt_impulse) * t;
-    b.velocity += (sc.inv_mass_b * dt_impulse) * t;
+    if (!sc.angular) {
+      SubstepPoint& p = sc.points[0];
+      // Rigid: no approach at all when touching; across a gap, no more than closes it this substep.
+      const double s = CurrentSeparation(sc, p, states, start);
+      const double min_vn = -std::max(s, 0.0) * inv_h;
+      const double vn = Dot(b.velocity - a.velocity, n);
+      const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn - vn), 0.0);
+      const double dn = new_normal - p.normal_impulse;
+      p.normal_impulse = new_normal;
+      a.velocity -= (sc.inv_mass_a * dn) * n;
+      b.velocity += (sc.inv_mass_b * dn) * n;
+
+      // Coulomb friction: the tangent impulse stays inside the cone of the normal impulse.
+      const double vt = Dot(b.velocity - a.velocity, t);
+      const double max_friction = sc.friction * p.normal_impulse;
+      const double new_tangent = Clamp(p.tangent_impulse - p.tangent_mass * vt, -max_friction, max_friction);
+      const double dt_impulse = new_tangent - p.tangent_impulse;
+      p.tangent_impulse = new_tangent;
+      a.velocity -= (sc.inv_mass_a * dt_impulse) * t;
+      b.velocity += (sc.inv_mass_b * dt_impulse) * t;
+      continue;
+    }
+    for (int k = 0; k < sc.point_count; ++k) {
+      SubstepPoint& p = sc.points[k];
+      const double s = CurrentSeparation(sc, p, states, start);
+      const double min_vn = -std::max(s, 0.0) * inv_h;
+      const double vn = Dot(RelativeVelocity(p, a, b), n);
+      const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn - vn), 0.0);
+      const double dn = new_normal - p.normal_impulse;
+      p.normal_impulse = new_normal;
+      ApplyImpulse(sc, p, dn * n, a, b);
+    }
+    for (int k = 0; k < sc.point_count; ++k) {
+      SubstepPoint& p = sc.points[k];
+      const double vt = Dot(RelativeVelocity(p, a, b), t);
+      const double max_friction = sc.friction * p.normal_impulse;
+      const double new_tangent = Clamp(p.tangent_impulse - p.tangent_mass * vt, -max_friction, max_friction);
+      const double dt_impulse = new_tangent - p.tangent_impulse;
+      p.tangent_impulse = new_tangent;
+      ApplyImpulse(sc, p, dt_impulse * t, a, b);
+    }
   }
 }
 
 void PushOut(std::span<SubstepConstraint> constraints, std::span<const BodyState> states,
-             std::span<const Vec2> step_start_positions, std::span<Vec2> push_velocities,
-             double push_out_rate, double max_push_out_speed, double linear_slop) {
+             const StepStart& start, PushVelocities push, double push_out_rate,
+             double max_push_out_speed, double linear_slop) {
   // Gauss-Seidel on the push velocities alone, from zero every substep.
-  for (SubstepConstraint& sc : constraints) {
-    sc.push_impulse = 0.0;
-  }
-  for (Vec2& v : push_velocities) v = {};
+  for (Vec2& v : push.linear) v = {};
+  for (double& w : push.angular) w = 0.0;
   for (SubstepConstraint& sc : constraints) {
     const Vec2 n = sc.normal;
-    const Vec2 moved = (states[sc.b].position - step_start_positions[sc.b]) -
-                       (states[sc.a].position - step_start_positions[sc.a]);
-    const double s = sc.base_separation + Dot(moved, n);
-    if (s >= -linear_slop) continue;  // overlap within the slop is left alone: rest stays quiet
-    const double target = std::min(push_out_rate * -(s + linear_slop), max_push_out_speed);
-    Vec2& va = push_velocities[sc.a];
-    Vec2& vb = push_velocities[sc.b];
-    const double vn = Dot(vb - va, n);
-    const double new_push = std::max(sc.push_impulse + sc.normal_mass * (target - vn), 0.0);
-    const double dp = new_push - sc.push_impulse;
-    sc.push_impulse = new_push;
-    va -= (sc.inv_mass_a * dp) * n;
-    vb += (sc.inv_mass_b * dp) * n;
+    for (int k = 0; k < sc.point_count; ++k) {
+      SubstepPoint& p = sc.points[k];
+      p.push_impulse = 0.0;
+      const double s = CurrentSeparation(sc, p, states, start);
+      if (s >= -linear_slop) continue;  // overlap within the slop is left alone: rest stays quiet
+      const double target = std::min(push_out_rate * -(s + linear_slop), max_push_out_speed);
+      Vec2& va = push.linear[sc.a];
+      Vec2& vb = push.linear[sc.b];
+      double vn = Dot(vb - va, n);
+      if (sc.angular) {
+        vn += Dot(Cross(push.angular[sc.b], p.anchor_b) - Cross(push.angular[sc.a], p.anchor_a), n);
+      }
+      const double new_push = std::max(p.push_impulse + p.normal_mass * (target - vn), 0.0);
+      const double dp = new_push - p.push_impulse;
+      p.push_impulse = new_push;
+      va -= (sc.inv_mass_a * dp) * n;
+      vb += (sc.inv_mass_b * dp) * n;
+      if (sc.angular) {
+        push.angular[sc.a] -= sc.inv_inertia_a * Cross(p.anchor_a, dp * n);
+        push.angular[sc.b] += sc.inv_inertia_b * Cross(p.anchor_b, dp * n);
+      }
+    }
   }
 }
 
-void MoveByPush(std::span<BodyState> states, std::span<const Vec2> push_velocities, double h) {
-  for (std::size_t i = 0; i < states.size(); ++i) states[i].position += push_velocities[i] * h;
+void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h) {
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].position += push.linear[i] * h;
+    if (rotation) states[i].angle += push.angular[i] * h;
+  }
 }
 
 void ApplyImpactLags(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {
   for (const SubstepConstraint& sc : constraints) {
     if (sc.impact_lag == 0.0) continue;
-    const double share = sc.impact_lag * sc.normal_mass;
+    const double share = sc.impact_lag * (1.0 / (sc.inv_mass_a + sc.inv_mass_b));
     states[sc.a].position -= (share * sc.inv_mass_a) * sc.normal;
     states[sc.b].position += (share * sc.inv_mass_b) * sc.normal;
   }
@@ -114,10 +216,10 @@ void ApplyImpactLags(std::span<const SubstepConstraint> constraints, std::span<B
 void StoreImpulses(std::span<const SubstepConstraint> constraints, std::span<Contact> contacts) {
   for (const SubstepConstraint& sc : constraints) {
     Contact& c = contacts[sc.contact];
-    c.normal_impulse[0] = sc.normal_impulse;
-    c.normal_impulse[1] = 0.0;
-    c.tangent_impulse[0] = sc.tangent_impulse;
-    c.tangent_impulse[1] = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      c.normal_impulse[k] = k < sc.point_count ? sc.points[k].normal_impulse : 0.0;
+      c.tangent_impulse[k] = k < sc.point_count ? sc.points[k].tangent_impulse : 0.0;
+    }
   }
 }
 

@@ -10,9 +10,22 @@
 
 namespace engine::detail {
 
+/// Where the bodies were at the step's start and how far each has turned since: the separation
+/// of a contact now follows from these and the contact's anchors.
+struct StepStart {
+  std::span<const Vec2> positions;
+  std::span<const Rot> turned;  ///< rotation since the step's start; empty without rotation
+};
+
 /// One constraint per contact, with the impulses carried over from the last step.
+/// `positions` are the bodies' centres, to turn contact points into anchors.
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                            std::vector<SubstepConstraint>* constraints);
+                               std::span<const BodyState> states,
+                               std::vector<SubstepConstraint>* constraints);
+
+/// The separation of point `p` of `sc` now, m (negative when overlapping).
+double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
+                         std::span<const BodyState> states, const StepStart& start);
 
 /// Applies the accumulated impulses again, so the solve starts from last step's answer.
 void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);
@@ -20,18 +33,24 @@ void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodySta
 /// One Gauss-Seidel pass over all contacts: touching bodies may not approach, bodies with a gap
 /// may close no more than it this substep (speculative contact), friction within Coulomb's cone.
 void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
-                   std::span<const Vec2> step_start_positions, double inv_h);
+                   const StepStart& start, double inv_h);
+
+/// Push velocities of the split impulse, linear and angular.
+struct PushVelocities {
+  std::span<Vec2> linear;
+  std::span<double> angular;
+};
 
 /// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
 /// out through separate push velocities at `push_out_rate` per second of overlap, at most
 /// `max_push_out_speed`. They move positions this substep and are then dropped, so resolving an
 /// overlap never launches a body.
 void PushOut(std::span<SubstepConstraint> constraints, std::span<const BodyState> states,
-             std::span<const Vec2> step_start_positions, std::span<Vec2> push_velocities,
-             double push_out_rate, double max_push_out_speed, double linear_slop);
+             const StepStart& start, PushVelocities push, double push_out_rate,
+             double max_push_out_speed, double linear_slop);
 
 /// Moves every body by its push velocity for one substep.
-void MoveByPush(std::span<BodyState> states, std::span<const Vec2> push_velocities, double h);
+void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h);
 
 /// Moves each pair of bodies apart by what the impact pass asked for.
 void ApplyImpactLags(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "impact.h"
 #include "force_model.h"
+#include "impact.h"
 #include "integrate.h"
 #include "seed_solver.h"
 #include "shock_propagation.h"
@@ -145,8 +145,12 @@ void World::AddSpring(const SpringDef& def) {
 AABB World::BodyBounds(BodyId id) const {
   const Vec2 c = states_[id].position;
   const Shape& shape = infos_[id].shape;
-  const Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius}
-                                                     : shape.half_extents;
+  Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
+  if (shape.type == ShapeType::kBox && states_[id].angle != 0.0) {
+    const Rot q = MakeRot(states_[id].angle);
+    const Vec2 h = shape.half_extents;
+    half = {std::abs(q.c) * h.x + std::abs(q.s) * h.y, std::abs(q.s) * h.x + std::abs(q.c) * h.y};
+  }
   return {c - half, c + half};
 }
 
@@ -154,9 +158,16 @@ double World::Reach(BodyId id) const {
   if (def_.solver == ContactSolver::kSeed) return 0.0;  // the seed only sees real overlap
   const double speculative = 0.5 * kSpeculativeSlops * def_.linear_slop;
   if (!awake_[id]) return speculative;
-  // The farthest a body can travel in this step under gravity, and then some.
+  // The farthest a body can travel in this step under gravity, and then some; a turning body's
+  // outline also sweeps |ω|·r.
   const double dt = def_.dt;
-  return Length(states_[id].velocity) * dt + Length(def_.gravity) * dt * dt + speculative;
+  double reach = Length(states_[id].velocity) * dt + Length(def_.gravity) * dt * dt + speculative;
+  if (infos_[id].inv_inertia != 0.0) {
+    const Shape& shape = infos_[id].shape;
+    const double outer = shape.type == ShapeType::kCircle ? shape.radius : Length(shape.half_extents);
+    reach += std::abs(states_[id].angular_velocity) * outer * dt;
+  }
+  return reach;
 }
 
 void World::Step() {
@@ -185,12 +196,17 @@ void World::FindCandidatePairs() {
     const AABB b = BodyBounds(id);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
-  const bool all_pairs = def_.broad_phase == BroadPhaseType::kAllPairs ||
-                         (def_.broad_phase == BroadPhaseType::kAuto && n <= kAllPairsMaxBodies);
-  if (all_pairs) {
-    FindPairsAllPairs(bounds_, &pairs_);
-  } else {
-    sweep_and_prune_.FindPairs(bounds_, &pairs_);
+  BroadPhaseType type = def_.broad_phase;
+  if (type == BroadPhaseType::kAuto) {
+    type = n <= kAllPairsMaxBodies ? BroadPhaseType::kAllPairs : BroadPhaseType::kSweepAndPrune;
+  }
+  switch (type) {
+    case BroadPhaseType::kAuto:
+    case BroadPhaseType::kAllPairs: FindPairsAllPairs(bounds_, &pairs_); break;
+    case BroadPhaseType::kSweepAndPrune: sweep_and_prune_.FindPairs(bounds_, &pairs_); break;
+    case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(bounds_, &pairs_); break;
+    case BroadPhaseType::kQuadtree: quadtree_.FindPairs(bounds_, &pairs_); break;
+    case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(bounds_, &pairs_); break;
   }
   // A moving body reaching a sleeping one wakes its whole island before anything is solved.
   for (const BodyPair& p : pairs_) {
@@ -215,18 +231,27 @@ void World::BuildContacts() {
     const double margin = reach_[pair.a] + reach_[pair.b];
     const bool circle_a = ia.shape.type == ShapeType::kCircle;
     const bool circle_b = ib.shape.type == ShapeType::kCircle;
+    // A box that has turned takes the oriented tests; an unturned one the exact axis-aligned
+    // ones, so a scene where nothing turns computes exactly what the axis-aligned game does.
+    const double angle_a = states_[pair.a].angle, angle_b = states_[pair.b].angle;
+    const OrientedBox box_a{pa, ia.shape.half_extents, MakeRot(angle_a)};
+    const OrientedBox box_b{pb, ib.shape.half_extents, MakeRot(angle_b)};
     Manifold m;
     bool touching;
     if (circle_a && circle_b) {
       touching = CollideCircles(pa, ia.shape.radius, pb, ib.shape.radius, &m, margin);
     } else if (circle_a) {
-      touching = CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, &m, margin);
+      touching = angle_b == 0.0 ? CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, &m, margin)
+                                : CollideCircleOrientedBox(pa, ia.shape.radius, box_b, &m, margin);
     } else if (circle_b) {
       // The narrow phase takes the circle first; flip its normal back to point from a to b.
-      touching = CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, &m, margin);
+      touching = angle_a == 0.0 ? CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, &m, margin)
+                                : CollideCircleOrientedBox(pb, ib.shape.radius, box_a, &m, margin);
       m.normal = -m.normal;
-    } else {
+    } else if (angle_a == 0.0 && angle_b == 0.0) {
       touching = CollideBoxes(pa, ia.shape.half_extents, pb, ib.shape.half_extents, &m, margin);
+    } else {
+      touching = CollideOrientedBoxes(box_a, box_b, &m, margin);
     }
     if (!touching) continue;
 
@@ -277,10 +302,19 @@ void World::StepSubstep() {
   angular_accelerations_.resize(states_.size());
   Forces().Evaluate(states_, accelerations_, angular_accelerations_);
 
-  detail::PrepareSubstepConstraints(contacts_, infos_, &substep_constraints_);
+  detail::PrepareSubstepConstraints(contacts_, infos_, states_, &substep_constraints_);
   detail::BuildShockOrder(substep_constraints_, infos_, &shock_level_, &shock_order_);
   detail::ResolveImpacts(substep_constraints_, states_, accelerations_, def_);  // bounces first
   push_velocities_.resize(states_.size());
+  push_angular_velocities_.resize(states_.size());
+  const detail::PushVelocities push{push_velocities_, push_angular_velocities_};
+  if (def_.rotation) {
+    angles_before_.resize(states_.size());
+    turned_.resize(states_.size());
+    for (std::size_t i = 0; i < states_.size(); ++i) angles_before_[i] = states_[i].angle;
+  }
+  const detail::StepStart start{positions_before_, def_.rotation ? std::span<const Rot>(turned_)
+                                                                 : std::span<const Rot>()};
   // Remove the same fraction of the overlap per step as the seed does, spread over the substeps:
   // 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is that times the overlap / h.
   const double push_out_rate =
@@ -288,16 +322,24 @@ void World::StepSubstep() {
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
     detail::WarmStart(substep_constraints_, states_);
-    detail::SolveContacts(substep_constraints_, states_, positions_before_, inv_h);
-    detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, positions_before_,
-                           inv_h, def_.linear_slop);
+    detail::SolveContacts(substep_constraints_, states_, start, inv_h);
+    detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
+                           def_.linear_slop);
     detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, h);
-    detail::PushOut(substep_constraints_, states_, positions_before_, push_velocities_, push_out_rate,
+    if (def_.rotation) UpdateTurned();
+    detail::PushOut(substep_constraints_, states_, start, push, push_out_rate,
                     def_.max_push_out_speed, def_.linear_slop);
-    detail::MoveByPush(states_, push_velocities_, h);
+    detail::MoveByPush(states_, push, def_.rotation, h);
+    if (def_.rotation) UpdateTurned();
   }
   detail::ApplyImpactLags(substep_constraints_, states_);
   detail::StoreImpulses(substep_constraints_, contacts_);
+}
+
+void World::UpdateTurned() {
+  for (std::size_t i = 0; i < states_.size(); ++i) {
+    turned_[i] = infos_[i].inv_inertia != 0.0 ? MakeRot(states_[i].angle - angles_before_[i]) : Rot{};
+  }
 }
 
 void World::UpdateSleep() {

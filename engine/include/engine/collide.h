@@ -33,4 +33,20 @@ bool CollideCircleBox(Vec2 center_a, double radius_a, Vec2 center_b, Vec2 half_b
 bool CollideBoxes(Vec2 center_a, Vec2 half_a, Vec2 center_b, Vec2 half_b, Manifold* out,
                   double margin = 0.0);
 
+/// A box turned by `rotation` about its centre.
+struct OrientedBox {
+  Vec2 center;
+  Vec2 half_extents;
+  Rot rotation;
+};
+
+/// A circle against a turned box: the axis-aligned test in the box's own frame.
+bool CollideCircleOrientedBox(Vec2 center_a, double radius_a, const OrientedBox& b, Manifold* out,
+                              double margin = 0.0);
+/// Two turned boxes: the separating-axis test over the four face normals (early exit on a gap
+/// wider than the margin), then the incident edge clipped against the reference face: up to
+/// two points.
+bool CollideOrientedBoxes(const OrientedBox& a, const OrientedBox& b, Manifold* out,
+                          double margin = 0.0);
+
 }  // namespace engine

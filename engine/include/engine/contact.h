@@ -39,8 +39,22 @@ struct ContactConstraint {
   PointConstraint points[2];
 };
 
-/// Substep solver: its working state for one contact. Without rotation every point of a
-/// manifold has the same Jacobian, so a contact is one normal and one friction constraint.
+/// Substep solver: one point of a contact. Pairs that cannot turn use a single point at the
+/// centres (anchors zero): every point of their manifold has the same Jacobian.
+struct SubstepPoint {
+  Vec2 anchor_a;           ///< from A's centre at the step's start, m
+  Vec2 anchor_b;
+  /// Separation at the step's start less Dot(anchor_b − anchor_a, normal), so that adding the
+  /// anchors' current offset gives the separation now.
+  double base_separation;
+  double normal_mass;      ///< 1 / effective mass along the normal
+  double tangent_mass;
+  double normal_impulse;   ///< accumulated per substep, warm-started from the last step
+  double tangent_impulse;
+  double push_impulse;     ///< accumulated this substep by the push-out (split impulse)
+};
+
+/// Substep solver: its working state for one contact.
 struct SubstepConstraint {
   BodyId a;
   BodyId b;
@@ -48,14 +62,14 @@ struct SubstepConstraint {
   Vec2 normal;
   double inv_mass_a;
   double inv_mass_b;
-  double normal_mass;      ///< 1 / (inv_mass_a + inv_mass_b)
+  double inv_inertia_a;
+  double inv_inertia_b;
   double friction;
   double restitution;
-  double base_separation;  ///< at the start of the step, m; negative when overlapping
-  double normal_impulse;   ///< accumulated per substep, warm-started from the last step
-  double tangent_impulse;
-  double push_impulse;     ///< accumulated this substep by the push-out (split impulse)
   double impact_lag;       ///< m the impact pass asks the bodies to be moved apart after the step
+  bool angular;            ///< either body can turn: points carry anchors and angular terms
+  int point_count;
+  SubstepPoint points[2];
 };
 
 }  // namespace engine

@@ -46,6 +46,9 @@ enum class BroadPhaseType : std::uint8_t {
   kAuto,           ///< all pairs for a handful of bodies, sweep and prune beyond
   kAllPairs,
   kSweepAndPrune,
+  kUniformGrid,
+  kQuadtree,
+  kAabbTree,
 };
 
 struct BodyDef {
@@ -157,6 +160,8 @@ class World {
   void StepSeed();
   void StepSubstep();
   void UpdateSleep();
+  /// How far each body has turned since the step's start, for the contacts' separations.
+  void UpdateTurned();
   /// How far a body may reach within a step (speculative margin), m.
   double Reach(BodyId id) const;
   detail::ForceModel Forces() const;
@@ -182,11 +187,17 @@ class World {
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;
   std::vector<Vec2> push_velocities_;
+  std::vector<double> push_angular_velocities_;
+  std::vector<double> angles_before_;
+  std::vector<Rot> turned_;
   std::vector<ContactConstraint> seed_constraints_;
   std::vector<SubstepConstraint> substep_constraints_;
   std::vector<std::uint32_t> shock_level_;
   std::vector<std::uint32_t> shock_order_;
   SweepAndPrune sweep_and_prune_;
+  UniformGrid uniform_grid_;
+  Quadtree quadtree_;
+  AabbTree aabb_tree_;
 };
 
 }  // namespace engine
