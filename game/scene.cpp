@@ -320,7 +320,10 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
         *v, "broad_phase",
         {{"auto", engine::BroadPhaseType::kAuto},
          {"all_pairs", engine::BroadPhaseType::kAllPairs},
-         {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune}});
+         {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune},
+         {"uniform_grid", engine::BroadPhaseType::kUniformGrid},
+         {"quadtree", engine::BroadPhaseType::kQuadtree},
+         {"aabb_tree", engine::BroadPhaseType::kAabbTree}});
   }
   if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
   if (const Json* v = Find(root, "sleep")) world.sleeping = ReadBool(*v, "sleep");

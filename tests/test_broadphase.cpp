@@ -1,34 +1,46 @@
-// Sweep and prune must report exactly the pairs an all-pairs AABB test reports.
+// Every broad phase (sweep and prune, uniform grid, quadtree, AABB tree) must report exactly the
+// pairs an all-pairs AABB test reports, in the same order, and the world's result must not depend
+// on which one runs.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <functional>
 #include <random>
+#include <string>
+#include <type_traits>
 
+#include "bench/stress_scenes.h"
 #include "engine/broadphase.h"
 #include "engine/world.h"
+#include "game/scene.h"
 
 namespace {
 
+using engine::AABB;
+using engine::BodyPair;
+using engine::Vec2;
+
 // Boxes on a coarse grid of integer sizes and positions, so that exactly touching edges (equal
-// endpoint values, the case insertion sort must order right) happen often.
-std::vector<engine::AABB> RandomBoxes(std::mt19937_64& rng, int n, double extent) {
+// endpoint values, equal cell boundaries) happen often.
+std::vector<AABB> RandomBoxes(std::mt19937_64& rng, int n, double extent) {
   std::uniform_int_distribution<int> cell(0, static_cast<int>(extent));
   std::uniform_int_distribution<int> size(1, 3);
-  std::vector<engine::AABB> boxes(n);
+  std::vector<AABB> boxes(n);
   for (auto& b : boxes) {
     b.lower = {static_cast<double>(cell(rng)), static_cast<double>(cell(rng))};
-    b.upper = b.lower + engine::Vec2{static_cast<double>(size(rng)), static_cast<double>(size(rng))};
+    b.upper = b.lower + Vec2{static_cast<double>(size(rng)), static_cast<double>(size(rng))};
   }
   return boxes;
 }
 
 // Every box takes a small random step (sometimes none, sometimes a jump), as bodies do.
-void Move(std::mt19937_64& rng, std::vector<engine::AABB>& boxes) {
+void Move(std::mt19937_64& rng, std::vector<AABB>& boxes) {
   std::uniform_int_distribution<int> kind(0, 9);
   std::uniform_real_distribution<double> nudge(-0.3, 0.3);
   std::uniform_int_distribution<int> jump(-5, 5);
   for (auto& b : boxes) {
     const int k = kind(rng);
-    engine::Vec2 d;
+    Vec2 d;
     if (k < 6) d = {nudge(rng), nudge(rng)};
     if (k == 9) d = {static_cast<double>(jump(rng)), static_cast<double>(jump(rng))};
     b.lower += d;
@@ -36,54 +48,219 @@ void Move(std::mt19937_64& rng, std::vector<engine::AABB>& boxes) {
   }
 }
 
+// Integer moves keep the boxes on the grid, so touching stays common over all the steps.
+void MoveOnGrid(std::mt19937_64& rng, std::vector<AABB>& boxes) {
+  std::uniform_int_distribution<int> step(-1, 1);
+  for (auto& b : boxes) {
+    const Vec2 d{static_cast<double>(step(rng)), static_cast<double>(step(rng))};
+    b.lower += d;
+    b.upper += d;
+  }
+}
+
+bool Touching(const AABB& a, const AABB& b) {
+  return engine::Overlaps(a, b) && (a.upper.x == b.lower.x || b.upper.x == a.lower.x ||
+                                    a.upper.y == b.lower.y || b.upper.y == a.lower.y);
+}
+
+// Runs the broad phase on `boxes` and requires exactly the all-pairs answer; returns the pair count.
+template <class BroadPhase>
+std::size_t RequireAllPairs(BroadPhase& broad_phase, const std::vector<AABB>& boxes) {
+  std::vector<BodyPair> expected, actual;
+  engine::FindPairsAllPairs(boxes, &expected);
+  broad_phase.FindPairs(boxes, &actual);
+  REQUIRE(actual.size() == expected.size());
+  REQUIRE(actual == expected);
+  if constexpr (std::is_same_v<BroadPhase, engine::AabbTree>) REQUIRE(broad_phase.IsValid());
+  return expected.size();
+}
+
 }  // namespace
 
-TEST_CASE("sweep and prune equals all pairs on random moving scenes", "[broadphase]") {
+#define BROAD_PHASES engine::SweepAndPrune, engine::UniformGrid, engine::Quadtree, engine::AabbTree
+
+TEMPLATE_TEST_CASE("broad phase equals all pairs on random moving scenes", "[broadphase]", BROAD_PHASES) {
   std::mt19937_64 rng(12345);
   for (int n : {2, 3, 10, 100, 500, 2000}) {
     auto boxes = RandomBoxes(rng, n, 2.0 * std::sqrt(static_cast<double>(n)) + 2.0);
-    engine::SweepAndPrune sap;
-    std::vector<engine::BodyPair> expected, actual;
+    TestType broad_phase;
     const int steps = n >= 2000 ? 20 : 60;
     std::size_t pairs_seen = 0;
     for (int step = 0; step < steps; ++step) {
-      engine::FindPairsAllPairs(boxes, &expected);
-      sap.FindPairs(boxes, &actual);
       INFO("n = " << n << ", step " << step);
-      REQUIRE(actual == expected);
-      pairs_seen += expected.size();
+      pairs_seen += RequireAllPairs(broad_phase, boxes);
       Move(rng, boxes);
     }
     CHECK(pairs_seen > 0);  // the scenes are dense enough to test something
   }
 }
 
-TEST_CASE("sweep and prune: exactly touching boxes are a pair, a hair apart are not", "[broadphase]") {
-  std::vector<engine::AABB> boxes = {{{0, 0}, {1, 1}}, {{1, 0}, {2, 1}}, {{2.0000001, 0}, {3, 1}}};
-  engine::SweepAndPrune sap;
-  std::vector<engine::BodyPair> pairs;
-  sap.FindPairs(boxes, &pairs);
-  REQUIRE(pairs.size() == 1);
-  CHECK(pairs[0] == engine::BodyPair{0, 1});
+TEMPLATE_TEST_CASE("broad phase equals all pairs with boxes touching on an integer grid", "[broadphase]",
+                   BROAD_PHASES) {
+  std::mt19937_64 rng(99);
+  for (int n : {50, 400, 2000}) {
+    auto boxes = RandomBoxes(rng, n, std::sqrt(static_cast<double>(n)) + 2.0);
+    TestType broad_phase;
+    std::size_t touching = 0;
+    for (int step = 0; step < 30; ++step) {
+      INFO("n = " << n << ", step " << step);
+      RequireAllPairs(broad_phase, boxes);
+      for (int i = 0; i + 1 < n; ++i) touching += Touching(boxes[i], boxes[i + 1]);
+      MoveOnGrid(rng, boxes);
+    }
+    CHECK(touching > 10);  // touching is common, not a lucky case
+  }
 }
 
-TEST_CASE("sweep and prune follows bodies added between steps", "[broadphase]") {
-  std::vector<engine::AABB> boxes = {{{0, 0}, {1, 1}}};
-  engine::SweepAndPrune sap;
-  std::vector<engine::BodyPair> pairs;
-  sap.FindPairs(boxes, &pairs);
+TEMPLATE_TEST_CASE("broad phase: exactly touching boxes are a pair, a hair apart are not", "[broadphase]",
+                   BROAD_PHASES) {
+  // Edges, corners, and each of them on either side; the hair is one unit in the last place.
+  const double hair = std::nextafter(2.0, 3.0);
+  std::vector<AABB> boxes = {{{0, 0}, {1, 1}}, {{1, 0}, {2, 1}},     {{hair, 0}, {3, 1}},
+                             {{1, 1}, {2, 2}}, {{0, -1}, {1, 0}},    {{-1, -1}, {0, 0}},
+                             {{2, 2}, {2, 2}}, {{hair, hair}, {4, 4}}};
+  TestType broad_phase;
+  std::vector<BodyPair> pairs;
+  broad_phase.FindPairs(boxes, &pairs);
+  const std::vector<BodyPair> expected = {{0, 1}, {0, 3}, {0, 4}, {0, 5}, {1, 3}, {1, 4},
+                                          {3, 6}, {4, 5}};
+  CHECK(pairs == expected);
+  RequireAllPairs(broad_phase, boxes);
+}
+
+TEMPLATE_TEST_CASE("broad phase follows bodies added and removed between calls", "[broadphase]", BROAD_PHASES) {
+  std::mt19937_64 rng(4);
+  std::vector<AABB> boxes = {{{0, 0}, {1, 1}}};
+  TestType broad_phase;
+  std::vector<BodyPair> pairs;
+  broad_phase.FindPairs(boxes, &pairs);
   CHECK(pairs.empty());
   boxes.push_back({{0.5, 0.5}, {2, 2}});
-  sap.FindPairs(boxes, &pairs);
+  broad_phase.FindPairs(boxes, &pairs);
   REQUIRE(pairs.size() == 1);
-  CHECK(pairs[0] == engine::BodyPair{0, 1});
+  CHECK(pairs[0] == BodyPair{0, 1});
+
+  // Grow to 600 bodies a few at a time while everything moves, then shrink, then grow again.
+  for (int step = 0; step < 120; ++step) {
+    INFO("step " << step << ", " << boxes.size() << " bodies");
+    auto more = RandomBoxes(rng, step % 7, 30);
+    boxes.insert(boxes.end(), more.begin(), more.end());
+    if (step == 80) boxes.resize(boxes.size() / 2);
+    RequireAllPairs(broad_phase, boxes);
+    Move(rng, boxes);
+  }
+}
+
+TEMPLATE_TEST_CASE("broad phase: bodies teleporting far away and back", "[broadphase]", BROAD_PHASES) {
+  std::mt19937_64 rng(5);
+  auto boxes = RandomBoxes(rng, 800, 60);
+  const auto home = boxes;
+  std::uniform_int_distribution<int> pick(0, 799);
+  std::uniform_int_distribution<int> direction(0, 3);
+  TestType broad_phase;
+  for (int step = 0; step < 40; ++step) {
+    INFO("step " << step);
+    RequireAllPairs(broad_phase, boxes);
+    Move(rng, boxes);
+    for (int k = 0; k < 20; ++k) {
+      const int i = pick(rng);
+      const double far = step % 2 == 0 ? 1e6 : 1e12;
+      const Vec2 jumps[4] = {{far, 0}, {-far, 0}, {0, far}, {far, -far}};
+      const Vec2 d = jumps[direction(rng)];
+      boxes[i].lower += d;
+      boxes[i].upper += d;
+      boxes[pick(rng)] = home[pick(rng)];  // and some land back among the others, on someone
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE("broad phase: huge boxes among small ones", "[broadphase]", BROAD_PHASES) {
+  std::mt19937_64 rng(6);
+  auto boxes = RandomBoxes(rng, 1000, 60);
+  // A floor across the whole world, walls, a box covering everything, and one far bigger still.
+  boxes.push_back({{-1e4, -2}, {1e4, 0.5}});
+  boxes.push_back({{-2, -2}, {0.5, 1e3}});
+  boxes.push_back({{60, -2}, {61, 1e3}});
+  boxes.push_back({{-100, -100}, {200, 200}});
+  boxes.push_back({{-1e9, -1e9}, {1e9, 1e9}});
+  TestType broad_phase;
+  for (int step = 0; step < 30; ++step) {
+    INFO("step " << step);
+    RequireAllPairs(broad_phase, boxes);
+    Move(rng, boxes);
+  }
+  // Half of the boxes huge: no size is "typical".
+  std::uniform_real_distribution<double> size(100, 1000);
+  for (std::size_t i = 0; i < boxes.size(); i += 2) boxes[i].upper = boxes[i].lower + Vec2{size(rng), size(rng)};
+  for (int step = 0; step < 10; ++step) {
+    INFO("half huge, step " << step);
+    RequireAllPairs(broad_phase, boxes);
+    Move(rng, boxes);
+  }
+}
+
+TEMPLATE_TEST_CASE("broad phase: tiny and zero-size boxes", "[broadphase]", BROAD_PHASES) {
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> cell(0, 20);
+  std::uniform_int_distribution<int> kind(0, 2);
+  std::vector<AABB> boxes(1500);
+  for (auto& b : boxes) {
+    // Points on a grid (coincident points touch), 1e-9 boxes at the same spots, unit boxes.
+    b.lower = {static_cast<double>(cell(rng)), static_cast<double>(cell(rng))};
+    const int k = kind(rng);
+    b.upper = b.lower + (k == 0 ? Vec2{} : k == 1 ? Vec2{1e-9, 1e-9} : Vec2{1, 1});
+  }
+  TestType broad_phase;
+  std::size_t pairs_seen = 0;
+  for (int step = 0; step < 10; ++step) {
+    INFO("step " << step);
+    pairs_seen += RequireAllPairs(broad_phase, boxes);
+    MoveOnGrid(rng, boxes);
+  }
+  CHECK(pairs_seen > 0);
+
+  // Only points: every box has zero size.
+  for (auto& b : boxes) b.upper = b.lower;
+  for (int step = 0; step < 10; ++step) {
+    INFO("points, step " << step);
+    RequireAllPairs(broad_phase, boxes);
+    MoveOnGrid(rng, boxes);
+  }
+}
+
+TEMPLATE_TEST_CASE("broad phase: identical boxes all pair with each other", "[broadphase]", BROAD_PHASES) {
+  TestType broad_phase;
+  std::vector<AABB> boxes(300, AABB{{1, 2}, {3, 4}});
+  CHECK(RequireAllPairs(broad_phase, boxes) == 300 * 299 / 2);
+  for (auto& b : boxes) b = {{-5, -5}, {-5, -5}};  // all moved to one point
+  CHECK(RequireAllPairs(broad_phase, boxes) == 300 * 299 / 2);
+  // Two coincident stacks far apart.
+  for (std::size_t i = 0; i < boxes.size(); i += 2) boxes[i] = {{100, 100}, {101, 101}};
+  CHECK(RequireAllPairs(broad_phase, boxes) == 2 * (150 * 149 / 2));
+}
+
+TEMPLATE_TEST_CASE("broad phase: sizes over six orders of magnitude", "[broadphase]", BROAD_PHASES) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> log_size(-3, 3);
+  std::uniform_real_distribution<double> position(0, 200);
+  std::vector<AABB> boxes(1200);
+  for (auto& b : boxes) {
+    b.lower = {position(rng), position(rng)};
+    b.upper = b.lower + Vec2{std::pow(10.0, log_size(rng)), std::pow(10.0, log_size(rng))};
+  }
+  TestType broad_phase;
+  for (int step = 0; step < 20; ++step) {
+    INFO("step " << step);
+    RequireAllPairs(broad_phase, boxes);
+    Move(rng, boxes);
+  }
 }
 
 TEST_CASE("sweep and prune: a coherent step costs few swaps", "[broadphase]") {
   std::mt19937_64 rng(7);
   auto boxes = RandomBoxes(rng, 1000, 60);
   engine::SweepAndPrune sap;
-  std::vector<engine::BodyPair> pairs;
+  std::vector<BodyPair> pairs;
   sap.FindPairs(boxes, &pairs);  // the first sort pays for the random order
   const auto first = sap.LastSwapCount();
   for (auto& b : boxes) {
@@ -93,4 +270,125 @@ TEST_CASE("sweep and prune: a coherent step costs few swaps", "[broadphase]") {
   sap.FindPairs(boxes, &pairs);
   CHECK(first > 10000);
   CHECK(sap.LastSwapCount() == 0);  // everything moved alike: the order is unchanged
+}
+
+TEST_CASE("uniform grid: cells follow the typical box, a floor stays out of them", "[broadphase]") {
+  std::mt19937_64 rng(9);
+  auto boxes = RandomBoxes(rng, 1000, 60);  // sides 1 to 3: median extent 2 or 3
+  boxes.push_back({{-1e4, -2}, {1e4, 0}});
+  engine::UniformGrid grid;
+  std::vector<BodyPair> pairs;
+  grid.FindPairs(boxes, &pairs);
+  CHECK(grid.CellSize() >= 4.0);
+  CHECK(grid.CellSize() <= 6.0);
+  CHECK(grid.LargeCount() == 1);
+  const double first = grid.CellSize();
+  // Small changes keep the cell size; boxes ten times bigger get cells to match.
+  Move(rng, boxes);
+  grid.FindPairs(boxes, &pairs);
+  CHECK(grid.CellSize() == first);
+  for (auto& b : boxes) b.upper = b.lower + 10.0 * (b.upper - b.lower);
+  grid.FindPairs(boxes, &pairs);
+  CHECK(grid.CellSize() >= 40.0);
+}
+
+TEST_CASE("quadtree: depth stays bounded for coincident boxes and modest for spread ones", "[broadphase]") {
+  engine::Quadtree tree;
+  std::vector<BodyPair> pairs;
+  std::vector<AABB> boxes(100, AABB{{1, 1}, {1, 1}});
+  tree.FindPairs(boxes, &pairs);
+  CHECK(tree.LastDepth() <= engine::Quadtree::kMaxDepth);
+  std::mt19937_64 rng(10);
+  boxes = RandomBoxes(rng, 4000, 200);
+  tree.FindPairs(boxes, &pairs);
+  CHECK(tree.LastDepth() >= 3);
+  CHECK(tree.LastDepth() <= 12);
+}
+
+TEST_CASE("aabb tree: still bodies cost no reinsertion and the tree stays balanced", "[broadphase]") {
+  std::mt19937_64 rng(11);
+  auto boxes = RandomBoxes(rng, 2000, 90);
+  engine::AabbTree tree;
+  std::vector<BodyPair> pairs;
+  tree.FindPairs(boxes, &pairs);
+  CHECK(tree.LastReinsertCount() == 2000);
+  tree.FindPairs(boxes, &pairs);
+  CHECK(tree.LastReinsertCount() == 0);
+  // Moves smaller than the fat margin stay inside the leaves.
+  for (auto& b : boxes) {
+    b.lower.x += 0.01;
+    b.upper.x += 0.01;
+  }
+  tree.FindPairs(boxes, &pairs);
+  CHECK(tree.LastReinsertCount() == 0);
+  for (int step = 0; step < 30; ++step) {
+    Move(rng, boxes);
+    tree.FindPairs(boxes, &pairs);
+  }
+  CHECK(tree.IsValid());
+  CHECK(tree.Height() <= 2 * 11 + 2);  // log2(2000) ≈ 11
+  // Inserted in sorted order along a line, the worst case for an unbalanced tree.
+  engine::AabbTree line;
+  std::vector<AABB> row;
+  for (int i = 0; i < 1024; ++i) row.push_back({{1.0 * i, 0}, {i + 0.5, 1}});
+  for (std::size_t n = 1; n <= row.size(); n *= 2) {
+    line.FindPairs(std::span(row).first(n), &pairs);
+  }
+  CHECK(line.IsValid());
+  CHECK(line.Height() <= 2 * 10 + 2);
+}
+
+namespace {
+
+// Builds the world with each broad phase, steps it, and requires the same state hash from all.
+void RequireSameHashWithEveryBroadPhase(const std::function<engine::World(engine::BroadPhaseType)>& make,
+                                        int steps) {
+  using engine::BroadPhaseType;
+  const std::pair<BroadPhaseType, const char*> choices[] = {
+      {BroadPhaseType::kAuto, "auto"},
+      {BroadPhaseType::kAllPairs, "all_pairs"},
+      {BroadPhaseType::kSweepAndPrune, "sweep_and_prune"},
+      {BroadPhaseType::kUniformGrid, "uniform_grid"},
+      {BroadPhaseType::kQuadtree, "quadtree"},
+      {BroadPhaseType::kAabbTree, "aabb_tree"},
+  };
+  std::uint64_t reference = 0;
+  for (const auto& [type, name] : choices) {
+    engine::World world = make(type);
+    for (int s = 0; s < steps; ++s) world.Step();
+    INFO(name);
+    if (type == BroadPhaseType::kAuto) {
+      reference = world.StateHash();
+    } else {
+      CHECK(world.StateHash() == reference);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("world: the same state hash with every broad phase", "[broadphase]") {
+  for (const char* file : {"box_pile.json", "ball_pour.json"}) {
+    INFO(file);
+    const game::Expected<game::Scene> loaded = game::LoadScene(std::string(BALLBOX_ASSETS) + "/scenes/" + file);
+    REQUIRE(loaded.HasValue());
+    RequireSameHashWithEveryBroadPhase(
+        [&loaded](engine::BroadPhaseType type) {
+          game::Scene scene = loaded.Value();
+          scene.world.broad_phase = type;
+          return game::BuildWorld(scene);
+        },
+        300);
+  }
+  // Enough bodies that the automatic choice uses a structure, not all pairs.
+  RequireSameHashWithEveryBroadPhase(
+      [](engine::BroadPhaseType type) {
+        engine::WorldDef def;
+        def.broad_phase = type;
+        engine::World world(def);
+        stress::AddContainer(world, 30, 30);
+        stress::AddCirclePour(world, 600, 0.25, 30);
+        return world;
+      },
+      120);
 }

@@ -329,7 +329,26 @@ TEST_CASE("scene unknown integrator lists the integrators", "[scene]") {
 TEST_CASE("scene unknown broad phase lists the broad phases", "[scene]") {
   RequireSceneError(
       "scene_unknown_broad_phase.json",
-      "broad_phase: unknown value \"grid\" (expected one of \"auto\", \"all_pairs\", \"sweep_and_prune\")");
+      "broad_phase: unknown value \"grid\" (expected one of \"auto\", \"all_pairs\", \"sweep_and_prune\", "
+      "\"uniform_grid\", \"quadtree\", \"aabb_tree\")");
+}
+
+TEST_CASE("scene broad_phase names every broad phase", "[scene]") {
+  const std::pair<const char*, engine::BroadPhaseType> names[] = {
+      {"auto", engine::BroadPhaseType::kAuto},
+      {"all_pairs", engine::BroadPhaseType::kAllPairs},
+      {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune},
+      {"uniform_grid", engine::BroadPhaseType::kUniformGrid},
+      {"quadtree", engine::BroadPhaseType::kQuadtree},
+      {"aabb_tree", engine::BroadPhaseType::kAabbTree},
+  };
+  for (const auto& [name, type] : names) {
+    const std::string json = std::string(R"({"broad_phase": ")") + name + R"(", "bodies": []})";
+    const game::Expected<game::Scene> scene = game::ParseScene(json, "<test>", "test");
+    INFO(name);
+    REQUIRE(scene.HasValue());
+    CHECK(scene.Value().world.broad_phase == type);
+  }
 }
 
 // --- Structure.
