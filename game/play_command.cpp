@@ -277,13 +277,15 @@ Status RunPlay(const PlayOptions& options) {
     std::fputs(RecordingHeader(options, controller).c_str(), record->Stream());
     std::fputs(FormatScript(controller.Recorded()).c_str(), record->Stream());
     if (Status failed = record->Commit()) return failed;
-    std::printf("play: %zu events recorded -> %s\n", controller.Recorded().size(),
+    const std::size_t events = controller.Recorded().size();
+    std::printf("play: %zu event%s recorded -> %s\n", events, events == 1 ? "" : "s",
                 options.record_path->c_str());
   }
   if (controller.PendingClicks() > 0) {
-    std::printf("play: %zu clicks at step %" PRId64
-                " were not applied (the run ended before that step) and are not recorded\n",
-                controller.PendingClicks(), session.StepIndex());
+    const std::size_t clicks = controller.PendingClicks();
+    std::printf("play: %zu click%s at step %" PRId64
+                " not applied (the run ended before that step), so not recorded\n",
+                clicks, clicks == 1 ? "" : "s", session.StepIndex());
   }
   std::printf("play: stopped at step %" PRId64 " (%.3f s simulated)\n", session.StepIndex(),
               static_cast<double>(session.StepIndex()) * session.World().Def().dt);

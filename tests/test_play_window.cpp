@@ -1,0 +1,323 @@
+// `ballbox play` end to end, as a user runs it: no display, and under Xvfb with real keys and
+// clicks from xdotool (a screenshot against `ballbox render`, a click recorded and replayed,
+// restart). Window tests are skipped, with a warning, where xvfb-run or xdotool is missing.
+#include <catch2/catch.hpp>
+
+#include <stb/stb_image.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "game/click.h"
+#include "game/commands.h"
+#include "game/script.h"
+#include "game/session.h"
+#include "render/window.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(BALLBOX_TEST_TMP) / "play_window" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+struct Run {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs a shell command in `cwd` with stdout and stderr captured to files outside it.
+Run Shell(const std::string& command, const fs::path& cwd) {
+  const fs::path out = cwd.parent_path() / (cwd.filename().string() + ".stdout");
+  const fs::path err = cwd.parent_path() / (cwd.filename().string() + ".stderr");
+  const std::string line = "cd '" + cwd.string() + "' && { " + command + " ; } >'" +
+                           out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(line.c_str());
+  Run run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = ReadFile(out);
+  run.err = ReadFile(err);
+  fs::remove(out);
+  fs::remove(err);
+  return run;
+}
+
+std::string Exe() { return "'" BALLBOX_EXE "'"; }
+
+bool HaveProgram(const std::string& name) {
+  return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+// Whether window tests can run here; if not, says why where the test output shows it.
+bool WindowTestsCanRun() {
+  if (!render::WindowSupportBuilt()) {
+    WARN("SKIPPED: this ballbox is built without GLFW, so play opens no window");
+    return false;
+  }
+  for (const char* program : {"xvfb-run", "xauth", "xdotool", "flock", "timeout"}) {
+    if (!HaveProgram(program)) {
+      WARN("SKIPPED: " << program << " is missing (make deps installs xvfb, xauth and xdotool)");
+      return false;
+    }
+  }
+  return true;
+}
+
+// Runs `script` (sh) inside a fresh Xvfb. One at a time (a lock file): two xvfb-run -a started
+// together can pick the same display. A server that fails to start is retried.
+Run UnderXvfb(const std::string& script, const fs::path& cwd) {
+  std::ofstream(cwd / "session.sh") << script;
+  const std::string lock = (fs::path(BALLBOX_TEST_TMP) / "xvfb.lock").string();
+  Run run;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    run = Shell("flock '" + lock + "' xvfb-run -a -s '-screen 0 1024x768x24' sh session.sh", cwd);
+    if (run.err.find("Xvfb failed to start") == std::string::npos) break;
+  }
+  return run;
+}
+
+// The shell lines that start play in the background (with a time limit, so a lost key cannot
+// hang the tests), wait until its title says it is paused at `step`, and leave the window id
+// in $wid.
+std::string StartPausedPlay(const std::string& env, const std::string& args, std::int64_t step) {
+  // The closing parenthesis keeps "step 9" from matching "step 90" (xdotool takes a regex).
+  const std::string paused = "paused at step " + std::to_string(step) + "\\)";
+  return "set -u\n" + env + " timeout 120 " + Exe() + " play " + args +
+         " >play.out 2>play.err &\n"
+         "pid=$!\n"
+         "wid=$(timeout 60 xdotool search --sync --name '" + paused + "' | head -n 1)\n"
+         "if [ -z \"$wid\" ]; then echo 'no window paused at step " + std::to_string(step) +
+         "' >&2; kill $pid; wait $pid; exit 3; fi\n"
+         "timeout 30 xdotool windowfocus --sync \"$wid\"\n";
+}
+
+std::string EndPlay() { return "wait $pid\necho $? >play.rc\n"; }
+
+std::string StateHash(const std::string& out) {
+  std::smatch m;
+  static const std::regex kHash("state-hash: ([0-9a-f]{16})\n$");
+  return std::regex_search(out, m, kHash) ? m[1].str() : "";
+}
+
+struct Decoded {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+Decoded DecodePng(const fs::path& path) {
+  Decoded image;
+  int channels = 0;
+  stbi_uc* pixels = stbi_load(path.c_str(), &image.width, &image.height, &channels, 3);
+  INFO(path);
+  REQUIRE(pixels != nullptr);
+  image.rgb.assign(pixels, pixels + static_cast<std::size_t>(image.width) * image.height * 3);
+  stbi_image_free(pixels);
+  return image;
+}
+
+void CheckPlayEnded(const fs::path& dir, const Run& session) {
+  INFO("xvfb session stdout: " << session.out << "\nstderr: " << session.err);
+  INFO("play stdout: " << ReadFile(dir / "play.out") << "play stderr: " << ReadFile(dir / "play.err"));
+  REQUIRE(session.exit_code == 0);
+  REQUIRE(ReadFile(dir / "play.rc") == "0\n");
+}
+
+}  // namespace
+
+TEST_CASE("play window: no display exits 1 with the message, before anything else",
+          "[play][cli]") {
+  const fs::path dir = FreshDir("no_display");
+  const bool built = render::WindowSupportBuilt();
+  for (const std::string display : {"env -u DISPLAY", "env DISPLAY=", "env DISPLAY=:12345"}) {
+    INFO(display);
+    const Run run = Shell(display + " " + Exe() + " play --record rec.script --size 320x240", dir);
+    INFO("stderr: " << run.err);
+    CHECK(run.exit_code == 1);
+    CHECK(run.out.empty());
+    CHECK(run.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK_THAT(run.err, Catch::Contains(built ? "no display" : "built without GLFW") &&
+                            Catch::Contains("try ballbox render"));
+    // No recording, no temporary file, no screenshot folder.
+    CHECK(fs::is_empty(dir));
+  }
+  const Run unset = Shell("env -u DISPLAY " + Exe() + " play", dir);
+  if (built) CHECK_THAT(unset.err, Catch::Contains("DISPLAY is not set"));
+}
+
+TEST_CASE("play window: bad input is exit 2, checked before the display", "[play][cli]") {
+  const fs::path dir = FreshDir("bad_input");
+  const Run missing = Shell("env -u DISPLAY " + Exe() + " play missing.json", dir);
+  CHECK(missing.exit_code == 2);
+  CHECK_THAT(missing.err, Catch::StartsWith("error: missing.json"));
+  const Run hook = Shell("env -u DISPLAY BALLBOX_PLAY_STOP_AT=ten " + Exe() + " play", dir);
+  CHECK(hook.exit_code == 2);
+  CHECK_THAT(hook.err, Catch::Contains("BALLBOX_PLAY_STOP_AT"));
+  CHECK(fs::is_empty(dir));
+}
+
+TEST_CASE("play window: a screenshot (S) shows the same picture as ballbox render at that step",
+          "[play][xvfb]") {
+  if (!WindowTestsCanRun()) return;
+  const fs::path dir = FreshDir("screenshot");
+  // Paused at step 90 (the demo click of step 90 not yet applied, as in render), then S twice.
+  const Run session = UnderXvfb(
+      StartPausedPlay("BALLBOX_PLAY_PAUSE_AT=90", "--size 320x240", 90) +
+          "timeout 30 xdotool key --delay 50 s s Escape\n" + EndPlay(),
+      dir);
+  CheckPlayEnded(dir, session);
+  const std::string out = ReadFile(dir / "play.out");
+  CHECK_THAT(out, Catch::Contains("play: screenshot at step 90 -> screenshots/default_step_000090.png\n"));
+  // The second one is not written over the first.
+  CHECK_THAT(out, Catch::Contains("-> screenshots/default_step_000090-2.png\n"));
+  CHECK_THAT(out, Catch::Contains("play: stopped at step 90"));
+
+  // ballbox render's frame 1 with --every 90: the world after 90 steps, 320x240.
+  const Run render = Shell(Exe() + " render --frames 2 --every 90 --size 320x240 --out frames", dir);
+  REQUIRE(render.exit_code == 0);
+  const Decoded shot = DecodePng(dir / "screenshots" / "default_step_000090.png");
+  const Decoded frame = DecodePng(dir / "frames" / "frame_00001.png");
+  REQUIRE(shot.width == 320);
+  REQUIRE(shot.height == 240);
+  REQUIRE(frame.width == 320);
+  REQUIRE(frame.height == 240);
+  // The same renderer on the same Mesa: equal but for at most a few edge pixels by a few levels.
+  int differing = 0;
+  int largest = 0;
+  for (std::size_t i = 0; i < shot.rgb.size(); i += 3) {
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(shot.rgb[i + c] - frame.rgb[i + c]));
+    largest = std::max(largest, d);
+    if (d > 2) ++differing;
+  }
+  INFO("pixels differing by more than 2 levels: " << differing << ", largest difference "
+                                                  << largest);
+  CHECK(differing <= 320 * 240 / 1000);
+  // And it is not the initial picture: the scene moved in those 90 steps.
+  const Run first = Shell(Exe() + " render --frames 1 --size 320x240 --out frame0", dir);
+  REQUIRE(first.exit_code == 0);
+  CHECK(DecodePng(dir / "frame0" / "frame_00000.png").rgb != shot.rgb);
+}
+
+TEST_CASE("play window: an xdotool click hits a ball; the recording replays to the live hash",
+          "[play][xvfb][record]") {
+  if (!WindowTestsCanRun()) return;
+  const fs::path dir = FreshDir("click");
+  constexpr int kWidth = 400;
+  constexpr int kHeight = 300;
+  constexpr std::int64_t kClickStep = 60;
+  constexpr std::int64_t kStopStep = 150;
+
+  // Where heavy_ball is at step 60 in play --size 400x300 (the default scene and its demo
+  // clicks, which map through the 400x300 picture): aim half a radius left of its centre.
+  game::Expected<game::RunInput> input = game::LoadRunInput(game::RunOptions{});
+  REQUIRE(input.HasValue());
+  game::Session aim(input.Value().scene, input.Value().events, kWidth, kHeight);
+  for (std::int64_t i = 0; i < kClickStep; ++i) aim.Step();
+  engine::BodyId heavy = 0;
+  while (input.Value().scene.bodies[heavy].id != "heavy_ball") ++heavy;
+  const engine::Vec2 centre = aim.World().State(heavy).position;
+  const double radius = aim.World().Info(heavy).shape.radius;
+  const engine::Vec2 pixel = render::WorldToPixel(aim.Camera(), kWidth, kHeight,
+                                                  {centre.x - 0.5 * radius, centre.y});
+  const long px = std::lround(pixel.x);
+  const long py = std::lround(pixel.y);
+
+  const std::string env = "BALLBOX_PLAY_PAUSE_AT=" + std::to_string(kClickStep) +
+                          " BALLBOX_PLAY_STOP_AT=" + std::to_string(kStopStep);
+  const Run session = UnderXvfb(
+      StartPausedPlay(env, "--record rec.script --size 400x300", kClickStep) +
+          "timeout 30 xdotool mousemove --window \"$wid\" " + std::to_string(px) + " " +
+          std::to_string(py) + " click 1 key space\n" + EndPlay(),
+      dir);
+  CheckPlayEnded(dir, session);
+  const std::string out = ReadFile(dir / "play.out");
+  INFO("play: " << out);
+  CHECK_THAT(out, Catch::Contains("play: stopped at step 150 (2.500 s simulated)\n"));
+  const std::string live = StateHash(out);
+  REQUIRE(live.size() == 16);
+
+  // The recording: the demo clicks before step 150 and the live click, at step 60, as world
+  // points; the live one lies on heavy_ball as it was at step 60.
+  game::Expected<std::vector<game::InputEvent>> recorded = game::LoadScript((dir / "rec.script").string());
+  REQUIRE(recorded.HasValue());
+  std::vector<game::InputEvent> at_click_step;
+  for (const game::InputEvent& e : recorded.Value()) {
+    CHECK(e.kind == game::EventKind::kClickWorld);
+    if (e.step == kClickStep) at_click_step.push_back(e);
+  }
+  REQUIRE(at_click_step.size() == 1);
+  const std::optional<game::ClickHit> hit =
+      game::ResolveClick(aim.World(), at_click_step[0].at, input.Value().scene.click_max_impulse);
+  REQUIRE(hit);
+  CHECK(hit->body == heavy);
+  CHECK(hit->impulse.x > 0.0);  // clicked left of the centre: pushed to the right
+  CHECK(recorded.Value().size() == 4);  // demo clicks at 40, 90, 130 and the live one
+
+  // sim replays the recording to the live hash (at any --size: the points are world points).
+  const Run sim = Shell(Exe() + " sim --script rec.script --steps 150", dir);
+  INFO("sim: " << sim.out << sim.err);
+  REQUIRE(sim.exit_code == 0);
+  CHECK(StateHash(sim.out) == live);
+  const Run sim_other_size = Shell(Exe() + " sim --script rec.script --steps 150 --size 97x61", dir);
+  CHECK(StateHash(sim_other_size.out) == live);
+  // Without the live click the run ends elsewhere: the click did something.
+  const Run plain = Shell(Exe() + " sim --steps 150 --size 400x300", dir);
+  CHECK(StateHash(plain.out) != live);
+
+  // play replays the recording in the window too (--script), to the same hash.
+  const Run replay = UnderXvfb(
+      "BALLBOX_PLAY_STOP_AT=150 timeout 120 " + Exe() + " play --script rec.script --size 400x300",
+      dir);
+  INFO("replay: " << replay.out << replay.err);
+  REQUIRE(replay.exit_code == 0);
+  CHECK(StateHash(replay.out) == live);
+}
+
+TEST_CASE("play window: R restarts the scene, the script and the recording", "[play][xvfb][record]") {
+  if (!WindowTestsCanRun()) return;
+  const fs::path dir = FreshDir("restart");
+  // Past the demo click at step 40, R; the game restarts paused (as it was) at step 0; space
+  // runs it to step 50.
+  const Run session = UnderXvfb(
+      StartPausedPlay("BALLBOX_PLAY_PAUSE_AT=45 BALLBOX_PLAY_STOP_AT=50", "--record rec.script", 45) +
+          "timeout 30 xdotool key r\n"
+          "timeout 60 xdotool search --sync --name 'paused at step 0\\)' >/dev/null\n"
+          "timeout 30 xdotool key space\n" +
+          EndPlay(),
+      dir);
+  CheckPlayEnded(dir, session);
+  const std::string out = ReadFile(dir / "play.out");
+  INFO("play: " << out);
+  CHECK_THAT(out, Catch::Contains("play: restart at step 45"));
+  CHECK_THAT(out, Catch::Contains("play: stopped at step 50"));
+  // The recording holds the run since the restart: the demo click at 40 once.
+  game::Expected<std::vector<game::InputEvent>> recorded = game::LoadScript((dir / "rec.script").string());
+  REQUIRE(recorded.HasValue());
+  REQUIRE(recorded.Value().size() == 1);
+  CHECK(recorded.Value()[0].step == 40);
+  // The state is a fresh run's at step 50, and the recording replays to it.
+  const Run fresh = Shell(Exe() + " sim --steps 50", dir);
+  const Run replay = Shell(Exe() + " sim --script rec.script --steps 50", dir);
+  CHECK(StateHash(out) == StateHash(fresh.out));
+  CHECK(StateHash(out) == StateHash(replay.out));
+}
