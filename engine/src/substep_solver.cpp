@@ -3,6 +3,8 @@
 // path: no angular arithmetic at all, one constraint per contact.
 #include "substep_solver.h"
 
+#include "block_solver.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,6 +42,17 @@ double EffectiveMass(const SubstepConstraint& sc, Vec2 anchor_a, Vec2 anchor_b, 
 }
 
 }  // namespace
+
+TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,
+                        double inv_mass_a, double inv_mass_b, double inv_inertia_a,
+                        double inv_inertia_b) {
+  const double r1a = Cross(p1.anchor_a, sc.normal), r1b = Cross(p1.anchor_b, sc.normal);
+  const double r2a = Cross(p2.anchor_a, sc.normal), r2b = Cross(p2.anchor_b, sc.normal);
+  const double m = inv_mass_a + inv_mass_b;
+  return {m + inv_inertia_a * r1a * r1a + inv_inertia_b * r1b * r1b,
+          m + inv_inertia_a * r1a * r2a + inv_inertia_b * r1b * r2b,
+          m + inv_inertia_a * r2a * r2a + inv_inertia_b * r2b * r2b};
+}
 
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                std::span<const BodyState> states,
@@ -142,15 +155,31 @@ void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState
       b.velocity += (sc.inv_mass_b * dt_impulse) * t;
       continue;
     }
+    double min_vn[2], vn[2];
     for (int k = 0; k < sc.point_count; ++k) {
-      SubstepPoint& p = sc.points[k];
-      const double s = CurrentSeparation(sc, p, states, start);
-      const double min_vn = -std::max(s, 0.0) * inv_h;
-      const double vn = Dot(RelativeVelocity(p, a, b), n);
-      const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn - vn), 0.0);
-      const double dn = new_normal - p.normal_impulse;
-      p.normal_impulse = new_normal;
-      ApplyImpulse(sc, p, dn * n, a, b);
+      min_vn[k] = -std::max(CurrentSeparation(sc, sc.points[k], states, start), 0.0) * inv_h;
+      vn[k] = Dot(RelativeVelocity(sc.points[k], a, b), n);
+    }
+    double x[2];
+    if (sc.point_count == 2 &&
+        SolveTwoPoints(NormalMass(sc, sc.points[0], sc.points[1], sc.inv_mass_a, sc.inv_mass_b,
+                                  sc.inv_inertia_a, sc.inv_inertia_b),
+                       sc.points[0].normal_impulse, sc.points[1].normal_impulse, vn[0], vn[1],
+                       min_vn[0], min_vn[1], &x[0], &x[1])) {
+      for (int k = 0; k < 2; ++k) {
+        SubstepPoint& p = sc.points[k];
+        ApplyImpulse(sc, p, (x[k] - p.normal_impulse) * n, a, b);
+        p.normal_impulse = x[k];
+      }
+    } else {
+      for (int k = 0; k < sc.point_count; ++k) {
+        SubstepPoint& p = sc.points[k];
+        const double v = Dot(RelativeVelocity(p, a, b), n);
+        const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn[k] - v), 0.0);
+        const double dn = new_normal - p.normal_impulse;
+        p.normal_impulse = new_normal;
+        ApplyImpulse(sc, p, dn * n, a, b);
+      }
     }
     for (int k = 0; k < sc.point_count; ++k) {
       SubstepPoint& p = sc.points[k];

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "block_solver.h"
 #include "engine/world.h"
 
 namespace engine::detail {
@@ -22,6 +23,11 @@ struct StepStart {
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints);
+
+/// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.
+TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,
+                        double inv_mass_a, double inv_mass_b, double inv_inertia_a,
+                        double inv_inertia_b);
 
 /// The separation of point `p` of `sc` now, m (negative when overlapping).
 double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,

@@ -312,6 +312,7 @@ void World::StepSubstep() {
     angles_before_.resize(states_.size());
     turned_.resize(states_.size());
     for (std::size_t i = 0; i < states_.size(); ++i) angles_before_[i] = states_[i].angle;
+    UpdateTurned();  // nothing has turned yet this step
   }
   const detail::StepStart start{positions_before_, def_.rotation ? std::span<const Rot>(turned_)
                                                                  : std::span<const Rot>()};
@@ -319,12 +320,20 @@ void World::StepSubstep() {
   // 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is that times the overlap / h.
   const double push_out_rate =
       (1.0 - std::pow(1.0 - def_.position_correction, 1.0 / def_.substeps)) * inv_h;
+  // Shock propagation supports against gravity; without gravity there is no up.
+  const double g = Length(def_.gravity);
+  const bool has_up = g > 0.0;
+  const Vec2 up = has_up ? -def_.gravity / g : Vec2{};
+  // Half a substep's gravity kick: more approach than that is sinking the solver did not stop.
+  const double shock_tolerance = 0.5 * g * h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
     detail::WarmStart(substep_constraints_, states_);
     detail::SolveContacts(substep_constraints_, states_, start, inv_h);
-    detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
-                           def_.linear_slop);
+    if (has_up) {
+      detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
+                             def_.linear_slop, up, shock_tolerance);
+    }
     detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, h);
     if (def_.rotation) UpdateTurned();
     detail::PushOut(substep_constraints_, states_, start, push, push_out_rate,
