@@ -381,8 +381,9 @@ TEST_CASE("a spring wakes the sleeping body at its other end", "[forces][!mayfai
   REQUIRE_FALSE(world.IsAwake(a));
   REQUIRE_FALSE(world.IsAwake(b));
   world.ApplyLinearImpulse(b, {5, 0});
-  for (int step = 0; step < 120; ++step) world.Step();
+  world.Step();
   CHECK(world.IsAwake(a));
+  for (int step = 0; step < 119; ++step) world.Step();
   CHECK(world.State(a).position.x > -2.0 + 1e-3);  // a stretched spring pulls a towards b
 }
 
