@@ -3,6 +3,8 @@
 
 #include <charconv>
 
+#include "game/limits.h"
+
 namespace game {
 
 namespace {
@@ -68,9 +70,6 @@ std::optional<std::int64_t> ParseCount(const std::string& text, std::int64_t min
   if (ec != std::errc() || ptr != end || value < min || value > max) return std::nullopt;
   return value;
 }
-
-// Larger images are refused rather than risked: 16384² RGBA is already 1 GiB.
-constexpr std::int64_t kMaxImageSide = 16384;
 
 bool ParseSize(const std::string& text, int* width, int* height) {
   const auto x = text.find('x');

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "game/limits.h"
 #include "game/text_file.h"
 
 namespace game {
@@ -51,14 +52,15 @@ void RejectUnknownKeys(const Json& object, const std::string& path,
                        std::initializer_list<const char*> known) {
   for (const auto& item : object.items()) {
     bool is_known = false;
+    for (const char* k : known) is_known = is_known || item.key() == k;
+    if (is_known) continue;
+    // Distances only for a key that is wrong: a million-body scene has ten million right ones.
     std::string suggestion;
     std::size_t best = 3;  // suggest only close matches
     for (const char* k : known) {
-      if (item.key() == k) is_known = true;
       const std::size_t distance = EditDistance(item.key(), k);
       if (distance < best) best = distance, suggestion = k;
     }
-    if (is_known) continue;
     std::string message = "unknown key " + Quote(item.key());
     if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
     throw SceneError{path, message};
@@ -74,6 +76,9 @@ double ReadNumber(const Json& value, const std::string& path) {
   if (!value.is_number()) throw SceneError{path, "must be a number"};
   const double v = value.get<double>();
   if (!std::isfinite(v)) throw SceneError{path, "must be finite"};
+  if (std::abs(v) > kMaxSceneMagnitude) {
+    throw SceneError{path, "must be between -1e9 and 1e9 (docs/limits.md)"};
+  }
   return v;
 }
 
@@ -232,6 +237,18 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (mass && density) throw SceneError{path, "give \"mass\" or \"density\", not both"};
   if (mass) def.mass = ReadPositive(*mass, key("mass"));
   if (density) def.density = ReadPositive(*density, key("density"));
+  if (!def.is_static) {
+    // The engine divides by the mass: one that underflows would make its inverse infinite.
+    const double area = def.shape.type == engine::ShapeType::kCircle
+                            ? 3.14159265358979323846 * def.shape.radius * def.shape.radius
+                            : 4.0 * def.shape.half_extents.x * def.shape.half_extents.y;
+    const double body_mass = mass ? def.mass : def.density * area;
+    if (!(body_mass >= kMinBodyMass)) {
+      throw SceneError{mass ? key("mass") : path,
+                       std::string(mass ? "" : "its mass, density * area, ") +
+                           "must be at least 1e-12 kg (docs/limits.md)"};
+    }
+  }
 
   if (const Json* v = Find(body, "restitution")) def.restitution = ReadNonNegative(*v, key("restitution"));
   if (const Json* v = Find(body, "friction")) def.friction = ReadNonNegative(*v, key("friction"));
@@ -349,6 +366,10 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   const Json* bodies = Find(root, "bodies");
   if (!bodies) throw SceneError{"", "a scene needs \"bodies\" (an array)"};
   if (!bodies->is_array()) throw SceneError{"bodies", "must be an array"};
+  if (bodies->size() > kMaxBodies) {
+    throw SceneError{"bodies", std::to_string(bodies->size()) + " bodies, more than the limit of " +
+                                   std::to_string(kMaxBodies) + " (docs/limits.md)"};
+  }
   std::map<std::string, std::size_t> first_use;  // ordered: no hash-map order anywhere
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const std::string path = "bodies[" + std::to_string(i) + "]";

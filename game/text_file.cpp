@@ -5,7 +5,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+
+#include "game/limits.h"
 
 namespace game {
 
@@ -14,10 +15,18 @@ Expected<std::string> ReadTextFile(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) return BadInput(path + ": is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return BadInput(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in chunks up to the limit rather than asking the size: /dev/zero or a pipe has none.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxInputFileBytes) {
+      return BadInput(path + ": larger than " + std::to_string(kMaxInputFileBytes >> 20) +
+                      " MiB, the most an input file may hold (docs/limits.md)");
+    }
+  }
   if (in.bad()) return BadInput(path + ": cannot read: " + std::strerror(errno));
-  return text.str();
+  return text;
 }
 
 }  // namespace game

@@ -1,0 +1,28 @@
+// The limits input must keep (docs/limits.md): past each one a run would crash, exhaust memory or
+// turn numbers into infinities, so the edge refuses it as bad input (exit 2) instead.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace game {
+
+/// Bodies in one scene. A million load in ~1 GB; beyond, memory and load time run away first.
+inline constexpr std::size_t kMaxBodies = 1'000'000;
+
+/// Every number in a scene, in magnitude (metres, m/s, kg, ...). Squares and products of such
+/// numbers stay far inside a double's range, and a double still resolves 1e-7 m at 1e9 m.
+inline constexpr double kMaxSceneMagnitude = 1e9;
+
+/// The least mass of a dynamic body, given or density × area (kg): the largest click (1e9 N·s)
+/// then changes its speed by a finite amount, and its inverse mass is a finite number.
+inline constexpr double kMinBodyMass = 1e-12;
+
+/// Scene and script files, in bytes: read whole into memory, so a huge file or an endless one
+/// (/dev/zero) is refused rather than allowed to take all memory. A million-body scene is ~65 MB.
+inline constexpr std::uint64_t kMaxInputFileBytes = 128ull << 20;
+
+/// Pixels per image side: a 16384² RGBA frame is 1 GiB, and a run holds a few at once.
+inline constexpr std::int64_t kMaxImageSide = 16384;
+
+}  // namespace game
