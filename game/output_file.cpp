@@ -1,6 +1,7 @@
 // Temporary-then-rename output, so an interrupted or failed run leaves no half-written file.
 #include "game/output_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -9,6 +10,15 @@
 namespace game {
 
 Expected<AtomicOutputFile> AtomicOutputFile::Open(const std::string& path) {
+  // A device or pipe (/dev/stdout, /dev/null, a FIFO) is written in place: a temporary file
+  // renamed over it would replace the device node itself, which root is allowed to do.
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {
+    if (S_ISDIR(info.st_mode)) return RuntimeFailure(path + ": cannot write: is a folder");
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
+    return AtomicOutputFile(path, std::string(), file);
+  }
   std::string temp_path = path + ".tmp-" + std::to_string(::getpid());
   std::FILE* file = std::fopen(temp_path.c_str(), "wb");
   if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
@@ -34,7 +44,7 @@ Status AtomicOutputFile::Commit() {
   if (!written || !closed) {
     return RuntimeFailure(path_ + ": cannot write: " + std::strerror(written ? errno : saved_errno));
   }
-  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+  if (!temp_path_.empty() && std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     return RuntimeFailure(path_ + ": cannot write: " + std::strerror(errno));
   }
   temp_path_.clear();

@@ -10,7 +10,8 @@ namespace game {
 
 class AtomicOutputFile {
  public:
-  /// Opens `path`.tmp-<pid> beside `path` for writing.
+  /// Opens `path`.tmp-<pid> beside `path` for writing; a device or pipe (/dev/stdout) is
+  /// written in place instead, since renaming over it would replace the device node.
   static Expected<AtomicOutputFile> Open(const std::string& path);
   AtomicOutputFile(AtomicOutputFile&& other) noexcept;
   AtomicOutputFile& operator=(AtomicOutputFile&&) = delete;

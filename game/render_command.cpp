@@ -2,6 +2,8 @@
 // PNG sequence, then a one-line summary.
 #include <cinttypes>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 
 #include "game/commands.h"
 #include "game/frame_sequence.h"
@@ -9,6 +11,27 @@
 #include "game/session.h"
 
 namespace game {
+
+namespace {
+
+// A file where the output folder (or a folder above it) should be is a bad --out value, refused
+// before anything is written (exit 2), like any other bad flag.
+Status CheckOutputFolder(const std::string& out_dir) {
+  std::error_code ec;
+  for (std::filesystem::path p = out_dir; !p.empty(); p = p.parent_path()) {
+    if (std::filesystem::exists(p, ec)) {
+      if (std::filesystem::is_directory(p, ec)) return std::nullopt;
+      std::string message = out_dir + ": ";
+      if (p != out_dir) message += p.string() + " ";
+      message += "is a file, not a folder (--out names the folder for the frames)";
+      return BadInput(message);
+    }
+    if (p == p.parent_path()) break;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 Status RunRender(const RenderOptions& options) {
   Expected<RunInput> input = LoadRunInput(options.run);
@@ -21,6 +44,7 @@ Status RunRender(const RenderOptions& options) {
   sequence.every = options.every;
   sequence.out_dir = options.out_dir ? *options.out_dir : "out/" + session.SceneDef().name;
   sequence.show_progress = StderrIsTerminal();
+  if (Status refused = CheckOutputFolder(sequence.out_dir)) return refused;
   Expected<FrameSequenceStats> stats = RenderFrameSequence(session, sequence);
   if (!stats.HasValue()) return stats.Error();
 

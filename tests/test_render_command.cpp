@@ -242,13 +242,14 @@ TEST_CASE("render command: a bad scene or script exits 2 and writes nothing", "[
   }
 }
 
-TEST_CASE("render command: an output folder that cannot be created exits 1", "[render][cli]") {
+TEST_CASE("render command: --out naming a file, or a folder inside one, exits 2", "[render][cli]") {
+  // A bad flag value (docs/limits.md), refused before anything is written.
   const fs::path dir = FreshDir("bad_out");
   std::ofstream(dir / "a_file") << "not a folder\n";
   for (const char* out : {"a_file/frames", "a_file"}) {
     INFO("--out " << out);
     const Run run = Ballbox(std::string("render --frames 2 --size 64x48 --out ") + out, dir);
-    CHECK(run.exit_code == 1);
+    CHECK(run.exit_code == 2);
     CHECK(run.err.rfind(std::string("error: ") + out, 0) == 0);
     CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
   }
