@@ -3,7 +3,7 @@
 //
 // The ideas follow Erin Catto's b2DynamicTree (Box2D 2.x; "Dynamic Bounding Volume Hierarchies",
 // GDC 2019): insertion descends by a surface-area (here perimeter) cost with branch and bound,
-// ancestors are refitted on the way up and rotated when one child is two levels taller.
+// ancestors are refitted on the way up and rotated where a swap shrinks a box.
 #include <algorithm>
 #include <cmath>
 
@@ -19,8 +19,8 @@ namespace {
 constexpr double kMarginFraction = 0.1;
 // And stretched this many times the body's last displacement ahead of it, so that a steadily
 // moving body (a falling one) is reinserted every few steps rather than every step. The stretch
-// is capped at the body's size so that a teleport does not leave a long box behind.
-constexpr double kPredictSteps = 2.0;
+// is capped at twice the body's size so that a teleport does not leave a long box behind.
+constexpr double kPredictSteps = 4.0;
 
 double Perimeter(const AABB& b) { return 2.0 * ((b.upper.x - b.lower.x) + (b.upper.y - b.lower.y)); }
 
@@ -43,8 +43,8 @@ AABB AabbTree::FatBox(const AABB& box, const AABB& previous) const {
   const double margin = kMarginFraction * size;
   AABB fat{box.lower - Vec2{margin, margin}, box.upper + Vec2{margin, margin}};
   const Vec2 moved = 0.5 * (box.lower + box.upper) - 0.5 * (previous.lower + previous.upper);
-  const double dx = Clamp(kPredictSteps * moved.x, -size, size);
-  const double dy = Clamp(kPredictSteps * moved.y, -size, size);
+  const double dx = Clamp(kPredictSteps * moved.x, -2.0 * size, 2.0 * size);
+  const double dy = Clamp(kPredictSteps * moved.y, -2.0 * size, 2.0 * size);
   (dx < 0.0 ? fat.lower.x : fat.upper.x) += dx;
   (dy < 0.0 ? fat.lower.y : fat.upper.y) += dy;
   return fat;
@@ -75,6 +75,8 @@ void AabbTree::Clear() {
   free_list_ = kNull;
   leaf_of_.clear();
   previous_.clear();
+  candidates_.clear();
+  reinserts_since_relayout_ = 0;
 }
 
 void AabbTree::InsertLeaf(std::int32_t leaf) {
@@ -123,7 +125,7 @@ void AabbTree::InsertLeaf(std::int32_t leaf) {
   } else {
     nodes_[old_parent].child2 = parent;
   }
-  RefitUpward(parent);  // the new parent too: its sibling side may be two or more levels taller
+  RefitUpward(old_parent);  // the new parent's box and height are already right
 }
 
 void AabbTree::RemoveLeaf(std::int32_t leaf) {
@@ -150,61 +152,58 @@ void AabbTree::RemoveLeaf(std::int32_t leaf) {
 
 void AabbTree::RefitUpward(std::int32_t node) {
   while (node != kNull) {
-    node = Balance(node);
     Node& n = nodes_[node];
-    const Node& c1 = nodes_[n.child1];
-    const Node& c2 = nodes_[n.child2];
-    n.height = 1 + std::max(c1.height, c2.height);
-    n.box = Union(c1.box, c2.box);
+    const AABB old_box = n.box;
+    const std::int32_t old_height = n.height;
+    n.box = Union(nodes_[n.child1].box, nodes_[n.child2].box);
+    Rotate(node);
+    n.height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
+    // A node that kept its box and height changes nothing above it: most moves end a few levels up.
+    if (SameBox(n.box, old_box) && n.height == old_height) break;
     node = n.parent;
   }
 }
 
-// When one child of `a` is two or more levels taller, that child rises into a's place with a as
-// its child, and its shorter child moves down under a in the slot it left: the two sides end
-// nearer in height (an AVL single rotation). Returns the node now in a's place.
-std::int32_t AabbTree::Balance(std::int32_t a) {
+// A tree rotation that swaps one child of `a` with a grandchild on the other side when that
+// shrinks the perimeter of the other side (Kopta et al., "Fast, Effective BVH Updates for
+// Animated Scenes", I3D 2012; Box2D v3 does the same). a's own box keeps the same leaves. Rotating
+// for height instead (AVL) keeps the tree shallow but lets sibling boxes overlap more, and the
+// pair traversal pays for overlap, not for depth.
+void AabbTree::Rotate(std::int32_t a) {
+  const std::int32_t b = nodes_[a].child1;
+  const std::int32_t c = nodes_[a].child2;
+  // Candidates in a fixed order, the first strict best wins: (child of a, its sibling, grandchild
+  // under that sibling, the grandchild's sibling).
+  std::int32_t best_child = kNull, best_grandchild = kNull;
+  double best_gain = 0.0;
+  auto consider = [&](std::int32_t child, std::int32_t other) {
+    const Node& o = nodes_[other];
+    if (o.IsLeaf()) return;
+    const double base = Perimeter(o.box);
+    const std::int32_t grandchildren[2] = {o.child1, o.child2};
+    for (int k = 0; k < 2; ++k) {
+      // `child` moves under `other` in place of grandchildren[k], next to grandchildren[1 - k].
+      const double gain = base - Perimeter(Union(nodes_[child].box, nodes_[grandchildren[1 - k]].box));
+      if (gain > best_gain) {
+        best_gain = gain;
+        best_child = child;
+        best_grandchild = grandchildren[k];
+      }
+    }
+  };
+  consider(b, c);
+  consider(c, b);
+  if (best_child == kNull) return;
+
+  const std::int32_t other = best_child == b ? c : b;
   Node& node_a = nodes_[a];
-  if (node_a.IsLeaf()) return a;
-  const std::int32_t b = node_a.child1;
-  const std::int32_t c = node_a.child2;
-  const std::int32_t balance = nodes_[c].height - nodes_[b].height;
-  if (balance >= -1 && balance <= 1) return a;
-
-  // `up` is the taller child, `stay` the other one.
-  const std::int32_t up = balance > 1 ? c : b;
-  const std::int32_t stay = balance > 1 ? b : c;
-  Node& node_up = nodes_[up];
-  const std::int32_t f = node_up.child1;
-  const std::int32_t g = node_up.child2;
-  // The taller grandchild stays under `up`; the shorter one moves under a in up's old slot.
-  const bool f_taller = nodes_[f].height > nodes_[g].height;
-  const std::int32_t keep = f_taller ? f : g;
-  const std::int32_t move = f_taller ? g : f;
-
-  node_up.parent = node_a.parent;
-  if (node_up.parent == kNull) {
-    root_ = up;
-  } else if (nodes_[node_up.parent].child1 == a) {
-    nodes_[node_up.parent].child1 = up;
-  } else {
-    nodes_[node_up.parent].child2 = up;
-  }
-  node_up.child1 = a;
-  node_up.child2 = keep;
-  node_a.parent = up;
-  if (balance > 1) {
-    node_a.child2 = move;
-  } else {
-    node_a.child1 = move;
-  }
-  nodes_[move].parent = a;
-
-  node_a.box = Union(nodes_[stay].box, nodes_[move].box);
-  node_a.height = 1 + std::max(nodes_[stay].height, nodes_[move].height);
-  node_up.box = Union(node_a.box, nodes_[keep].box);
-  node_up.height = 1 + std::max(node_a.height, nodes_[keep].height);
-  return up;
+  Node& node_o = nodes_[other];
+  (node_a.child1 == best_child ? node_a.child1 : node_a.child2) = best_grandchild;
+  (node_o.child1 == best_grandchild ? node_o.child1 : node_o.child2) = best_child;
+  nodes_[best_grandchild].parent = a;
+  nodes_[best_child].parent = other;
+  node_o.box = Union(nodes_[node_o.child1].box, nodes_[node_o.child2].box);
+  node_o.height = 1 + std::max(nodes_[node_o.child1].height, nodes_[node_o.child2].height);
 }
 
 void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
@@ -213,7 +212,8 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   if (n < leaf_of_.size()) Clear();  // bodies went away: start over
 
   // Bodies that left their fat box, then new bodies, each in id order.
-  last_reinserts_ = 0;
+  moved_.assign(n, 0);
+  moved_list_.clear();
   const std::size_t known = leaf_of_.size();
   for (std::uint32_t i = 0; i < known; ++i) {
     const std::int32_t leaf = leaf_of_[i];
@@ -221,7 +221,8 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     RemoveLeaf(leaf);
     nodes_[leaf].box = FatBox(boxes[i], previous_[i]);
     InsertLeaf(leaf);
-    ++last_reinserts_;
+    moved_[i] = 1;
+    moved_list_.push_back(i);
   }
   for (std::uint32_t i = static_cast<std::uint32_t>(known); i < n; ++i) {
     const std::int32_t leaf = Allocate();
@@ -229,13 +230,40 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     nodes_[leaf].box = FatBox(boxes[i], boxes[i]);
     InsertLeaf(leaf);
     leaf_of_.push_back(leaf);
-    ++last_reinserts_;
+    moved_[i] = 1;
+    moved_list_.push_back(i);
   }
+  last_reinserts_ = moved_list_.size();
   previous_.assign(boxes.begin(), boxes.end());
 
+  // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
+  // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
+  reinserts_since_relayout_ += moved_list_.size();
+  if (2 * reinserts_since_relayout_ > n) {
+    Relayout();
+    reinserts_since_relayout_ = 0;
+  }
+  if (4 * moved_list_.size() > n) {
+    FindAllCandidates();
+  } else if (!moved_list_.empty()) {
+    UpdateCandidates();
+  }
+
+  // The candidates are sorted, so the pairs come out sorted.
+  for (const BodyPair& p : candidates_) {
+    if (Overlaps(boxes[p.a], boxes[p.b])) pairs->push_back(p);
+  }
+}
+
+void AabbTree::FindAllCandidates() {
   // The tree against itself: each subtree against itself, and the two children of every node
-  // against each other, descending only where fat boxes overlap; the bodies' own boxes decide.
+  // against each other, descending only where fat boxes overlap. A pair of nodes goes on the
+  // stack only once their boxes are known to overlap.
+  candidates_.clear();
   stack_.clear();
+  auto push_if_overlapping = [this](std::int32_t a, std::int32_t b) {
+    if (Overlaps(nodes_[a].box, nodes_[b].box)) stack_.push_back({a, b});
+  };
   if (root_ != kNull) stack_.push_back({root_, root_});
   while (!stack_.empty()) {
     const auto [a, b] = stack_.back();
@@ -245,25 +273,86 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
       if (na.IsLeaf()) continue;
       stack_.push_back({na.child1, na.child1});
       stack_.push_back({na.child2, na.child2});
-      stack_.push_back({na.child1, na.child2});
+      push_if_overlapping(na.child1, na.child2);
       continue;
     }
     const Node& nb = nodes_[b];
-    if (!Overlaps(na.box, nb.box)) continue;
     if (na.IsLeaf() && nb.IsLeaf()) {
-      if (Overlaps(boxes[na.body], boxes[nb.body])) pairs->push_back(detail::MakePair(na.body, nb.body));
+      candidates_.push_back(detail::MakePair(na.body, nb.body));
       continue;
     }
     // Split the bigger side, so the two stay of similar size as they descend.
     if (nb.IsLeaf() || (!na.IsLeaf() && Perimeter(na.box) >= Perimeter(nb.box))) {
-      stack_.push_back({na.child1, b});
-      stack_.push_back({na.child2, b});
+      push_if_overlapping(na.child1, b);
+      push_if_overlapping(na.child2, b);
     } else {
-      stack_.push_back({a, nb.child1});
-      stack_.push_back({a, nb.child2});
+      push_if_overlapping(a, nb.child1);
+      push_if_overlapping(a, nb.child2);
     }
   }
-  detail::SortPairs(n, pairs, &sorted_scratch_, &counts_);
+  detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
+}
+
+void AabbTree::UpdateCandidates() {
+  // Drop the moved bodies' pairs, query the tree for each moved body's new ones (a pair of two
+  // moved bodies is taken from the smaller id only), then merge the two sorted lists.
+  std::erase_if(candidates_, [this](BodyPair p) { return moved_[p.a] || moved_[p.b]; });
+  fresh_.clear();
+  for (std::uint32_t i : moved_list_) {
+    const AABB& box = nodes_[leaf_of_[i]].box;
+    query_stack_.clear();
+    query_stack_.push_back(root_);
+    while (!query_stack_.empty()) {
+      const Node& node = nodes_[query_stack_.back()];
+      query_stack_.pop_back();
+      if (!Overlaps(node.box, box)) continue;
+      if (!node.IsLeaf()) {
+        query_stack_.push_back(node.child1);
+        query_stack_.push_back(node.child2);
+        continue;
+      }
+      const std::uint32_t j = node.body;
+      if (j != i && (!moved_[j] || i < j)) fresh_.push_back(detail::MakePair(i, j));
+    }
+  }
+  std::sort(fresh_.begin(), fresh_.end(),
+            [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
+  sorted_scratch_.resize(candidates_.size() + fresh_.size());
+  std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin(),
+             [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
+  candidates_.swap(sorted_scratch_);
+}
+
+// Insertions scatter new nodes over the array, and the traversal below jumps between them; in
+// depth-first order the nodes it visits together lie together.
+void AabbTree::Relayout() {
+  if (root_ == kNull) return;
+  relayout_scratch_.clear();
+  new_index_.assign(nodes_.size(), kNull);
+  // Preorder numbering with an explicit stack: child1's subtree first.
+  stack_.clear();
+  stack_.push_back({root_, kNull});
+  while (!stack_.empty()) {
+    const auto [old_index, new_parent] = stack_.back();
+    stack_.pop_back();
+    const auto index = static_cast<std::int32_t>(relayout_scratch_.size());
+    new_index_[old_index] = index;
+    Node node = nodes_[old_index];
+    node.parent = new_parent;
+    relayout_scratch_.push_back(node);
+    if (new_parent != kNull) {
+      Node& parent = relayout_scratch_[new_parent];
+      (parent.child1 == old_index ? parent.child1 : parent.child2) = index;
+    }
+    if (!node.IsLeaf()) {
+      stack_.push_back({node.child2, index});
+      stack_.push_back({node.child1, index});
+    }
+  }
+  for (std::int32_t& leaf : leaf_of_) leaf = new_index_[leaf];
+  nodes_.swap(relayout_scratch_);
+  root_ = 0;
+  free_list_ = kNull;
 }
 
 int AabbTree::Height() const { return root_ == kNull ? -1 : nodes_[root_].height; }

@@ -33,95 +33,106 @@ Vec2 OverlapCorner(const AABB& a, const AABB& b) {
 
 }  // namespace
 
+// Boxes are clipped to the node's region first: a floor's or wall's centre lies far outside most
+// nodes it reaches, and would pull the split point to the region's edge, where it splits nothing.
+void Quadtree::Bounds::Add(const AABB& box, const Region& region) {
+  const Vec2 low{std::max(box.lower.x, region.lower.x), std::max(box.lower.y, region.lower.y)};
+  const Vec2 high{std::min(box.upper.x, region.upper.x), std::min(box.upper.y, region.upper.y)};
+  const Vec2 c = 0.5 * low + 0.5 * high;
+  centre_lower = {std::min(centre_lower.x, c.x), std::min(centre_lower.y, c.y)};
+  centre_upper = {std::max(centre_upper.x, c.x), std::max(centre_upper.y, c.y)};
+  lower = {std::min(lower.x, low.x), std::min(lower.y, low.y)};
+  upper = {std::max(upper.x, high.x), std::max(upper.y, high.y)};
+}
+
+namespace {
+
+constexpr Vec2 kFar{kInf, kInf};
+
+}  // namespace
+
 void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
   pairs->clear();
   last_depth_ = 0;
   if (boxes.size() < 2) return;
-  boxes_ = boxes;
   pairs_ = pairs;
   levels_.resize(kMaxDepth + 1);
-  levels_[0].resize(boxes.size());
-  std::iota(levels_[0].begin(), levels_[0].end(), 0u);
-  Build(0, {{-kInf, -kInf}, {kInf, kInf}}, 0, boxes.size());
+  // Boxes are copied into the item lists, so each level reads its boxes in order.
+  std::vector<Item>& root = levels_[0];
+  root.resize(boxes.size());
+  const Region everywhere{-kFar, kFar};
+  Bounds bounds{kFar, -kFar, kFar, -kFar};
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    root[i] = {boxes[i], i};
+    bounds.Add(boxes[i], everywhere);
+  }
+  Build(0, everywhere, 0, boxes.size(), bounds);
   detail::SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
 }
 
-void Quadtree::TestAllPairs(const Region& region, const std::uint32_t* items, std::size_t count) {
+void Quadtree::TestAllPairs(const Region& region, const Item* items, std::size_t count) {
   for (std::size_t i = 0; i + 1 < count; ++i) {
-    const AABB& a = boxes_[items[i]];
+    const AABB& a = items[i].box;
     for (std::size_t j = i + 1; j < count; ++j) {
-      const AABB& b = boxes_[items[j]];
+      const AABB& b = items[j].box;
       if (!Overlaps(a, b)) continue;
       const Vec2 p = OverlapCorner(a, b);
       if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-        pairs_->push_back(detail::MakePair(items[i], items[j]));
+        pairs_->push_back(detail::MakePair(items[i].body, items[j].body));
       }
     }
   }
 }
 
-void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::size_t end) {
+void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::size_t end, const Bounds& bounds) {
   last_depth_ = std::max(last_depth_, depth);
   // Item lists keep ascending ids at every level, so leaf pairs come out as (smaller, larger).
-  std::vector<std::uint32_t>& items = levels_[depth];
+  const Item* items = levels_[depth].data() + begin;
   const std::size_t count = end - begin;
   if (count <= kLeafCapacity || depth == kMaxDepth) {
-    TestAllPairs(region, items.data() + begin, count);
+    TestAllPairs(region, items, count);
     return;
   }
 
   // Split at the centre of the boxes' centres rather than of the region: the tree then follows
   // clusters, and a body flung far away costs one level instead of many.
-  Vec2 centre_lower{kInf, kInf}, centre_upper{-kInf, -kInf};
-  Vec2 union_lower{kInf, kInf}, union_upper{-kInf, -kInf};
-  for (std::size_t k = begin; k < end; ++k) {
-    const AABB& b = boxes_[items[k]];
-    const Vec2 c = 0.5 * b.lower + 0.5 * b.upper;
-    centre_lower = {std::min(centre_lower.x, c.x), std::min(centre_lower.y, c.y)};
-    centre_upper = {std::max(centre_upper.x, c.x), std::max(centre_upper.y, c.y)};
-    union_lower = {std::min(union_lower.x, b.lower.x), std::min(union_lower.y, b.lower.y)};
-    union_upper = {std::max(union_upper.x, b.upper.x), std::max(union_upper.y, b.upper.y)};
-  }
-  const Vec2 mid{Clamp(0.5 * centre_lower.x + 0.5 * centre_upper.x, region.lower.x, region.upper.x),
-                 Clamp(0.5 * centre_lower.y + 0.5 * centre_upper.y, region.lower.y, region.upper.y)};
-  const double half_width = 0.5 * (union_upper.x - union_lower.x);
-  const double half_height = 0.5 * (union_upper.y - union_lower.y);
+  const Vec2 mid{Clamp(0.5 * bounds.centre_lower.x + 0.5 * bounds.centre_upper.x, region.lower.x, region.upper.x),
+                 Clamp(0.5 * bounds.centre_lower.y + 0.5 * bounds.centre_upper.y, region.lower.y, region.upper.y)};
+  const double half_width = 0.5 * (bounds.upper.x - bounds.lower.x);
+  const double half_height = 0.5 * (bounds.upper.y - bounds.lower.y);
 
   // A box reaching all four quadrants that is big for this node would be copied into every
   // descendant; it stays here as a resident instead and meets the whole subtree at once.
+  constexpr std::uint8_t kAll = kLeft | kRight | kBottom | kTop;
+  constexpr std::uint8_t kNeed[4] = {kLeft | kBottom, kRight | kBottom, kLeft | kTop, kRight | kTop};
   quadrants_.resize(count);
   residents_.clear();
   std::size_t child_counts[4] = {0, 0, 0, 0};
-  for (std::size_t k = begin; k < end; ++k) {
-    const AABB& b = boxes_[items[k]];
+  for (std::size_t k = 0; k < count; ++k) {
+    const AABB& b = items[k].box;
     const auto q = static_cast<std::uint8_t>((b.lower.x < mid.x ? kLeft : 0) | (b.upper.x >= mid.x ? kRight : 0) |
                                              (b.lower.y < mid.y ? kBottom : 0) | (b.upper.y >= mid.y ? kTop : 0));
-    const bool resident = q == (kLeft | kRight | kBottom | kTop) &&
-                          (b.upper.x - b.lower.x >= half_width || b.upper.y - b.lower.y >= half_height);
-    quadrants_[k - begin] = resident ? 0 : q;
-    if (resident) {
+    if (q == kAll && (b.upper.x - b.lower.x >= half_width || b.upper.y - b.lower.y >= half_height)) {
+      quadrants_[k] = 0;
       residents_.push_back(items[k]);
       continue;
     }
-    child_counts[0] += (q & kLeft) && (q & kBottom);
-    child_counts[1] += (q & kRight) && (q & kBottom);
-    child_counts[2] += (q & kLeft) && (q & kTop);
-    child_counts[3] += (q & kRight) && (q & kTop);
+    quadrants_[k] = q;
+    for (int c = 0; c < 4; ++c) child_counts[c] += (q & kNeed[c]) == kNeed[c];
   }
 
   // Residents against each other and against every other box of the node.
   const std::size_t resident_count = residents_.size();
   if (resident_count > 0) {
     TestAllPairs(region, residents_.data(), resident_count);
-    for (std::uint32_t r : residents_) {
-      const AABB& a = boxes_[r];
-      for (std::size_t k = begin; k < end; ++k) {
-        if (quadrants_[k - begin] == 0) continue;
-        const AABB& b = boxes_[items[k]];
-        if (!Overlaps(a, b)) continue;
-        const Vec2 p = OverlapCorner(a, b);
+    for (const Item& r : residents_) {
+      for (std::size_t k = 0; k < count; ++k) {
+        if (quadrants_[k] == 0) continue;
+        const AABB& b = items[k].box;
+        if (!Overlaps(r.box, b)) continue;
+        const Vec2 p = OverlapCorner(r.box, b);
         if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-          pairs_->push_back(detail::MakePair(r, items[k]));
+          pairs_->push_back(detail::MakePair(r.body, items[k].body));
         }
       }
     }
@@ -133,37 +144,42 @@ void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::si
   const std::size_t largest = *std::max_element(child_counts, child_counts + 4);
   if (rest <= kLeafCapacity || largest == rest) {
     if (resident_count == 0) {
-      TestAllPairs(region, items.data() + begin, count);
+      TestAllPairs(region, items, count);
       return;
     }
     residents_.clear();
-    for (std::size_t k = begin; k < end; ++k) {
-      if (quadrants_[k - begin] != 0) residents_.push_back(items[k]);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (quadrants_[k] != 0) residents_.push_back(items[k]);
     }
     TestAllPairs(region, residents_.data(), residents_.size());
     return;
   }
 
-  // The four children's lists, side by side in the next level's buffer.
-  std::vector<std::uint32_t>& next = levels_[depth + 1];
-  next.clear();
-  std::size_t child_begin[5];
-  const std::uint8_t need[4] = {kLeft | kBottom, kRight | kBottom, kLeft | kTop, kRight | kTop};
-  for (int c = 0; c < 4; ++c) {
-    child_begin[c] = next.size();
-    for (std::size_t k = begin; k < end; ++k) {
-      if ((quadrants_[k - begin] & need[c]) == need[c]) next.push_back(items[k]);
-    }
-  }
-  child_begin[4] = next.size();
+  // The four children's items, side by side in the next level's buffer, with their bounds.
+  std::vector<Item>& next = levels_[depth + 1];
+  next.resize(child_counts[0] + child_counts[1] + child_counts[2] + child_counts[3]);
+  std::size_t child_begin[5] = {0, 0, 0, 0, 0};
+  for (int c = 0; c < 4; ++c) child_begin[c + 1] = child_begin[c] + child_counts[c];
+  std::size_t cursor[4] = {child_begin[0], child_begin[1], child_begin[2], child_begin[3]};
   const Region children[4] = {
       {region.lower, mid},
       {{mid.x, region.lower.y}, {region.upper.x, mid.y}},
       {{region.lower.x, mid.y}, {mid.x, region.upper.y}},
       {mid, region.upper},
   };
+  Bounds child_bounds[4];
+  for (Bounds& b : child_bounds) b = {kFar, -kFar, kFar, -kFar};
+  items = levels_[depth].data() + begin;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint8_t q = quadrants_[k];
+    for (int c = 0; c < 4; ++c) {
+      if ((q & kNeed[c]) != kNeed[c]) continue;
+      next[cursor[c]++] = items[k];
+      child_bounds[c].Add(items[k].box, children[c]);
+    }
+  }
   for (int c = 0; c < 4; ++c) {
-    if (child_begin[c + 1] - child_begin[c] >= 2) Build(depth + 1, children[c], child_begin[c], child_begin[c + 1]);
+    if (child_counts[c] >= 2) Build(depth + 1, children[c], child_begin[c], child_begin[c + 1], child_bounds[c]);
   }
 }
 
