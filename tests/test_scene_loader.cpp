@@ -399,7 +399,10 @@ TEST_CASE("scene defaults: name, world, click, camera", "[scene]") {
   CHECK_FALSE(scene.camera.width.has_value());
   // The project's own defaults (docs/scene-format.md).
   CHECK(scene.world.solver == engine::ContactSolver::kSubstep);
-  CHECK(scene.world.substeps == 4);
+  CHECK(scene.world.substeps == 0);             // automatic: the world picks 4, or 8 with rotation
+  CHECK(scene.world.velocity_iterations == 0);  // automatic too
+  CHECK(game::BuildWorld(scene).Def().substeps == 4);
+  CHECK(game::BuildWorld(scene).Def().velocity_iterations == 1);
   CHECK(scene.world.sleeping);
   CHECK(scene.world.restitution_threshold == 1.0);
 }

@@ -19,27 +19,48 @@ std::uint32_t Find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
 
 }  // namespace
 
-void UpdateSleep(std::span<const Contact> contacts, std::span<BodyState> states,
+void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
+                 std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep) {
   const std::size_t n = states.size();
+  auto touching = [&](const Contact& c) {
+    for (int p = 0; p < c.manifold.point_count; ++p) {
+      if (c.manifold.points[p].depth >= -def.linear_slop) return true;
+    }
+    return false;
+  };
+  // A slow body rests only when something holds it (a touching contact) or nothing pushes it:
+  // a body sinking slowly through a fluid, or at the top of its arc, is moving, not resting.
+  std::vector<std::uint8_t> held(n, 0);
+  for (const Contact& c : contacts) {
+    if (touching(c)) held[c.a] = held[c.b] = 1;
+  }
   const double speed_squared = def.sleep_speed * def.sleep_speed;
   for (std::size_t i = 0; i < n; ++i) {
     if (!sleep.awake[i]) continue;
     const bool resting = LengthSquared(states[i].velocity) <= speed_squared &&
-                         states[i].angular_velocity * states[i].angular_velocity <= speed_squared;
+                         states[i].angular_velocity * states[i].angular_velocity <= speed_squared &&
+                         (held[i] || accelerations[i] == Vec2{});
     sleep.rest_time[i] = resting ? sleep.rest_time[i] + def.dt : 0.0;
   }
 
   // The root of each island is its smallest body id: union always keeps the smaller root.
+  // Touching contacts and acting springs between dynamic bodies join islands.
   std::vector<std::uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
-  for (const Contact& c : contacts) {
-    if (infos[c.a].is_static || infos[c.b].is_static) continue;
-    bool touching = false;
-    for (int p = 0; p < c.manifold.point_count; ++p) touching |= c.manifold.points[p].depth >= -def.linear_slop;
-    if (!touching) continue;
-    const std::uint32_t ra = Find(parent, c.a), rb = Find(parent, c.b);
+  auto join = [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t ra = Find(parent, a), rb = Find(parent, b);
     if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+  };
+  for (const Contact& c : contacts) {
+    if (infos[c.a].is_static || infos[c.b].is_static || !touching(c)) continue;
+    join(c.a, c.b);
+  }
+  for (const SpringDef& spring : springs) {
+    const bool acts = spring.stiffness != 0.0 || spring.damping != 0.0;
+    if (acts && spring.body_b && !infos[spring.body_a].is_static && !infos[*spring.body_b].is_static) {
+      join(spring.body_a, *spring.body_b);
+    }
   }
   std::vector<double> island_rest(n, def.time_to_sleep);
   for (std::uint32_t i = 0; i < n; ++i) {

@@ -17,9 +17,12 @@ struct SleepState {
   std::span<std::uint32_t> island;
 };
 
-/// After a step: counts resting time and puts to sleep every island (bodies linked by touching
-/// contacts, static bodies excluded) whose bodies have all rested for `time_to_sleep`.
-void UpdateSleep(std::span<const Contact> contacts, std::span<BodyState> states,
+/// After a step: counts resting time (slow, and held by a contact or pushed by no force:
+/// `accelerations` are each body's free accelerations) and puts to sleep every island (bodies
+/// linked by touching contacts or springs, static bodies excluded) whose bodies have all rested
+/// for `time_to_sleep`.
+void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
+                 std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep);
 
 /// Wakes the sleeping island `body` belongs to (nothing if it is awake or static).

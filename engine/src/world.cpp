@@ -53,17 +53,30 @@ constexpr std::size_t kAllPairsMaxBodies = 16;
 // rest is caught a little before it touches.
 constexpr double kSpeculativeSlops = 4.0;
 
+// The settings a scene left at 0 ("automatic") get the values its kind of world needs: the
+// axis-aligned game is solved exactly with one pass per substep (shock propagation finishes
+// what it leaves); turning boxes couple their contacts and need more (8 substeps of 4 passes
+// keep a 40-base pyramid within 5 mm, docs/solver.md).
+WorldDef Resolve(WorldDef def) {
+  if (def.substeps == 0) def.substeps = def.rotation ? 8 : 4;
+  if (def.velocity_iterations == 0) {
+    def.velocity_iterations = def.solver == ContactSolver::kSeed ? 10 : def.rotation ? 4 : 1;
+  }
+  return def;
+}
+
 }  // namespace
 
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-World::World(const WorldDef& def) : def_(def), free_motion_(std::make_unique<detail::FreeMotion>()) {
+World::World(const WorldDef& def)
+    : def_(Resolve(def)), free_motion_(std::make_unique<detail::FreeMotion>()) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
-  Require(def.velocity_iterations >= 1, "WorldDef::velocity_iterations must be >= 1");
-  Require(def.substeps >= 1, "WorldDef::substeps must be >= 1");
+  Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
+  Require(def.substeps >= 0, "WorldDef::substeps must be >= 0");
   Require(IsPositiveFinite(def.max_push_out_speed), "WorldDef::max_push_out_speed must be > 0");
   Require(IsNonNegativeFinite(def.restitution_threshold),
           "WorldDef::restitution_threshold must be finite and >= 0");
@@ -215,6 +228,13 @@ void World::FindCandidatePairs() {
       if (!infos_[sleeper].is_static) detail::WakeIsland(sleeper, infos_, {rest_time_, awake_, island_});
     }
   }
+  // So does a spring (one that acts) from a moving body.
+  for (const SpringDef& spring : springs_) {
+    if (!spring.body_b || awake_[spring.body_a] == awake_[*spring.body_b]) continue;
+    if (spring.stiffness == 0.0 && spring.damping == 0.0) continue;
+    const BodyId sleeper = awake_[spring.body_a] ? *spring.body_b : spring.body_a;
+    if (!infos_[sleeper].is_static) detail::WakeIsland(sleeper, infos_, {rest_time_, awake_, island_});
+  }
   // Pairs where nothing moves need no contact: static with static, or with a sleeping body.
   std::erase_if(pairs_, [this](BodyPair p) { return !awake_[p.a] && !awake_[p.b]; });
 }
@@ -329,7 +349,9 @@ void World::StepSubstep() {
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
     detail::WarmStart(substep_constraints_, states_);
-    detail::SolveContacts(substep_constraints_, states_, start, inv_h);
+    for (int pass = 0; pass < def_.velocity_iterations; ++pass) {
+      detail::SolveContacts(substep_constraints_, states_, start, inv_h);
+    }
     if (has_up) {
       detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
                              def_.linear_slop, up, shock_tolerance);
@@ -352,7 +374,11 @@ void World::UpdateTurned() {
 }
 
 void World::UpdateSleep() {
-  detail::UpdateSleep(contacts_, states_, infos_, def_, {rest_time_, awake_, island_});
+  accelerations_.resize(states_.size());
+  angular_accelerations_.resize(states_.size());
+  Forces().Evaluate(states_, accelerations_, angular_accelerations_);
+  detail::UpdateSleep(contacts_, springs_, accelerations_, states_, infos_, def_,
+                      {rest_time_, awake_, island_});
 }
 
 }  // namespace engine

@@ -80,9 +80,11 @@ struct WorldDef {
   Integrator integrator = Integrator::kSemiImplicitEuler;
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;
   ContactSolver solver = ContactSolver::kSubstep;
-  int substeps = 4;                     ///< substep solver: substeps per step
+  int substeps = 0;                     ///< substep solver: substeps per step; 0: 4, or 8 with rotation
   double max_push_out_speed = 3.0;      ///< substep solver: m/s; overlap goes no faster than this
-  int velocity_iterations = 10;         ///< seed: passes of the contact solver per step
+  /// Contact solver passes: per step for the seed (0: 10), per substep for the substep solver
+  /// (0: 1, or 4 with rotation).
+  int velocity_iterations = 0;
   double restitution_threshold = 1.0;   ///< m/s; slower impacts do not bounce, so rest is quiet
   double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
   double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
