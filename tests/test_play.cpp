@@ -195,7 +195,7 @@ TEST_CASE("play controller: the recording replays to the live state, at any imag
   CHECK(untouched.GetSession().World().StateHash() != live);
 }
 
-TEST_CASE("play controller: a click waits for its step; a run that ends first neither applies "
+TEST_CASE("play controller: a click waits for its step, and a run that ends first neither applies "
           "nor records it", "[play][record]") {
   const game::RunInput input = DefaultInput();
   const std::size_t heavy = BodyIndex(input.scene, "heavy_ball");
@@ -356,7 +356,7 @@ TEST_CASE("bitmap text: glyphs are 3x5 cells, lit runs merged, unknown character
   CHECK(render::LayoutText("~", 0, 0, 1, white).size() == render::LayoutText("?", 0, 0, 1, white).size());
 }
 
-TEST_CASE("screenshot: a taken name gets the next number; no file is ever replaced",
+TEST_CASE("screenshot: a taken name gets the next number, and no file is ever replaced",
           "[play][screenshot]") {
   const fs::path dir = fs::path(BALLBOX_TEST_TMP) / "play" / "screenshot_names";
   fs::remove_all(dir);

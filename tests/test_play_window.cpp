@@ -218,7 +218,7 @@ TEST_CASE("play window: a screenshot (S) shows the same picture as ballbox rende
   CHECK(DecodePng(dir / "frame0" / "frame_00000.png").rgb != shot.rgb);
 }
 
-TEST_CASE("play window: an xdotool click hits a ball; the recording replays to the live hash",
+TEST_CASE("play window: an xdotool click hits a ball, and the recording replays to the live hash",
           "[play][xvfb][record]") {
   if (!WindowTestsCanRun()) return;
   const fs::path dir = FreshDir("click");
@@ -239,6 +239,9 @@ TEST_CASE("play window: an xdotool click hits a ball; the recording replays to t
   const double radius = aim.World().Info(heavy).shape.radius;
   const engine::Vec2 pixel = render::WorldToPixel(aim.Camera(), kWidth, kHeight,
                                                   {centre.x - 0.5 * radius, centre.y});
+  INFO("heavy_ball at (" << centre.x << ", " << centre.y << "), radius " << radius
+                          << ": clicking pixel (" << pixel.x << ", " << pixel.y << ")");
+  REQUIRE((pixel.x > 0 && pixel.x < kWidth && pixel.y > 0 && pixel.y < kHeight));
   const long px = std::lround(pixel.x);
   const long py = std::lround(pixel.y);
 
