@@ -1,6 +1,6 @@
 // Forces beyond the calibrated scenarios: spring torque and angular momentum with rotation on,
 // bit-identical state hashes when a force is present but unused (the "skip" proofs of design.md),
-// and known problems of forces meeting sleep and stiffness, as [!mayfail] tests.
+// forces meeting sleep, and the stiffness limit of explicit drag (a known limit, [!mayfail]).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -146,7 +146,7 @@ TEST_CASE("a spring attached at the centre makes no rotation", "[forces]") {
 }
 
 TEST_CASE("angular momentum is conserved without external torque", "[forces]") {
-  // The default solver: 4 substeps of h = 1/240 s, 60 s. Symplectic Euler and Verlet conserve
+  // The substep solver at 4 substeps (h = 1/240 s), 60 s. Symplectic Euler and Verlet conserve
   // Σ r × m·v + I·ω exactly in real arithmetic (each kick is equal and opposite forces on one line
   // of action, each drift keeps r × v), so only roundoff may remain: 1e-12 (measured ~1e-14).
   // RK4's error is O(h⁴): at most 1e-9 (measured ~4e-12). Midpoint's is O(h²) (measured ~5.2e-6)
@@ -161,6 +161,7 @@ TEST_CASE("angular momentum is conserved without external torque", "[forces]") {
                  Case{Integrator::kExplicitEuler, 3.5e-3}}) {
     engine::WorldDef def;
     def.integrator = c.integrator;
+    def.substeps = 4;
     const MomentumRun run = RunCluster(SpringCluster(def), 3600);
     INFO(Name(c.integrator) << ": max relative error of angular momentum " << run.max_relative_error);
     REQUIRE_FALSE(run.contacts);
@@ -368,10 +369,9 @@ TEST_CASE("skip: a scene file with every force key at its unused value runs bit 
   }
 }
 
-TEST_CASE("a spring wakes the sleeping body at its other end", "[forces][!mayfail]") {
-  // Known problem: sleep islands are built from contacts only, so a spring neither keeps its
-  // bodies in one island nor wakes the far one: here box a sleeps on while b is pulled back
-  // towards where a lies, as if a were nailed down.
+TEST_CASE("a spring wakes the sleeping body at its other end", "[forces]") {
+  // Islands built from contacts alone would leave box a asleep while b is pulled back towards
+  // where a lies, as if a were nailed down.
   engine::World world(engine::WorldDef{});
   world.CreateBody(testing::Static(testing::Box({0, -0.5}, {20, 1})));
   const engine::BodyId a = world.CreateBody(testing::WithMass(testing::Box({-2, 0.5}, {1, 1}), 1.0));
@@ -387,10 +387,9 @@ TEST_CASE("a spring wakes the sleeping body at its other end", "[forces][!mayfai
   CHECK(world.State(a).position.x > -2.0 + 1e-3);  // a stretched spring pulls a towards b
 }
 
-TEST_CASE("a body sinking at a steady speed below the sleep speed keeps sinking", "[forces][!mayfail]") {
-  // Known problem: sleep looks at speed only. A 10 g ball of radius 0.1 m in water sinks at its
-  // terminal speed √(m·g/c) = 4.6 cm/s, under the 5 cm/s sleep speed, and freezes in mid-water
-  // half a second later although the forces on it never balance a support.
+TEST_CASE("a body sinking at a steady speed below the sleep speed keeps sinking", "[forces]") {
+  // A 10 g ball of radius 0.1 m in water sinks at its terminal speed √(m·g/c) = 4.6 cm/s, under
+  // the 5 cm/s sleep speed: a sleep rule that looked at speed alone would freeze it in mid-water.
   engine::WorldDef def;
   def.fluid_density = 1000.0;
   def.gravity = {0, -9.8};
