@@ -183,6 +183,7 @@ struct Choice {
 };
 
 const Choice kChoices[] = {
+    {"auto", engine::BroadPhaseType::kAuto},
     {"all_pairs", engine::BroadPhaseType::kAllPairs},
     {"sweep_and_prune", engine::BroadPhaseType::kSweepAndPrune},
     {"uniform_grid", engine::BroadPhaseType::kUniformGrid},
@@ -200,6 +201,12 @@ FindPairs Bind() {
 
 FindPairs MakeBroadPhase(engine::BroadPhaseType type) {
   switch (type) {
+    case engine::BroadPhaseType::kAuto: {
+      auto chooser = std::make_shared<engine::BroadPhase>();
+      return [chooser](std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+        chooser->FindPairs(engine::BroadPhaseType::kAuto, boxes, pairs);
+      };
+    }
     case engine::BroadPhaseType::kSweepAndPrune: return Bind<engine::SweepAndPrune>();
     case engine::BroadPhaseType::kUniformGrid: return Bind<engine::UniformGrid>();
     case engine::BroadPhaseType::kQuadtree: return Bind<engine::Quadtree>();

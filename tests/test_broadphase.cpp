@@ -1,6 +1,6 @@
-// Every broad phase (sweep and prune, uniform grid, quadtree, AABB tree) must report exactly the
-// pairs an all-pairs AABB test reports, in the same order, and the world's result must not depend
-// on which one runs.
+// Every broad phase (sweep and prune, uniform grid, quadtree, AABB tree, the automatic choice) must
+// report exactly the pairs an all-pairs AABB test reports, in the same order, and the world's
+// result must not depend on which one runs.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -75,9 +75,17 @@ std::size_t RequireAllPairs(BroadPhase& broad_phase, const std::vector<AABB>& bo
   return expected.size();
 }
 
+// The automatic choice behind the same call as the structures.
+struct AutoBroadPhase {
+  engine::BroadPhase chooser;
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+    chooser.FindPairs(engine::BroadPhaseType::kAuto, boxes, pairs);
+  }
+};
+
 }  // namespace
 
-#define BROAD_PHASES engine::SweepAndPrune, engine::UniformGrid, engine::Quadtree, engine::AabbTree
+#define BROAD_PHASES engine::SweepAndPrune, engine::UniformGrid, engine::Quadtree, engine::AabbTree, AutoBroadPhase
 
 TEMPLATE_TEST_CASE("broad phase equals all pairs on random moving scenes", "[broadphase]", BROAD_PHASES) {
   std::mt19937_64 rng(12345);
@@ -336,6 +344,45 @@ TEST_CASE("aabb tree: still bodies cost no reinsertion and the tree stays balanc
   }
   CHECK(line.IsValid());
   CHECK(line.Height() <= 2 * 10 + 2);
+}
+
+TEST_CASE("automatic broad phase: the tree while bodies rest, the grid while many move", "[broadphase]") {
+  using engine::BroadPhaseType;
+  std::mt19937_64 rng(12);
+  auto boxes = RandomBoxes(rng, 500, 40);
+  engine::BroadPhase broad_phase;
+  std::vector<BodyPair> pairs;
+  auto step = [&] {
+    broad_phase.FindPairs(BroadPhaseType::kAuto, boxes, &pairs);
+    std::vector<BodyPair> expected;
+    engine::FindPairsAllPairs(boxes, &expected);
+    REQUIRE(pairs == expected);
+    return broad_phase.LastUsed();
+  };
+  CHECK(step() == BroadPhaseType::kAabbTree);  // the first call builds the tree: not motion
+  CHECK(step() == BroadPhaseType::kAabbTree);
+  // Everything moves by more than its fat margin every call: the tree would reinsert it all.
+  auto drift = [&] {
+    for (auto& b : boxes) {
+      b.lower.x += 1.5;
+      b.upper.x += 1.5;
+    }
+  };
+  drift();
+  CHECK(step() == BroadPhaseType::kAabbTree);  // this call reinserts them and hands over
+  for (int k = 0; k < 5; ++k) {
+    drift();
+    CHECK(step() == BroadPhaseType::kUniformGrid);
+  }
+  // A few still move, most rest: back to the tree.
+  for (int k = 0; k < 30; ++k) boxes[k].lower.y += 0.5, boxes[k].upper.y += 0.5;
+  CHECK(step() == BroadPhaseType::kAabbTree);
+  CHECK(step() == BroadPhaseType::kAabbTree);
+  // A handful of boxes: all pairs.
+  boxes.resize(engine::BroadPhase::kAllPairsMaxBodies);
+  CHECK(step() == BroadPhaseType::kAllPairs);
+  boxes.resize(engine::BroadPhase::kAllPairsMaxBodies + 1);
+  CHECK(step() == BroadPhaseType::kAabbTree);
 }
 
 namespace {

@@ -1,8 +1,10 @@
-// All-pairs and sweep-and-prune broad phases, and the pair sort every broad phase ends with:
-// pairs sorted by (a, b), so what the solver sees never depends on how the pairs were found.
+// All-pairs and sweep-and-prune broad phases, the pair sort every broad phase ends with (pairs
+// sorted by (a, b), so what the solver sees never depends on how they were found), and BroadPhase,
+// which dispatches to the chosen structure and makes the automatic choice.
 #include "engine/broadphase.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pair_sort.h"
 
@@ -91,6 +93,60 @@ void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>
     active_.push_back({box.lower.y, box.upper.y, e.body});
   }
   detail::SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
+}
+
+void BroadPhase::FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+  if (type != BroadPhaseType::kAuto) {
+    auto_on_grid_ = false;
+    auto_previous_.clear();
+  }
+  last_used_ = type;
+  switch (type) {
+    case BroadPhaseType::kAuto: FindPairsAuto(boxes, pairs); break;
+    case BroadPhaseType::kAllPairs: FindPairsAllPairs(boxes, pairs); break;
+    case BroadPhaseType::kSweepAndPrune: sweep_and_prune_.FindPairs(boxes, pairs); break;
+    case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(boxes, pairs); break;
+    case BroadPhaseType::kQuadtree: quadtree_.FindPairs(boxes, pairs); break;
+    case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(boxes, pairs); break;
+  }
+}
+
+void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
+  const std::size_t n = boxes.size();
+  if (n <= kAllPairsMaxBodies) {
+    last_used_ = BroadPhaseType::kAllPairs;
+    FindPairsAllPairs(boxes, pairs);
+    return;
+  }
+  if (auto_on_grid_ && auto_previous_.size() == n) {
+    // Back to the tree once few boxes still move by more than a sliver of their size per call:
+    // those are the ones the tree would reinsert every few calls.
+    std::size_t moving = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const AABB& now = boxes[i];
+      const AABB& before = auto_previous_[i];
+      const double size = std::max(now.upper.x - now.lower.x, now.upper.y - now.lower.y);
+      const double dx = (now.lower.x + now.upper.x) - (before.lower.x + before.upper.x);
+      const double dy = (now.lower.y + now.upper.y) - (before.lower.y + before.upper.y);
+      moving += 0.5 * std::max(std::abs(dx), std::abs(dy)) > 0.02 * size;
+    }
+    auto_on_grid_ = 8 * moving > n;
+  }
+  if (auto_on_grid_) {
+    last_used_ = BroadPhaseType::kUniformGrid;
+    uniform_grid_.FindPairs(boxes, pairs);
+    auto_previous_.assign(boxes.begin(), boxes.end());
+    return;
+  }
+  // New bodies are inserted, not moved: only a call on the same bodies measures motion.
+  const bool same_bodies = auto_tree_bodies_ == n;
+  auto_tree_bodies_ = n;
+  last_used_ = BroadPhaseType::kAabbTree;
+  aabb_tree_.FindPairs(boxes, pairs);
+  if (same_bodies && 8 * aabb_tree_.LastReinsertCount() > n) {
+    auto_on_grid_ = true;
+    auto_previous_.assign(boxes.begin(), boxes.end());
+  }
 }
 
 }  // namespace engine

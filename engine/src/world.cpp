@@ -46,9 +46,6 @@ double Inertia(const Shape& shape, double mass) {
 constexpr double kCircleDrag = 0.47;
 constexpr double kBoxDrag = 1.05;
 
-// Up to this many bodies, testing every pair is cheaper than keeping sorted endpoint lists.
-constexpr std::size_t kAllPairsMaxBodies = 16;
-
 // Speculative contacts start this far apart (Box2D's 4 × linear slop), so a body coming to
 // rest is caught a little before it touches.
 constexpr double kSpeculativeSlops = 4.0;
@@ -209,18 +206,7 @@ void World::FindCandidatePairs() {
     const AABB b = BodyBounds(id);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
-  BroadPhaseType type = def_.broad_phase;
-  if (type == BroadPhaseType::kAuto) {
-    type = n <= kAllPairsMaxBodies ? BroadPhaseType::kAllPairs : BroadPhaseType::kSweepAndPrune;
-  }
-  switch (type) {
-    case BroadPhaseType::kAuto:
-    case BroadPhaseType::kAllPairs: FindPairsAllPairs(bounds_, &pairs_); break;
-    case BroadPhaseType::kSweepAndPrune: sweep_and_prune_.FindPairs(bounds_, &pairs_); break;
-    case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(bounds_, &pairs_); break;
-    case BroadPhaseType::kQuadtree: quadtree_.FindPairs(bounds_, &pairs_); break;
-    case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(bounds_, &pairs_); break;
-  }
+  broad_phase_.FindPairs(def_.broad_phase, bounds_, &pairs_);
   // A moving body reaching a sleeping one wakes its whole island before anything is solved.
   for (const BodyPair& p : pairs_) {
     if (awake_[p.a] != awake_[p.b]) {

@@ -10,6 +10,17 @@
 
 namespace engine {
 
+enum class BroadPhaseType : std::uint8_t {
+  /// All pairs for a handful of bodies; beyond, the AABB tree while bodies mostly stay inside
+  /// their fat boxes (resting, settling) and the uniform grid while many move (see BroadPhase)
+  kAuto,
+  kAllPairs,
+  kSweepAndPrune,
+  kUniformGrid,
+  kQuadtree,
+  kAabbTree,
+};
+
 struct BodyPair {
   std::uint32_t a;  ///< the smaller index
   std::uint32_t b;
@@ -209,6 +220,36 @@ class AabbTree {
   std::size_t last_reinserts_ = 0;
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
+};
+
+/// Every broad phase behind one call, each keeping its state from call to call, and the automatic
+/// choice. Whatever the choice, the pairs are the same; only the time differs.
+///
+/// kAuto: all pairs up to kAllPairsMaxBodies boxes. Beyond, the AABB tree, which costs almost
+/// nothing while boxes stay inside their fat boxes; when a call reinserts more than an eighth of
+/// the bodies, the uniform grid (linear, no state to update) takes over, until a call sees at most
+/// an eighth of the boxes move by more than 2% of their size since the last call. Deterministic:
+/// the switch depends on the boxes only. The numbers behind the rule: docs/broadphase.md.
+class BroadPhase {
+ public:
+  void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+
+  /// The structure the last call used (never kAuto).
+  BroadPhaseType LastUsed() const { return last_used_; }
+
+  static constexpr std::size_t kAllPairsMaxBodies = 16;
+
+ private:
+  void FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+
+  SweepAndPrune sweep_and_prune_;
+  UniformGrid uniform_grid_;
+  Quadtree quadtree_;
+  AabbTree aabb_tree_;
+  BroadPhaseType last_used_ = BroadPhaseType::kAllPairs;
+  bool auto_on_grid_ = false;
+  std::size_t auto_tree_bodies_ = 0;  ///< how many boxes the tree had at its last automatic call
+  std::vector<AABB> auto_previous_;  ///< the boxes at the last call, while the grid runs
 };
 
 }  // namespace engine

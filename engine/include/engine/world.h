@@ -42,15 +42,6 @@ enum class ContactSolver : std::uint8_t {
   kSeed,  ///< the seed: rounds of impulses per step, then a projection; the baseline
 };
 
-enum class BroadPhaseType : std::uint8_t {
-  kAuto,           ///< all pairs for a handful of bodies, sweep and prune beyond
-  kAllPairs,
-  kSweepAndPrune,
-  kUniformGrid,
-  kQuadtree,
-  kAabbTree,
-};
-
 struct BodyDef {
   Shape shape;
   Vec2 position;                  ///< centre, m
@@ -196,10 +187,7 @@ class World {
   std::vector<SubstepConstraint> substep_constraints_;
   std::vector<std::uint32_t> shock_level_;
   std::vector<std::uint32_t> shock_order_;
-  SweepAndPrune sweep_and_prune_;
-  UniformGrid uniform_grid_;
-  Quadtree quadtree_;
-  AabbTree aabb_tree_;
+  BroadPhase broad_phase_;  ///< every structure, so the choice can change between steps
 };
 
 }  // namespace engine
