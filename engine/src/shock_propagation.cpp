@@ -61,6 +61,10 @@ void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::u
     const SubstepConstraint& sc = constraints[index];
     // Only support: a contact whose normal is within 45° of up (from the lower body to the upper).
     // Side contacts are left to the solver: pushing rocking neighbours apart here would fight it.
+    // Between turning bodies the pass stays out: holding a centre up would stop a box balanced
+    // on a corner from toppling, and one-sided pushes rectify rocking into a pumping jitter.
+    // Their contacts are solved by more passes instead (World's automatic settings).
+    if (sc.angular) continue;
     const std::uint32_t level_a = level[sc.a], level_b = level[sc.b];
     const double support = Dot(sc.normal, up) * (level_a <= level_b ? 1.0 : -1.0);
     if (support < 0.70710678118654752) continue;

@@ -1,0 +1,225 @@
+// Rotation: turned-box narrow phase by hand, inclines and rolling against closed forms (accuracy.md
+// S10), rotating stacks against the solver's thresholds, and no angular work when nothing turns.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "bench/stress_scenes.h"
+#include "engine/collide.h"
+#include "engine/world.h"
+#include "world_builders.h"
+
+using engine::Vec2;
+using testing::Box;
+using testing::Circle;
+using testing::Static;
+using testing::WithMaterial;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void CheckVec(Vec2 v, Vec2 expected, double margin = 1e-12) {
+  CHECK(v.x == Approx(expected.x).margin(margin));
+  CHECK(v.y == Approx(expected.y).margin(margin));
+}
+
+}  // namespace
+
+TEST_CASE("oriented boxes: a diamond's corner in a face gives one point", "[rotation][collide]") {
+  // B, a unit square turned 45°, has its lowest corner √½ below its centre; placed so that the
+  // corner is 0.1 into A's top face (y = 1).
+  const double c = 1.0 + std::sqrt(0.5) - 0.1;
+  engine::Manifold m;
+  REQUIRE(engine::CollideOrientedBoxes({{0, 0}, {1, 1}, engine::MakeRot(0)},
+                                       {{0, c}, {0.5, 0.5}, engine::MakeRot(kPi / 4)}, &m));
+  REQUIRE(m.point_count == 1);
+  CheckVec(m.normal, {0, 1});
+  CheckVec(m.points[0].point, {0, 0.95});  // midway between the corner and the face
+  CHECK(m.points[0].depth == Approx(0.1).margin(1e-12));
+}
+
+TEST_CASE("oriented boxes: two boxes turned alike, face on face, give two points", "[rotation][collide]") {
+  const engine::Rot q = engine::MakeRot(kPi / 6);
+  const Vec2 b_center = engine::Rotate(q, {0.25, 1.8});  // 0.2 overlap along the turned y axis
+  engine::Manifold m;
+  REQUIRE(engine::CollideOrientedBoxes({{0, 0}, {1, 1}, q}, {b_center, {1, 1}, q}, &m));
+  REQUIRE(m.point_count == 2);
+  CheckVec(m.normal, engine::Rotate(q, {0, 1}));
+  for (int i = 0; i < 2; ++i) CHECK(m.points[i].depth == Approx(0.2).margin(1e-12));
+  // The overlap runs from x = −0.75 to 1 in the boxes' frame, at height 0.9 (mid-penetration).
+  CheckVec(m.points[0].point, engine::Rotate(q, {-0.75, 0.9}));
+  CheckVec(m.points[1].point, engine::Rotate(q, {1.0, 0.9}));
+  CHECK(m.points[0].id != m.points[1].id);
+}
+
+TEST_CASE("oriented boxes: apart beyond the margin is no contact, within it a speculative one", "[rotation][collide]") {
+  const engine::Rot q = engine::MakeRot(0.3);
+  const engine::OrientedBox a{{0, 0}, {1, 1}, q};
+  const engine::OrientedBox b{engine::Rotate(q, {0, 2.05}), {1, 1}, q};
+  engine::Manifold m;
+  CHECK_FALSE(engine::CollideOrientedBoxes(a, b, &m));
+  REQUIRE(engine::CollideOrientedBoxes(a, b, &m, 0.1));
+  CHECK(m.points[0].depth == Approx(-0.05).margin(1e-12));
+}
+
+TEST_CASE("circle against a turned box is the axis-aligned test in the box's frame", "[rotation][collide]") {
+  // A 4×1 box turned 90° stands 1 wide and 4 tall: its right face is at x = 0.5.
+  engine::Manifold m;
+  REQUIRE(engine::CollideCircleOrientedBox({0.9, 0.3}, 0.5, {{0, 0}, {2, 0.5}, engine::MakeRot(kPi / 2)}, &m));
+  CheckVec(m.normal, {-1, 0});
+  CHECK(m.points[0].depth == Approx(0.1).margin(1e-12));
+  CheckVec(m.points[0].point, {0.45, 0.3});
+}
+
+namespace {
+
+// A ramp turned by θ with a body resting on its face; returns the world and the body's id.
+// Down the slope is −(cos θ, sin θ).
+engine::World OnRamp(double theta, engine::BodyDef body, double half_height, double mu) {
+  engine::WorldDef def;
+  def.rotation = true;
+  def.gravity = {0, -9.8};
+  def.sleeping = false;
+  engine::World world(def);
+  engine::BodyDef ramp = WithMaterial(Static(Box({0, 0}, {60, 1})), 0, mu);
+  ramp.angle = theta;
+  world.CreateBody(ramp);
+  const engine::Rot q = engine::MakeRot(theta);
+  body.position = engine::Rotate(q, {10.0, 0.5 + half_height});
+  if (body.shape.type == engine::ShapeType::kBox) body.angle = theta;
+  body.friction = mu;
+  body.restitution = 0;
+  world.CreateBody(body);
+  return world;
+}
+
+double SpeedAlongSlope(const engine::World& world, double theta) {
+  return -engine::Dot(world.State(1).velocity, {std::cos(theta), std::sin(theta)});
+}
+
+}  // namespace
+
+TEST_CASE("a block slides down a 30° incline at g(sin θ − μ cos θ)", "[rotation][incline]") {
+  const double theta = kPi / 6, mu = 0.2;
+  engine::World world = OnRamp(theta, Box({}, {1, 1}), 0.5, mu);
+  for (int i = 0; i < 30; ++i) world.Step();  // settle into contact
+  const double v0 = SpeedAlongSlope(world, theta);
+  for (int i = 0; i < 60; ++i) world.Step();
+  const double a = (SpeedAlongSlope(world, theta) - v0) / 1.0;
+  const double expected = 9.8 * (std::sin(theta) - mu * std::cos(theta));  // 3.203 m/s²
+  INFO("measured " << a << " m/s², expected " << expected);
+  CHECK(a == Approx(expected).epsilon(0.01));
+  CHECK(std::abs(world.State(1).angle - theta) < 1e-3);  // it slides, it does not tumble
+}
+
+TEST_CASE("a block on an incline with tan θ ≤ μ stays put", "[rotation][incline]") {
+  const double theta = kPi / 6, mu = 0.6;  // tan 30° = 0.577 < 0.6
+  engine::World world = OnRamp(theta, Box({}, {1, 1}), 0.5, mu);
+  const Vec2 start = world.State(1).position;
+  for (int i = 0; i < 120; ++i) world.Step();
+  INFO("moved " << engine::Length(world.State(1).position - start) << " m");
+  CHECK(engine::Length(world.State(1).position - start) <= 1e-3);
+}
+
+TEST_CASE("a disc rolls down a 30° incline at ⅔·g·sin θ without slipping", "[rotation][incline]") {
+  const double theta = kPi / 6, mu = 0.6, r = 0.5;  // rolling needs μ ≥ tan θ / 3
+  engine::World world = OnRamp(theta, Circle({}, r), r, mu);
+  for (int i = 0; i < 30; ++i) world.Step();
+  const double v0 = SpeedAlongSlope(world, theta);
+  for (int i = 0; i < 60; ++i) world.Step();
+  const double v1 = SpeedAlongSlope(world, theta);
+  const double expected = 2.0 / 3.0 * 9.8 * std::sin(theta);  // 3.267 m/s² (a disc, not a sphere)
+  INFO("measured " << v1 - v0 << " m/s², expected " << expected);
+  CHECK((v1 - v0) / 1.0 == Approx(expected).epsilon(0.01));
+  // Rolling: the contact point is at rest, v = ω·r (rolling down to the left turns it
+  // counter-clockwise: ω positive).
+  CHECK(std::abs(v1 - world.State(1).angular_velocity * r) <= 1e-3 * v1);
+}
+
+TEST_CASE("rotating stacks meet the solver's thresholds", "[rotation][stability]") {
+  auto drift_after_10s = [](auto add) {
+    engine::WorldDef def;
+    def.rotation = true;
+    def.sleeping = false;
+    engine::World world(def);
+    add(world);
+    std::vector<Vec2> start;
+    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) start.push_back(world.State(id).position);
+    for (int i = 0; i < 600; ++i) world.Step();
+    double drift = 0, turn = 0;
+    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+      drift = std::max(drift, engine::Length(world.State(id).position - start[id]));
+      turn = std::max(turn, std::abs(world.State(id).angle));
+    }
+    return std::pair{drift, turn};
+  };
+  const auto [pyramid20, turn20] = drift_after_10s([](engine::World& w) { stress::AddPyramid(w, 20); });
+  const auto [pyramid40, turn40] = drift_after_10s([](engine::World& w) { stress::AddPyramid(w, 40); });
+  const auto [stack20, turn_stack] = drift_after_10s([](engine::World& w) { stress::AddStack(w, 20); });
+  INFO("pyramid 20: " << pyramid20 << " m, pyramid 40: " << pyramid40 << " m, stack 20: " << stack20 << " m");
+  CHECK(pyramid20 < 0.005);
+  CHECK(pyramid40 < 0.01);
+  CHECK(stack20 < 0.005);
+  CHECK(std::max({turn20, turn40, turn_stack}) < 0.05);  // accuracy.md §3.3: ≤ 0.05 rad
+}
+
+// Known limit: with rotation on, a 1000:1 column is left to Gauss-Seidel alone, which cannot hold
+// it (shock propagation stays out between turning bodies: judged at the centres it stops boxes
+// from toppling, judged at the corners it pumps energy into stacks). Axis-aligned, it stands.
+TEST_CASE("a heavy box on a column of light ones stands with rotation on (1000:1)",
+          "[rotation][stability][!mayfail]") {
+  engine::WorldDef def;
+  def.rotation = true;
+  def.sleeping = false;
+  engine::World world(def);
+  stress::AddHeavyOnLight(world, 3, 1000);
+  const engine::BodyId heavy = static_cast<engine::BodyId>(world.BodyCount() - 1);
+  const double y0 = world.State(heavy).position.y;
+  for (int i = 0; i < 600; ++i) world.Step();
+  INFO("sank " << y0 - world.State(heavy).position.y << " m");
+  CHECK(y0 - world.State(heavy).position.y < 0.01);
+}
+
+TEST_CASE("rotation on with nothing able to turn computes exactly the axis-aligned game", "[rotation][skip]") {
+  // Skip proof: with every body fixed_rotation, no angular state is integrated or solved, and
+  // the state hash equals the one with rotation off, bit for bit.
+  auto run = [](bool rotation) {
+    engine::WorldDef def;
+    def.rotation = rotation;
+    def.substeps = 4;            // the same settings for both: only the rotation flag differs
+    def.velocity_iterations = 1;
+    engine::World world(def);
+    stress::AddContainer(world, 10, 12);
+    stress::AddCirclePour(world, 120, 0.3, 10, 0.5, 3);
+    for (int i = 0; i < 20; ++i) {
+      engine::BodyDef box = stress::Box({-4.0 + 0.4 * i, 9.0 + (i % 3)}, {0.5, 0.3});
+      box.fixed_rotation = true;
+      world.CreateBody(box);
+    }
+    for (int i = 0; i < 300; ++i) world.Step();
+    return world.StateHash();
+  };
+  // Circles turn only through friction torque: make them fixed too by building a second
+  // variant where the pour's circles cannot turn either.
+  auto run_fixed = [](bool rotation) {
+    engine::WorldDef def;
+    def.rotation = rotation;
+    def.substeps = 4;
+    def.velocity_iterations = 1;
+    engine::World world(def);
+    stress::AddContainer(world, 10, 12);
+    for (int i = 0; i < 60; ++i) {
+      engine::BodyDef ball = Circle({-4.0 + 0.15 * i, 2.0 + 0.7 * (i % 7)}, 0.25, {0.5, 0});
+      ball.fixed_rotation = true;
+      world.CreateBody(ball);
+      engine::BodyDef box = stress::Box({-4.0 + 0.15 * i, 8.0 + 0.5 * (i % 5)}, {0.4, 0.3});
+      box.fixed_rotation = true;
+      world.CreateBody(box);
+    }
+    for (int i = 0; i < 300; ++i) world.Step();
+    return world.StateHash();
+  };
+  CHECK(run_fixed(true) == run_fixed(false));
+  CHECK(run(true) != run(false));  // free circles do turn with rotation on: the test can fail
+}
