@@ -312,7 +312,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   RejectUnknownKeys(root, "",
                     {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
                      "broad_phase", "solver", "sleep", "springs", "fluid_density",
-                     "gravitational_constant"});
+                     "gravitational_constant", "continuous"});
   Scene scene;
   scene.name = default_name;
   if (const Json* v = Find(root, "name")) {
@@ -344,6 +344,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   }
   if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
   if (const Json* v = Find(root, "sleep")) world.sleeping = ReadBool(*v, "sleep");
+  if (const Json* v = Find(root, "continuous")) world.continuous = ReadBool(*v, "continuous");
   if (const Json* v = Find(root, "fluid_density")) world.fluid_density = ReadNonNegative(*v, "fluid_density");
   if (const Json* v = Find(root, "gravitational_constant")) {
     world.gravitational_constant = ReadNonNegative(*v, "gravitational_constant");

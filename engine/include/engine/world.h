@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/broadphase.h"
@@ -80,6 +81,9 @@ struct WorldDef {
   double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
   double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
   bool sleeping = true;                 ///< bodies at rest for a while stop costing work
+  /// Fast bodies (moving over half their size per step) are caught wherever they pass; false:
+  /// only where they land each step, so they may tunnel (bullets are always caught).
+  bool continuous = true;
   double sleep_speed = 0.05;            ///< m/s below which a body counts as resting
   double time_to_sleep = 0.5;           ///< s an island must rest before it sleeps
 };
@@ -93,6 +97,14 @@ struct BodyState {
 };
 
 /// What a step only reads.
+/// Where a ray first meets a body.
+struct RayHit {
+  BodyId body;
+  Vec2 point;       ///< on the body's outline
+  Vec2 normal;      ///< the outline's outward normal there
+  double fraction;  ///< of the way from the ray's start to its end, in [0, 1]
+};
+
 struct BodyInfo {
   Shape shape;
   double mass = 0.0;      ///< kg; 0 for static bodies
@@ -143,6 +155,9 @@ class World {
   const std::vector<Contact>& Contacts() const { return contacts_; }
   /// False while the body sleeps (and always for static bodies).
   bool IsAwake(BodyId id) const { return awake_[id] != 0; }
+
+  /// The first body a ray from `from` to `to` hits (static or dynamic), or nothing.
+  std::optional<RayHit> RayCast(Vec2 from, Vec2 to) const;
 
   /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
   std::uint64_t StateHash() const;
