@@ -90,6 +90,12 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
     if (frame > 0) {
       for (std::int64_t i = 0; i < options.every; ++i) session.Step();
       stats.steps += options.every;
+      // A broken-down state is reported, never drawn; the frames before it stay.
+      if (Status fault = session.Fault()) {
+        (void)writer.Finish();  // the fault is the error to report; frames so far are kept
+        progress.Finish();
+        return *fault;
+      }
     }
     renderer->Draw(session.World(), colors, session.Camera());
     render::Image image;

@@ -187,6 +187,8 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
     controller.Advance(std::chrono::duration<double>(now - last).count());
     last = now;
     if (controller.Finished()) break;
+    // A broken-down state ends the session with its report; it is never drawn.
+    if (Status fault = controller.GetSession().Fault()) return fault;
 
     window.FramebufferSize(framebuffer_width, framebuffer_height);
     picture = Letterbox(framebuffer_width, framebuffer_height, image_width, image_height);

@@ -32,6 +32,14 @@ void Session::Step() {
   world_.Step();
 }
 
+Status Session::Fault() const {
+  const std::optional<engine::NumericFault>& fault = world_.Fault();
+  if (!fault) return std::nullopt;
+  return RuntimeFailure("the simulation broke down: body \"" + scene_.bodies[fault->body].id + "\" (bodies[" +
+                        std::to_string(fault->body) + "]) got a non-finite " + fault->what + " in step " +
+                        std::to_string(fault->step) + "; the numbers outgrew double precision");
+}
+
 void Session::ApplyEvent(const InputEvent& event) {
   const engine::Vec2 p = event.kind == EventKind::kClickPixel
                              ? render::PixelToWorld(camera_, image_width_, image_height_,

@@ -23,6 +23,10 @@ class Session {
   /// Applies one event now, at the current step (live input).
   void ApplyEvent(const InputEvent& event);
 
+  /// A failure naming the body and step where the simulation produced a non-finite number (exit
+  /// code 1), or nothing. Once set, the world no longer steps.
+  Status Fault() const;
+
   const engine::World& World() const { return world_; }
   const render::Camera& Camera() const { return camera_; }
   const Scene& SceneDef() const { return scene_; }

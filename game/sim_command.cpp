@@ -57,6 +57,7 @@ Status RunSim(const SimOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t step = 1; step <= options.steps; ++step) {
     session.Step();
+    if (Status fault = session.Fault()) return fault;  // the dump's temporary file goes with it
     if (dump && step % options.dump_every == 0) DumpStep(dump->Stream(), session, ids);
   }
   const double seconds =

@@ -195,6 +195,7 @@ double World::Reach(BodyId id) const {
 }
 
 void World::Step() {
+  if (fault_) return;
   const std::size_t n = states_.size();
   positions_before_.resize(n);
   for (std::size_t i = 0; i < n; ++i) positions_before_[i] = states_[i].position;
@@ -206,7 +207,9 @@ void World::Step() {
   } else {
     StepSubstep();
   }
+  if (fault_) return;                // broken down mid-step: stop where it appeared
   if (def_.sleeping) UpdateSleep();  // islands at rest long enough go to sleep
+  CheckFinite();                     // a non-finite number stops here, named, not in a frame
   ++step_count_;
 }
 
@@ -307,6 +310,7 @@ detail::ForceModel World::Forces() const {
 void World::StepSeed() {
   const double dt = def_.dt;
   detail::FreeStep(def_.integrator, Forces(), states_, dt, free_motion_.get());
+  if (CheckFinite()) return;  // the forces overflowed: name the body before contacts spread it
   detail::PrepareContacts(contacts_, states_, infos_, def_.restitution_threshold, &seed_constraints_);
   detail::SolveVelocities(seed_constraints_, states_, infos_, def_.velocity_iterations);
   detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, dt);
@@ -348,6 +352,7 @@ void World::StepSubstep() {
   const double shock_tolerance = 0.5 * g * h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
+    if (CheckFinite()) return;  // the forces overflowed: name the body before contacts spread it
     detail::WarmStart(substep_constraints_, states_);
     for (int pass = 0; pass < def_.velocity_iterations; ++pass) {
       detail::SolveContacts(substep_constraints_, states_, start, inv_h);
@@ -365,6 +370,22 @@ void World::StepSubstep() {
   }
   detail::ApplyImpactLags(substep_constraints_, states_);
   detail::StoreImpulses(substep_constraints_, contacts_);
+}
+
+bool World::CheckFinite() {
+  for (BodyId id = 0; id < states_.size(); ++id) {
+    const BodyState& s = states_[id];
+    const char* what = !IsFinite(s.position)              ? "position"
+                       : !IsFinite(s.velocity)            ? "velocity"
+                       : !std::isfinite(s.angle)          ? "angle"
+                       : !std::isfinite(s.angular_velocity) ? "angular velocity"
+                                                          : nullptr;
+    if (what) {
+      fault_ = NumericFault{step_count_, id, what};
+      return true;
+    }
+  }
+  return false;
 }
 
 void World::UpdateTurned() {

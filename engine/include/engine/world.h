@@ -97,6 +97,14 @@ struct BodyState {
 };
 
 /// What a step only reads.
+/// The first non-finite number the simulation produced: which body, in which step, and which
+/// part of its state. Inputs are checked when they enter, so this means the numbers overflowed.
+struct NumericFault {
+  std::int64_t step;  ///< the step that produced it (StepCount() before that step)
+  BodyId body;
+  const char* what;   ///< "position", "velocity", "angle" or "angular velocity"
+};
+
 /// Where a ray first meets a body.
 struct RayHit {
   BodyId body;
@@ -132,8 +140,12 @@ class World {
   /// Preconditions: positive finite size and mass (or density) for dynamic bodies, finite state.
   BodyId CreateBody(const BodyDef& def);
 
-  /// Advances the world by one fixed step of `Def().dt`.
+  /// Advances the world by one fixed step of `Def().dt`. Does nothing once a fault is recorded.
   void Step();
+
+  /// The first non-finite state a step produced, checked at the end of every step; once set,
+  /// the world stops stepping so the fault goes no further.
+  const std::optional<NumericFault>& Fault() const { return fault_; }
 
   /// Changes a dynamic body's velocity by impulse / mass (N·s, applied at the centre); static
   /// bodies ignore it.
@@ -168,6 +180,8 @@ class World {
   void StepSeed();
   void StepSubstep();
   void UpdateSleep();
+  /// Records a fault for the first body (in id order) with a non-finite state; true if any.
+  bool CheckFinite();
   /// How far each body has turned since the step's start, for the contacts' separations.
   void UpdateTurned();
   /// How far a body may reach within a step (speculative margin), m.
@@ -179,6 +193,7 @@ class World {
   std::vector<BodyInfo> infos_;
   std::vector<SpringDef> springs_;
   std::int64_t step_count_ = 0;
+  std::optional<NumericFault> fault_;
   // Sleep state per body; `awake` doubles as the "moving" mask the integrators read.
   std::vector<double> rest_time_;
   std::vector<std::uint8_t> awake_;
