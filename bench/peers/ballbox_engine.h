@@ -1,0 +1,90 @@
+// ballbox behind the side-by-side benchmark's engine interface: a peers::SceneSpec becomes an
+// engine::World with the scene's settings, sleeping off, and the default or a chosen solver.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/peers/scenes.h"
+#include "engine/world.h"
+
+namespace peers {
+
+/// A solver setting to compare: the default (substeps and passes chosen by the world), the seed,
+/// or the substep solver at a given number of substeps.
+struct BallboxSetting {
+  engine::ContactSolver solver = engine::ContactSolver::kSubstep;
+  int substeps = 0;  ///< 0: the world's default (4, or 8 with rotation)
+
+  std::string Label() const {
+    if (solver == engine::ContactSolver::kSeed) return "seed";
+    return substeps == 0 ? "default" : std::to_string(substeps) + (substeps == 1 ? " substep" : " substeps");
+  }
+};
+
+class BallboxEngine : public PhysicsEngine {
+ public:
+  explicit BallboxEngine(BallboxSetting setting = {}) : setting_(setting) {}
+
+  std::string Name() const override {
+    return setting_.solver == engine::ContactSolver::kSubstep && setting_.substeps == 0 ? "ballbox"
+                                                                                        : "ballbox " + setting_.Label();
+  }
+
+  std::string Settings(const SceneSpec& scene) const override {
+    const engine::WorldDef def = Def(scene);
+    if (def.solver == engine::ContactSolver::kSeed) return "seed: 10 passes per step, double";
+    const int substeps = def.substeps > 0 ? def.substeps : (scene.rotation ? 8 : 4);
+    const int passes = def.velocity_iterations > 0 ? def.velocity_iterations : (scene.rotation ? 4 : 1);
+    return std::to_string(substeps) + " substeps x " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") +
+           ", double";
+  }
+
+  void Build(const SceneSpec& scene) override {
+    world_.emplace(Def(scene));
+    for (const BodySpec& b : scene.bodies) {
+      engine::BodyDef def;
+      def.shape.type = b.kind == Kind::kCircle ? engine::ShapeType::kCircle : engine::ShapeType::kBox;
+      def.shape.radius = b.radius;
+      def.shape.half_extents = b.half;
+      def.position = b.position;
+      def.velocity = b.velocity;
+      def.is_static = b.is_static;
+      def.mass = b.mass;
+      def.friction = scene.friction;
+      def.restitution = scene.restitution;
+      world_->CreateBody(def);
+    }
+  }
+
+  void Step() override { world_->Step(); }
+
+  void Read(std::vector<State>& out) const override {
+    out.resize(world_->BodyCount());
+    for (engine::BodyId id = 0; id < world_->BodyCount(); ++id) {
+      const engine::BodyState& s = world_->State(id);
+      out[id] = {s.position, s.velocity, s.angle, s.angular_velocity};
+    }
+  }
+
+  const engine::World& World() const { return *world_; }
+
+ private:
+  engine::WorldDef Def(const SceneSpec& scene) const {
+    engine::WorldDef def;
+    def.gravity = scene.gravity;
+    def.dt = scene.dt;
+    def.rotation = scene.rotation;
+    def.sleeping = false;  // stability must not lean on sleep, and timing must not either
+    def.solver = setting_.solver;
+    def.substeps = setting_.substeps;
+    return def;
+  }
+
+  BallboxSetting setting_;
+  std::optional<engine::World> world_;
+};
+
+}  // namespace peers

@@ -1,0 +1,113 @@
+// Chipmunk 7.0.3 (Debian's libchipmunk-dev) behind the benchmark's engine interface: 10 solver
+// iterations (its default), collision slop 5 mm like ballbox and Box2D, the default bounding-box tree.
+#include <chipmunk/chipmunk.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bench/peers/peer_engines.h"
+
+namespace peers {
+
+namespace {
+
+constexpr int kIterations = 10;
+// Chipmunk's default slop is 0.1 (it is unit-free); the scenes are in metres.
+constexpr double kCollisionSlop = 0.005;
+
+class ChipmunkEngine : public PhysicsEngine {
+ public:
+  ~ChipmunkEngine() override { Free(); }
+
+  std::string Name() const override { return "Chipmunk 7.0.3"; }
+
+  std::string Settings(const SceneSpec&) const override {
+    return std::to_string(kIterations) + " iterations, slop 5 mm, double";
+  }
+
+  void Build(const SceneSpec& scene) override {
+    Free();
+    space_ = cpSpaceNew();
+    cpSpaceSetGravity(space_, cpv(scene.gravity.x, scene.gravity.y));
+    cpSpaceSetIterations(space_, kIterations);
+    cpSpaceSetCollisionSlop(space_, kCollisionSlop);
+    dt_ = scene.dt;
+    // Chipmunk multiplies the two shapes' friction and elasticity where ballbox and Box2D take
+    // the geometric mean and the maximum: with one material per scene, the square roots give the
+    // same value for every pair.
+    const double friction = std::sqrt(scene.friction), elasticity = std::sqrt(scene.restitution);
+    for (const BodySpec& spec : scene.bodies) {
+      cpBody* body = nullptr;
+      cpShape* shape = nullptr;
+      if (spec.is_static) {
+        body = cpSpaceGetStaticBody(space_);
+        const cpBB box = cpBBNew(spec.position.x - spec.half.x, spec.position.y - spec.half.y,
+                                 spec.position.x + spec.half.x, spec.position.y + spec.half.y);
+        shape = spec.kind == Kind::kBox ? cpBoxShapeNew2(body, box, 0.0)
+                                        : cpCircleShapeNew(body, spec.radius, cpv(spec.position.x, spec.position.y));
+      } else {
+        body = cpSpaceAddBody(space_, cpBodyNew(spec.mass, scene.rotation ? spec.inertia : INFINITY));
+        cpBodySetPosition(body, cpv(spec.position.x, spec.position.y));
+        cpBodySetVelocity(body, cpv(spec.velocity.x, spec.velocity.y));
+        shape = spec.kind == Kind::kBox ? cpBoxShapeNew(body, 2 * spec.half.x, 2 * spec.half.y, 0.0)
+                                        : cpCircleShapeNew(body, spec.radius, cpvzero);
+        owned_bodies_.push_back(body);
+      }
+      cpShapeSetFriction(shape, friction);
+      cpShapeSetElasticity(shape, elasticity);
+      cpSpaceAddShape(space_, shape);
+      shapes_.push_back(shape);
+      bodies_.push_back(spec.is_static ? nullptr : body);
+      static_positions_.push_back(spec.position);
+    }
+  }
+
+  void Step() override { cpSpaceStep(space_, dt_); }
+
+  void Read(std::vector<State>& out) const override {
+    out.resize(bodies_.size());
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const cpBody* b = bodies_[i];
+      if (b == nullptr) {
+        out[i] = {static_positions_[i], {}, 0, 0};
+        continue;
+      }
+      const cpVect p = cpBodyGetPosition(b), v = cpBodyGetVelocity(b);
+      out[i] = {{p.x, p.y}, {v.x, v.y}, cpBodyGetAngle(b), cpBodyGetAngularVelocity(b)};
+    }
+  }
+
+ private:
+  // cpSpaceFree leaves the bodies and shapes to their owner.
+  void Free() {
+    if (space_ == nullptr) return;
+    for (cpShape* shape : shapes_) {
+      cpSpaceRemoveShape(space_, shape);
+      cpShapeFree(shape);
+    }
+    for (cpBody* body : owned_bodies_) {
+      cpSpaceRemoveBody(space_, body);
+      cpBodyFree(body);
+    }
+    cpSpaceFree(space_);
+    space_ = nullptr;
+    shapes_.clear();
+    owned_bodies_.clear();
+    bodies_.clear();
+    static_positions_.clear();
+  }
+
+  cpSpace* space_ = nullptr;
+  double dt_ = 1.0 / 60.0;
+  std::vector<cpShape*> shapes_;
+  std::vector<cpBody*> owned_bodies_;
+  std::vector<cpBody*> bodies_;  ///< scene order; nullptr for a static body
+  std::vector<Vec2> static_positions_;
+};
+
+}  // namespace
+
+std::unique_ptr<PhysicsEngine> MakeChipmunkEngine() { return std::make_unique<ChipmunkEngine>(); }
+
+}  // namespace peers

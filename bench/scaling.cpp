@@ -1,0 +1,200 @@
+// Scaling: whole-world ms/step against body count (1k to 64k) for a circle pour and a box pile,
+// ballbox and every peer built in, with the fitted log-log slope per engine.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/bench_common.h"
+#include "bench/peers/engines.h"
+#include "bench/peers/scenes.h"
+
+namespace {
+
+struct Options {
+  bool quick = false;
+  int repeats = 3;
+  int warmup = 30;  // untimed steps: the block of bodies has collapsed into a pile by then
+  int steps = 30;   // timed steps
+  std::vector<int> counts = {1000, 2000, 4000, 8000, 16000, 32000, 64000};
+  std::string engine_filter;
+  std::string out_dir = "bench-out";
+};
+
+struct Row {
+  std::string scene;  // "circle pour" or "box pile"
+  int count = 0;
+  std::string engine;
+  std::string settings;
+  std::vector<double> ms_per_step;
+  bool same_state = true;
+  bool finite = true;
+};
+
+std::vector<std::pair<double, double>> Points(const std::vector<Row>& rows, const std::string& scene,
+                                              const std::string& engine) {
+  std::vector<std::pair<double, double>> points;
+  for (const Row& r : rows) {
+    if (r.scene == scene && r.engine == engine) points.push_back({static_cast<double>(r.count), bench::Median(r.ms_per_step)});
+  }
+  return points;
+}
+
+void PrintTable(const std::vector<Row>& rows, const std::vector<std::string>& engines, const Options& options) {
+  for (const char* scene : {"circle pour", "box pile"}) {
+    std::printf("\n**%s**: ms/step (median), and each peer's time ÷ ballbox's\n\n| bodies |", scene);
+    for (const std::string& e : engines) std::printf(" %s |", e.c_str());
+    for (std::size_t i = 1; i < engines.size(); ++i) std::printf(" %s ÷ ballbox |", engines[i].c_str());
+    std::printf("\n|---:|");
+    for (std::size_t i = 0; i < 2 * engines.size() - 1; ++i) std::printf("---:|");
+    std::printf("\n");
+    for (int count : options.counts) {
+      std::printf("| %d |", count);
+      std::vector<double> ms;
+      for (const std::string& e : engines) {
+        double value = std::nan("");
+        for (const Row& r : rows) {
+          if (r.scene == scene && r.engine == e && r.count == count) value = bench::Median(r.ms_per_step);
+        }
+        ms.push_back(value);
+        std::printf(" %s |", bench::Number(value).c_str());
+      }
+      for (std::size_t i = 1; i < engines.size(); ++i) std::printf(" %s |", bench::Number(ms[i] / ms[0]).c_str());
+      std::printf("\n");
+    }
+    std::printf("| log-log slope |");
+    for (const std::string& e : engines) std::printf(" %s |", bench::Number(bench::LogLogSlope(Points(rows, scene, e)), "%.2f").c_str());
+    for (std::size_t i = 1; i < engines.size(); ++i) std::printf(" |");
+    std::printf("\n");
+  }
+}
+
+bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  std::FILE* csv = std::fopen((dir + "/scaling.csv").c_str(), "w");
+  std::FILE* slopes = std::fopen((dir + "/scaling_slopes.csv").c_str(), "w");
+  if (csv == nullptr || slopes == nullptr) {
+    if (csv) std::fclose(csv);
+    if (slopes) std::fclose(slopes);
+    return false;
+  }
+  std::fprintf(csv, "scene,bodies,engine,settings,repeats,ms_per_step_median,ms_per_step_min,same_state,finite\n");
+  std::vector<std::pair<std::string, std::string>> series;
+  for (const Row& r : rows) {
+    std::fprintf(csv, "%s,%d,%s,%s,%zu,%.6g,%.6g,%d,%d\n", bench::Quoted(r.scene).c_str(), r.count,
+                 bench::Quoted(r.engine).c_str(), bench::Quoted(r.settings).c_str(), r.ms_per_step.size(),
+                 bench::Median(r.ms_per_step), bench::Min(r.ms_per_step), r.same_state ? 1 : 0, r.finite ? 1 : 0);
+    if (std::find(series.begin(), series.end(), std::pair{r.scene, r.engine}) == series.end()) series.push_back({r.scene, r.engine});
+  }
+  std::fprintf(slopes, "scene,engine,slope\n");
+  for (const auto& [scene, engine] : series) {
+    std::fprintf(slopes, "%s,%s,%.4g\n", bench::Quoted(scene).c_str(), bench::Quoted(engine).c_str(),
+                 bench::LogLogSlope(Points(rows, scene, engine)));
+  }
+  std::fclose(csv);
+  std::fclose(slopes);
+  return true;
+}
+
+bool ParseArgs(int argc, char** argv, Options& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--quick") {
+      options.quick = true;
+    } else if (arg == "--repeats" && has_value) {
+      options.repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--max-bodies" && has_value) {
+      const int most = std::atoi(argv[++i]);
+      std::erase_if(options.counts, [most](int n) { return n > most; });
+    } else if (arg == "--engine" && has_value) {
+      options.engine_filter = argv[++i];
+    } else if (arg == "--out" && has_value) {
+      options.out_dir = argv[++i];
+    } else {
+      std::fprintf(stderr, "usage: bench_scaling [--quick] [--repeats R] [--max-bodies N] [--engine TEXT] [--out DIR]\n");
+      return false;
+    }
+  }
+  if (options.quick) options.counts = {1000, 2000}, options.repeats = 1, options.warmup = 2, options.steps = 3;
+  return !options.counts.empty();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!ParseArgs(argc, argv, options)) return 2;
+  const std::string load_before = bench::LoadAverage();
+  std::vector<peers::EngineEntry> engines;
+  for (const peers::EngineEntry& e : peers::Engines()) {
+    if (e.name.find(options.engine_filter) != std::string::npos) engines.push_back(e);
+  }
+  std::vector<std::string> names;
+  for (const peers::EngineEntry& e : engines) names.push_back(e.name);
+
+  std::vector<Row> rows;
+  for (bool boxes : {false, true}) {
+    for (int count : options.counts) {
+      const peers::SceneSpec spec = peers::ScalingScene(count, boxes);
+      std::vector<Row> scene_rows;
+      std::vector<std::uint64_t> hashes(engines.size());
+      // Repeats interleave the engines, so drifting machine load hits them all alike; the first
+      // run of each engine is also its warm-up for the hash every later run must reach.
+      for (int r = 0; r < options.repeats + 1; ++r) {
+        for (std::size_t k = 0; k < engines.size(); ++k) {
+          bench::Progress(spec.name + ": " + engines[k].name + ", run " + std::to_string(r) + "/" + std::to_string(options.repeats));
+          std::unique_ptr<peers::PhysicsEngine> engine = engines[k].make();
+          const auto [ms, hash] = peers::TimeSteps(*engine, spec, options.warmup, options.steps);
+          if (r == 0) {
+            Row row{boxes ? "box pile" : "circle pour", count, engines[k].name, engine->Settings(spec), {}, true, true};
+            std::vector<peers::State> states;
+            engine->Read(states);
+            for (const peers::State& s : states) row.finite = row.finite && peers::Finite(s);
+            scene_rows.push_back(row);
+            hashes[k] = hash;
+            continue;
+          }
+          scene_rows[k].ms_per_step.push_back(ms);
+          scene_rows[k].same_state = scene_rows[k].same_state && hash == hashes[k];
+        }
+      }
+      for (Row& row : scene_rows) rows.push_back(std::move(row));
+    }
+  }
+  bench::Progress("");
+
+  std::printf("bench_scaling%s: whole-world ms/step against body count, one thread, sleeping off, 60 Hz\n",
+              options.quick ? " --quick (smoke run)" : "");
+  std::printf("scenes: circles of radius 0.25 m (pour) or boxes of 0.5 m (pile), friction 0.6, restitution 0.2, "
+              "on a jittered grid at 1.15x their size in a square-ish closed container, up to 1 m/s each; "
+              "nothing turns (peers: fixed rotation)\n");
+  std::printf("timing: %d untimed steps (the block collapses into a pile), then %d timed steps; median of %d runs, "
+              "engines interleaved\n", options.warmup, options.steps, options.repeats);
+  for (const Row& r : rows) {
+    if (r.count == options.counts.front() && r.scene == "circle pour") std::printf("%s: %s\n", r.engine.c_str(), r.settings.c_str());
+  }
+  bench::PrintMachine(load_before);
+  const std::string missing = peers::MissingPeers();
+  if (!missing.empty()) std::printf("not in this build: %s (configure with -DBALLBOX_BENCH_PEERS=ON)\n", missing.c_str());
+  PrintTable(rows, names, options);
+
+  int status = 0;
+  for (const Row& r : rows) {
+    if (!r.finite) std::printf("note: %s %d, %s ended with non-finite bodies\n", r.scene.c_str(), r.count, r.engine.c_str());
+    if (r.same_state || r.engine != "ballbox") continue;
+    std::fprintf(stderr, "error: %s %d: a timed ballbox run ended in a different state\n", r.scene.c_str(), r.count);
+    status = 1;
+  }
+  if (!WriteCsv(rows, options.out_dir)) {
+    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
+    return 1;
+  }
+  std::printf("\nCSV: %s/scaling.csv (every size and engine), %s/scaling_slopes.csv (fitted slopes)\n",
+              options.out_dir.c_str(), options.out_dir.c_str());
+  return status;
+}
