@@ -374,8 +374,17 @@ TEST_CASE("automatic broad phase: the tree while bodies rest, the grid while man
     drift();
     CHECK(step() == BroadPhaseType::kUniformGrid);
   }
-  // A few still move, most rest: back to the tree.
-  for (int k = 0; k < 30; ++k) boxes[k].lower.y += 0.5, boxes[k].upper.y += 0.5;
+  // Most rest, a few still move: the grid keeps the choice for a second of calls (60), then the
+  // tree is back, and stays.
+  int grid_calls = 5;
+  for (int k = 0; k < 100; ++k) {
+    boxes[k % 30].lower.y += 0.5;
+    boxes[k % 30].upper.y += 0.5;
+    if (step() != BroadPhaseType::kUniformGrid) break;
+    ++grid_calls;
+  }
+  CHECK(grid_calls == 60);
+  CHECK(broad_phase.LastUsed() == BroadPhaseType::kAabbTree);
   CHECK(step() == BroadPhaseType::kAabbTree);
   CHECK(step() == BroadPhaseType::kAabbTree);
   // A handful of boxes: all pairs.

@@ -21,6 +21,9 @@ constexpr double kMarginFraction = 0.1;
 // moving body (a falling one) is reinserted every few steps rather than every step. The stretch
 // is capped at twice the body's size so that a teleport does not leave a long box behind.
 constexpr double kPredictSteps = 4.0;
+// A fat box more than this many times the perimeter a new one would get is rebuilt. A body moving
+// steadily gets about the same box again, so it is left alone; a stopped one sheds the stretch.
+constexpr double kLooseFactor = 1.5;
 
 double Perimeter(const AABB& b) { return 2.0 * ((b.upper.x - b.lower.x) + (b.upper.y - b.lower.y)); }
 
@@ -38,7 +41,7 @@ bool SameBox(const AABB& a, const AABB& b) { return a.lower == b.lower && a.uppe
 
 }  // namespace
 
-AABB AabbTree::FatBox(const AABB& box, const AABB& previous) const {
+AABB AabbTree::FatBox(const AABB& box, const AABB& previous, bool* stretched) const {
   const double size = std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y);
   const double margin = kMarginFraction * size;
   AABB fat{box.lower - Vec2{margin, margin}, box.upper + Vec2{margin, margin}};
@@ -47,6 +50,8 @@ AABB AabbTree::FatBox(const AABB& box, const AABB& previous) const {
   const double dy = Clamp(kPredictSteps * moved.y, -2.0 * size, 2.0 * size);
   (dx < 0.0 ? fat.lower.x : fat.upper.x) += dx;
   (dy < 0.0 ? fat.lower.y : fat.upper.y) += dy;
+  // Stretched by no more than the margin, a fat box can never become too loose (see kLooseFactor).
+  *stretched = std::max(std::abs(dx), std::abs(dy)) > margin;
   return fat;
 }
 
@@ -217,9 +222,18 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   const std::size_t known = leaf_of_.size();
   for (std::uint32_t i = 0; i < known; ++i) {
     const std::int32_t leaf = leaf_of_[i];
-    if (Contains(nodes_[leaf].box, boxes[i])) continue;
+    const AABB& previous = forget_motion_ ? boxes[i] : previous_[i];
+    // A body that left its fat box goes back in with a new one; so does one that has slowed down
+    // a lot (its box stretched for a motion it no longer has would cost pair tests every step).
+    bool stretched = false;
+    if (Contains(nodes_[leaf].box, boxes[i])) {
+      if (!nodes_[leaf].stretched) continue;
+      const AABB fat = FatBox(boxes[i], previous, &stretched);
+      if (Perimeter(nodes_[leaf].box) <= kLooseFactor * Perimeter(fat)) continue;
+    }
     RemoveLeaf(leaf);
-    nodes_[leaf].box = FatBox(boxes[i], previous_[i]);
+    nodes_[leaf].box = FatBox(boxes[i], previous, &stretched);
+    nodes_[leaf].stretched = stretched;
     InsertLeaf(leaf);
     moved_[i] = 1;
     moved_list_.push_back(i);
@@ -227,7 +241,8 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   for (std::uint32_t i = static_cast<std::uint32_t>(known); i < n; ++i) {
     const std::int32_t leaf = Allocate();
     nodes_[leaf].body = i;
-    nodes_[leaf].box = FatBox(boxes[i], boxes[i]);
+    bool stretched = false;
+    nodes_[leaf].box = FatBox(boxes[i], boxes[i], &stretched);
     InsertLeaf(leaf);
     leaf_of_.push_back(leaf);
     moved_[i] = 1;
@@ -235,6 +250,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   }
   last_reinserts_ = moved_list_.size();
   previous_.assign(boxes.begin(), boxes.end());
+  forget_motion_ = false;
 
   // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
   // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.

@@ -111,6 +111,14 @@ void BroadPhase::FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std
   }
 }
 
+namespace {
+
+// Calls the grid keeps the automatic choice before motion is checked again (a second at 60 Hz):
+// every return to the tree reinserts what moved meanwhile, so flipping back and forth costs.
+constexpr int kGridMinCalls = 60;
+
+}  // namespace
+
 void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
   const std::size_t n = boxes.size();
   if (n <= kAllPairsMaxBodies) {
@@ -118,7 +126,7 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
     FindPairsAllPairs(boxes, pairs);
     return;
   }
-  if (auto_on_grid_ && auto_previous_.size() == n) {
+  if (auto_on_grid_ && ++auto_grid_calls_ > kGridMinCalls && auto_previous_.size() == n) {
     // Back to the tree once few boxes still move by more than a sliver of their size per call:
     // those are the ones the tree would reinsert every few calls.
     std::size_t moving = 0;
@@ -131,6 +139,12 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
       moving += 0.5 * std::max(std::abs(dx), std::abs(dy)) > 0.02 * size;
     }
     auto_on_grid_ = 8 * moving > n;
+    if (!auto_on_grid_) {
+      // The tree last saw the boxes before the motion: their displacement since is no motion
+      // to stretch fat boxes for, and reinserting what moved is no sign of motion now.
+      aabb_tree_.ForgetMotion();
+      auto_tree_bodies_ = 0;
+    }
   }
   if (auto_on_grid_) {
     last_used_ = BroadPhaseType::kUniformGrid;
@@ -143,8 +157,9 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
   auto_tree_bodies_ = n;
   last_used_ = BroadPhaseType::kAabbTree;
   aabb_tree_.FindPairs(boxes, pairs);
-  if (same_bodies && 8 * aabb_tree_.LastReinsertCount() > n) {
+  if (same_bodies && 4 * aabb_tree_.LastReinsertCount() > n) {
     auto_on_grid_ = true;
+    auto_grid_calls_ = 0;
     auto_previous_.assign(boxes.begin(), boxes.end());
   }
 }

@@ -173,6 +173,9 @@ class AabbTree {
   int Height() const;
   /// Checks parent links, unions and heights; for tests.
   bool IsValid() const;
+  /// The next call predicts no motion from the boxes of the last one: for a caller that skipped
+  /// calls while the boxes moved.
+  void ForgetMotion() { forget_motion_ = true; }
 
  private:
   static constexpr std::int32_t kNull = -1;
@@ -183,6 +186,7 @@ class AabbTree {
     std::int32_t child2 = kNull;
     std::int32_t height = 0;     ///< 0 for a leaf
     std::uint32_t body = 0;      ///< leaves only
+    bool stretched = false;      ///< leaves only: the fat box reaches ahead of the body's motion
     bool IsLeaf() const { return child1 == kNull; }
   };
   std::int32_t Allocate();
@@ -192,7 +196,7 @@ class AabbTree {
   /// Refits unions and heights from `node` to the root, rotating where that shrinks a box.
   void RefitUpward(std::int32_t node);
   void Rotate(std::int32_t node);
-  AABB FatBox(const AABB& box, const AABB& previous) const;
+  AABB FatBox(const AABB& box, const AABB& previous, bool* stretched) const;
   void Clear();
   /// Renumbers the nodes in depth-first order, so that a subtree sits together in memory.
   void Relayout();
@@ -217,6 +221,7 @@ class AabbTree {
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
   std::vector<std::uint32_t> moved_list_;
   std::size_t reinserts_since_relayout_ = 0;
+  bool forget_motion_ = false;
   std::size_t last_reinserts_ = 0;
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
@@ -226,10 +231,11 @@ class AabbTree {
 /// choice. Whatever the choice, the pairs are the same; only the time differs.
 ///
 /// kAuto: all pairs up to kAllPairsMaxBodies boxes. Beyond, the AABB tree, which costs almost
-/// nothing while boxes stay inside their fat boxes; when a call reinserts more than an eighth of
-/// the bodies, the uniform grid (linear, no state to update) takes over, until a call sees at most
-/// an eighth of the boxes move by more than 2% of their size since the last call. Deterministic:
-/// the switch depends on the boxes only. The numbers behind the rule: docs/broadphase.md.
+/// nothing while boxes stay inside their fat boxes; when a call reinserts more than a quarter of
+/// the bodies, the uniform grid (linear, no state to update) takes over for at least a second of
+/// calls (60), until a call sees at most an eighth of the boxes move by more than 2% of their size
+/// since the last call. Deterministic: the switch depends on the boxes only. The numbers behind
+/// the rule: docs/broadphase.md.
 class BroadPhase {
  public:
   void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
@@ -248,6 +254,7 @@ class BroadPhase {
   AabbTree aabb_tree_;
   BroadPhaseType last_used_ = BroadPhaseType::kAllPairs;
   bool auto_on_grid_ = false;
+  int auto_grid_calls_ = 0;  ///< calls since the grid took over
   std::size_t auto_tree_bodies_ = 0;  ///< how many boxes the tree had at its last automatic call
   std::vector<AABB> auto_previous_;  ///< the boxes at the last call, while the grid runs
 };
