@@ -1,6 +1,6 @@
 // Forces beyond the calibrated scenarios: spring torque and angular momentum with rotation on,
 // bit-identical state hashes when a force is present but unused (the "skip" proofs of design.md),
-// forces meeting sleep, and the stiffness limit of explicit drag (a known limit, [!mayfail]).
+// forces meeting sleep, and drag stiffer than the step (integrated implicitly).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -403,12 +403,11 @@ TEST_CASE("a body sinking at a steady speed below the sleep speed keeps sinking"
   CHECK(world.State(0).velocity.y == Approx(-terminal).epsilon(1e-6));
 }
 
-TEST_CASE("quadratic drag on a light body in water settles at its terminal speed", "[forces][!mayfail]") {
-  // Known limit: drag is integrated explicitly, so near terminal speed each (sub)step of length h
-  // multiplies a velocity error by 1 − h·λ with λ = 2·√(c·g/m). Beyond h·λ = 2 (h > v_t/g) the
-  // velocity no longer converges: a 10 g ball of radius 0.25 m in water (v_t = 2.9 cm/s,
-  // v_t/g = 2.9 ms) at the default 4 substeps (h = 4.2 ms) reports +1.6 cm/s, upward, while
-  // sinking. Integrating the drag implicitly over a step (v/(1 + h·c·|v|/m)) would be stable at any h.
+TEST_CASE("quadratic drag on a light body in water settles at its terminal speed", "[forces]") {
+  // Stiff drag: explicitly, each (sub)step of length h multiplies a velocity error near terminal
+  // speed by 1 − h·λ, λ = 2·√(c·g/m); a 10 g ball of radius 0.25 m in water (v_t = 2.9 cm/s,
+  // v_t/g = 2.9 ms) at 4 substeps (h = 4.2 ms) would settle at +1.6 cm/s, upward. Such a body
+  // takes an implicit Euler step, whose rest point is exactly the terminal speed, in every method.
   for (Integrator integrator : kIntegrators) {
     INFO(Name(integrator));
     engine::WorldDef def;

@@ -16,6 +16,23 @@ double ProjectedLength(const BodyInfo& info, double angle, Vec2 direction) {
 
 }  // namespace
 
+// F = −½·ρ·C_d·L·|v|·v (per metre of depth), the drag of a body much faster than creep, as the
+// rate ½·ρ·C_d·L·|v| / m that multiplies −v.
+double ForceModel::QuadraticDragRate(const BodyInfo& info, const BodyState& s) const {
+  const double speed = Length(s.velocity);
+  if (speed == 0.0) return 0.0;
+  const double length = ProjectedLength(info, s.angle, s.velocity / speed);
+  const double c = 0.5 * def.fluid_density * info.drag_coefficient * length;
+  return c * speed * info.inv_mass;
+}
+
+double ForceModel::DragRate(const BodyState& state, std::size_t body) const {
+  const BodyInfo& info = infos[body];
+  double rate = info.linear_damping;
+  if (def.fluid_density != 0.0) rate += QuadraticDragRate(info, state);
+  return rate;
+}
+
 void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
                           std::span<double> angular) const {
   const std::size_t n = states.size();
@@ -30,15 +47,7 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
     const BodyState& s = states[i];
     if (info.linear_damping != 0.0) linear[i] -= info.linear_damping * s.velocity;
     if (rotation && info.angular_damping != 0.0) angular[i] -= info.angular_damping * s.angular_velocity;
-    if (def.fluid_density != 0.0) {
-      // F = −½·ρ·C_d·L·|v|·v (per metre of depth), the drag of a body much faster than creep.
-      const double speed = Length(s.velocity);
-      if (speed > 0.0) {
-        const double length = ProjectedLength(info, s.angle, s.velocity / speed);
-        const double c = 0.5 * def.fluid_density * info.drag_coefficient * length;
-        linear[i] -= (c * speed * info.inv_mass) * s.velocity;
-      }
-    }
+    if (def.fluid_density != 0.0) linear[i] -= QuadraticDragRate(info, s) * s.velocity;
   }
 
   if (def.gravitational_constant != 0.0) {

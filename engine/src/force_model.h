@@ -10,6 +10,7 @@
 namespace engine::detail {
 
 struct ForceModel {
+ public:
   const WorldDef& def;
   std::span<const BodyInfo> infos;
   std::span<const SpringDef> springs;
@@ -19,6 +20,13 @@ struct ForceModel {
   /// Linear and angular acceleration of every body in `states` (zero for bodies not moving).
   void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
                 std::span<double> angular) const;
+
+  /// How fast damping and drag take a body's velocity away, 1/s: its linear acceleration from
+  /// them is −rate·v.
+  double DragRate(const BodyState& state, std::size_t body) const;
+
+ private:
+  double QuadraticDragRate(const BodyInfo& info, const BodyState& state) const;
 };
 
 }  // namespace engine::detail

@@ -2,6 +2,8 @@
 // springs and gravitation couple bodies, so every stage evaluates the forces on all of them.
 #include "integrate.h"
 
+#include <algorithm>
+
 namespace engine::detail {
 
 namespace {
@@ -102,6 +104,21 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
       }
       break;
     }
+  }
+  // Drag stiffer than the step (h·rate > ½) would overshoot, in any explicit method: such a body
+  // takes an implicit Euler step with the rate from the step's start instead,
+  // v' = (v + h·a_other) / (1 + h·rate), stable at any h and at rest exactly at terminal speed.
+  constexpr double kStiffDrag = 0.5;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!forces.moving[i]) continue;
+    // Judged at the start and after one kick: a body at rest gains speed within the step.
+    BodyState kicked = states[i];
+    kicked.velocity = v0[i] + h * a[0][i];
+    const double rate = std::max(forces.DragRate(states[i], i), forces.DragRate(kicked, i));
+    if (h * rate <= kStiffDrag) continue;
+    const Vec2 other = a[0][i] + rate * v0[i];  // every acceleration but the drag's
+    m->velocity[i] = (v0[i] + h * other) / (1.0 + h * rate);
+    m->drift[i] = m->velocity[i];
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!forces.moving[i]) continue;
