@@ -223,3 +223,20 @@ TEST_CASE("rotation on with nothing able to turn computes exactly the axis-align
   CHECK(run_fixed(true) == run_fixed(false));
   CHECK(run(true) != run(false));  // free circles do turn with rotation on: the test can fail
 }
+
+TEST_CASE("S12: a 2×2 box dropped from y = 4 rests on the ground after 90 steps", "[rotation][stability]") {
+  // Box2D's HelloWorld test and thresholds (accuracy.md S12): |x| < 0.01, |y − 1| < 0.01,
+  // |angle| < 0.01 rad, with rotation on.
+  engine::WorldDef def;
+  def.rotation = true;
+  def.gravity = {0, -10};
+  engine::World world(def);
+  world.CreateBody(Static(Box({0, -10}, {100, 20})));
+  world.CreateBody(Box({0, 4}, {2, 2}));
+  for (int i = 0; i < 90; ++i) world.Step();
+  const engine::BodyState& s = world.State(1);
+  INFO("(" << s.position.x << ", " << s.position.y << "), angle " << s.angle);
+  CHECK(std::abs(s.position.x) < 0.01);
+  CHECK(std::abs(s.position.y - 1.0) < 0.01);
+  CHECK(std::abs(s.angle) < 0.01);
+}
