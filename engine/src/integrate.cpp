@@ -111,6 +111,7 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
   constexpr double kStiffDrag = 0.5;
   for (std::size_t i = 0; i < n; ++i) {
     if (!forces.moving[i]) continue;
+    if (forces.def.fluid_density == 0.0 && forces.infos[i].linear_damping == 0.0) continue;  // no drag
     // Judged at the start and after one kick: a body at rest gains speed within the step.
     BodyState kicked = states[i];
     kicked.velocity = v0[i] + h * a[0][i];

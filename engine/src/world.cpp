@@ -257,24 +257,24 @@ void World::BuildContacts() {
     // A box that has turned takes the oriented tests; an unturned one the exact axis-aligned
     // ones, so a scene where nothing turns computes exactly what the axis-aligned game does.
     const double angle_a = states_[pair.a].angle, angle_b = states_[pair.b].angle;
-    const OrientedBox box_a{pa, ia.shape.half_extents, MakeRot(angle_a)};
-    const OrientedBox box_b{pb, ib.shape.half_extents, MakeRot(angle_b)};
+    auto box_a = [&] { return OrientedBox{pa, ia.shape.half_extents, MakeRot(angle_a)}; };
+    auto box_b = [&] { return OrientedBox{pb, ib.shape.half_extents, MakeRot(angle_b)}; };
     Manifold m;
     bool touching;
     if (circle_a && circle_b) {
       touching = CollideCircles(pa, ia.shape.radius, pb, ib.shape.radius, &m, margin);
     } else if (circle_a) {
       touching = angle_b == 0.0 ? CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, &m, margin)
-                                : CollideCircleOrientedBox(pa, ia.shape.radius, box_b, &m, margin);
+                                : CollideCircleOrientedBox(pa, ia.shape.radius, box_b(), &m, margin);
     } else if (circle_b) {
       // The narrow phase takes the circle first; flip its normal back to point from a to b.
       touching = angle_a == 0.0 ? CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, &m, margin)
-                                : CollideCircleOrientedBox(pb, ib.shape.radius, box_a, &m, margin);
+                                : CollideCircleOrientedBox(pb, ib.shape.radius, box_a(), &m, margin);
       m.normal = -m.normal;
     } else if (angle_a == 0.0 && angle_b == 0.0) {
       touching = CollideBoxes(pa, ia.shape.half_extents, pb, ib.shape.half_extents, &m, margin);
     } else {
-      touching = CollideOrientedBoxes(box_a, box_b, &m, margin);
+      touching = CollideOrientedBoxes(box_a(), box_b(), &m, margin);
     }
     if (!touching) continue;
 
