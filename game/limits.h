@@ -19,7 +19,7 @@ inline constexpr double kMaxSceneMagnitude = 1e9;
 inline constexpr double kMinBodyMass = 1e-12;
 
 /// Scene and script files, in bytes: read whole into memory, so a huge file or an endless one
-/// (/dev/zero) is refused rather than allowed to take all memory. A million-body scene is ~65 MB.
+/// (/dev/zero) is refused rather than allowed to take all memory. A million-body scene is ~70 MB.
 inline constexpr std::uint64_t kMaxInputFileBytes = 128ull << 20;
 
 /// Pixels per image side: a 16384² RGBA frame is 1 GiB, and a run holds a few at once.

@@ -224,3 +224,28 @@ TEST_CASE("extreme: the default scene at dt 1/1000 s and 1/10 s stays finite and
     }
   }
 }
+
+TEST_CASE("extreme: 1000 bodies placed at one point hold memory linear in their count",
+          "[robustness][extreme][!mayfail]") {
+  // Every pair overlaps, so every pair becomes a contact: memory and time grow with the square
+  // of the count (4000 such bodies took 4.5 GB and 15 s a step; 10 000 would exhaust 24 GB).
+  // Reported to the engine's owner; a scene within every input limit should not do that.
+  constexpr int kBodies = 1000;
+  const std::size_t heap_before = soak::HeapBytesInUse();
+  engine::World world{engine::WorldDef{}};
+  engine::BodyDef floor;
+  floor.shape = {engine::ShapeType::kBox, 0, {10, 0.5}};
+  floor.position = {0, -0.5};
+  floor.is_static = true;
+  world.CreateBody(floor);
+  for (int i = 1; i < kBodies; ++i) {
+    engine::BodyDef ball;
+    ball.shape = {engine::ShapeType::kCircle, 0.5, {}};
+    ball.position = {0, 1};
+    world.CreateBody(ball);
+  }
+  StepFinite(world, 1);
+  const double bytes_per_body = (static_cast<double>(soak::HeapBytesInUse()) - heap_before) / kBodies;
+  INFO("heap per body: " << bytes_per_body << " bytes");
+  CHECK(bytes_per_body < 4096);
+}
