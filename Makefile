@@ -66,3 +66,14 @@ fuzz: deps
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
+
+# make bench: every benchmark program into bench-out/, then docs/benchmarks.md and its plots in
+# docs/img/ (bench/plots/make_page.sh), with Box2D 2.4 and Chipmunk 7 from Debian beside ballbox.
+# About half an hour; never part of make test or CI.
+BENCH_BUILD ?= build-benchmarks
+.PHONY: bench
+bench:
+	@$(MAKE) --no-print-directory deps PACKAGES="$(PACKAGES) libbox2d-dev libchipmunk-dev gnuplot-nox"
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DBALLBOX_BENCH_PEERS=ON -DBUILD_TESTING=OFF
+	cmake --build $(BENCH_BUILD) -j $(JOBS)
+	bench/plots/make_page.sh $(BENCH_BUILD) bench-out

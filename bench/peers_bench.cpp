@@ -148,6 +148,44 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
     }
   }
   std::fclose(csv);
+
+  // Wide form for the ratio plot: one row per scene, one column per peer (time, then figure).
+  std::FILE* wide = std::fopen((dir + "/peers_ratios.csv").c_str(), "w");
+  if (wide == nullptr) return false;
+  std::vector<std::string> peer_names;
+  for (const Row& r : rows) {
+    if (!r.is_ballbox && std::find(peer_names.begin(), peer_names.end(), r.engine) == peer_names.end()) {
+      peer_names.push_back(r.engine);
+    }
+  }
+  std::fprintf(wide, "scene");
+  for (const std::string& p : peer_names) std::fprintf(wide, ",%s", bench::Quoted(p + " time").c_str());
+  for (const std::string& p : peer_names) std::fprintf(wide, ",%s", bench::Quoted(p + " figure").c_str());
+  std::fprintf(wide, ",headline\n");
+  std::vector<std::string> scenes;
+  for (const Row& r : rows) {
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  }
+  for (const std::string& scene : scenes) {
+    const Row* base = BallboxRow(rows, scene);
+    if (base == nullptr) continue;
+    std::vector<std::string> time, figure;
+    for (const std::string& p : peer_names) {
+      std::string t = "nan", f = "nan";
+      for (const Row& r : rows) {
+        if (r.scene != scene || r.engine != p) continue;
+        t = bench::Number(bench::Median(r.ms_per_step) / bench::Median(base->ms_per_step), "%.6g");
+        const double reference = base->figures.front().value, value = r.figures.front().value;
+        f = reference == 0 ? (value == 0 ? "1" : "inf") : bench::Number(value / reference, "%.6g");
+      }
+      time.push_back(t), figure.push_back(f);
+    }
+    std::fprintf(wide, "%s", bench::Quoted(scene).c_str());
+    for (const std::string& t : time) std::fprintf(wide, ",%s", t.c_str());
+    for (const std::string& f : figure) std::fprintf(wide, ",%s", f.c_str());
+    std::fprintf(wide, ",%s\n", bench::Quoted(base->figures.front().name).c_str());
+  }
+  std::fclose(wide);
   return true;
 }
 
@@ -216,6 +254,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
     return 1;
   }
-  std::printf("\nCSV: %s/peers_bench.csv (one row per figure)\n", options.out_dir.c_str());
+  std::printf("\nCSV: %s/peers_bench.csv (one row per figure), %s/peers_ratios.csv (each peer ÷ ballbox)\n",
+              options.out_dir.c_str(), options.out_dir.c_str());
   return status;
 }
