@@ -43,6 +43,11 @@ void SweepAndPrune::Rebuild(std::span<const AABB> boxes) {
     endpoints_.push_back({boxes[i].lower.x, i, false});
     endpoints_.push_back({boxes[i].upper.x, i, true});
   }
+  // A fresh list can be in any order: insertion sort would take O(n²) on it. A stable
+  // O(n log n) sort gives the same order insertion sort would (ties keep body order).
+  std::stable_sort(endpoints_.begin(), endpoints_.end(), [](const Endpoint& p, const Endpoint& q) {
+    return p.value < q.value || (p.value == q.value && !p.is_max && q.is_max);
+  });
 }
 
 void SweepAndPrune::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
