@@ -1,5 +1,6 @@
 // Milliseconds per step and stability figures of the seed solver against the substep solver at
 // 1, 2, 4 and 8 substeps, for every stress scene of issue 4, measured in one run.
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -43,9 +44,18 @@ struct Result {
   int steps = 0;
   solver_bench::Setting setting;
   std::vector<solver_bench::Figure> figures;
-  std::vector<double> ms_per_step;  // one per timed repeat
+  std::vector<double> ms_per_step;      // wall time, one per timed repeat
+  std::vector<double> cpu_ms_per_step;  // this thread's CPU time, one per timed repeat
   bool same_state = true;           // every timed run ended in the figure run's state
 };
+
+// CPU time of the calling thread: on a shared machine it leaves out the time other processes
+// held the core, which wall time cannot.
+double ThreadSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -135,7 +145,7 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
     if (!Selected(options, setting)) continue;
     Progress(scene.name + ": " + SolverName(setting) + " " + SubstepsText(setting) + ", figures");
     engine::World world = solver_bench::MakeWorld(scene, setting);
-    Result result{scene.name, steps, setting, scene.measure(world, steps), {}, true};
+    Result result{scene.name, steps, setting, scene.measure(world, steps), {}, {}, true};
     results.push_back(result);
     hashes.push_back(world.StateHash());
   }
@@ -147,10 +157,13 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
       engine::World world = solver_bench::MakeWorld(scene, result.setting);
       // The first step sorts the broad phase from scratch; Box2D's benchmark leaves it out too.
       world.Step();
+      const double cpu_start = ThreadSeconds();
       const Clock::time_point start = Clock::now();
       for (int i = 1; i < steps; ++i) world.Step();
       const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      const double cpu_seconds = ThreadSeconds() - cpu_start;
       result.ms_per_step.push_back(1000.0 * seconds / std::max(1, steps - 1));
+      result.cpu_ms_per_step.push_back(1000.0 * cpu_seconds / std::max(1, steps - 1));
       // The engine is deterministic: a timed run that ended elsewhere did other work.
       result.same_state = result.same_state && world.StateHash() == hashes[k];
     }
@@ -160,14 +173,15 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
 }
 
 void PrintTable(const std::vector<Result>& results, bool quick) {
-  std::printf("| scene | steps | solver | substeps | ms/step median | ms/step min "
+  std::printf("| scene | steps | solver | substeps | ms/step median | ms/step min | CPU ms/step median "
               "| stability figures (test threshold) | verdict |\n");
-  std::printf("|---|---:|---|---:|---:|---:|---|---|\n");
+  std::printf("|---|---:|---|---:|---:|---:|---:|---|---|\n");
   for (const Result& r : results) {
     const double min = *std::min_element(r.ms_per_step.begin(), r.ms_per_step.end());
-    std::printf("| %s | %d | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(), r.steps,
+    std::printf("| %s | %d | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(), r.steps,
                 SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(),
                 Number(Median(r.ms_per_step)).c_str(), Number(min).c_str(),
+                Number(Median(r.cpu_ms_per_step)).c_str(),
                 FiguresText(r.figures).c_str(), quick ? "- (quick)" : Verdict(r.figures).c_str());
   }
 }
@@ -184,19 +198,21 @@ bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
   }
   // Long form, one row per figure, so scenes with different figures share one file.
   std::fprintf(csv, "scene,solver,substeps,steps,repeats,ms_per_step_median,ms_per_step_min,"
-                    "figure,value,unit,threshold,pass\n");
-  std::fprintf(runs, "scene,solver,substeps,steps,repeat,ms_per_step\n");
+                    "cpu_ms_per_step_median,figure,value,unit,threshold,pass\n");
+  std::fprintf(runs, "scene,solver,substeps,steps,repeat,ms_per_step,cpu_ms_per_step\n");
   for (const Result& r : results) {
     const double min = *std::min_element(r.ms_per_step.begin(), r.ms_per_step.end());
     for (const solver_bench::Figure& f : r.figures) {
-      std::fprintf(csv, "\"%s\",%s,%s,%d,%zu,%.6g,%.6g,\"%s\",%.9g,%s,\"%s\",%d\n", r.scene.c_str(),
-                   SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(), r.steps,
-                   r.ms_per_step.size(), Median(r.ms_per_step), min, f.name.c_str(), f.value,
+      std::fprintf(csv, "\"%s\",%s,%s,%d,%zu,%.6g,%.6g,%.6g,\"%s\",%.9g,%s,\"%s\",%d\n",
+                   r.scene.c_str(), SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(),
+                   r.steps, r.ms_per_step.size(), Median(r.ms_per_step), min,
+                   Median(r.cpu_ms_per_step), f.name.c_str(), f.value,
                    f.unit.c_str(), f.threshold.c_str(), f.pass ? 1 : 0);
     }
     for (std::size_t k = 0; k < r.ms_per_step.size(); ++k) {
-      std::fprintf(runs, "\"%s\",%s,%s,%d,%zu,%.6g\n", r.scene.c_str(), SolverName(r.setting).c_str(),
-                   SubstepsText(r.setting).c_str(), r.steps, k, r.ms_per_step[k]);
+      std::fprintf(runs, "\"%s\",%s,%s,%d,%zu,%.6g,%.6g\n", r.scene.c_str(),
+                   SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str(), r.steps, k,
+                   r.ms_per_step[k], r.cpu_ms_per_step[k]);
     }
   }
   std::fclose(csv);
@@ -249,16 +265,23 @@ int main(int argc, char** argv) {
   const int repeats = options.quick ? 1 : options.repeats;
   std::printf("bench_solver%s: contact solvers side by side on the axis-aligned stress scenes, 60 Hz, "
               "sleeping off\n", options.quick ? " --quick (smoke run: figures are not the tests')" : "");
-  std::printf("timing: one thread; ms/step over steps 2..N (step 1 sorts the broad phase from scratch); "
-              "a warm-up run per row measures the figures, then median and min of %d timed run%s\n",
+  std::printf("timing: one thread; ms/step (wall, steady_clock) over steps 2..N (step 1 builds the broad "
+              "phase from scratch); a warm-up run per row measures the figures, then median and min of %d "
+              "timed run%s, settings interleaved; CPU ms/step is the thread's CPU time\n",
               repeats, repeats == 1 ? "" : "s");
   std::printf("machine: %s, %u cores; compiler: %s; build: %s\n", CpuModel().c_str(),
               std::thread::hardware_concurrency(), Compiler().c_str(), BALLBOX_BUILD_TYPE);
   std::printf("load average (1, 5, 15 min) at start: %s, at end: %s\n\n", load_before.c_str(),
               LoadAverage().c_str());
   PrintTable(results, options.quick);
-  std::printf("\nseed: %d velocity iterations and a projection per step; substep: the default "
-              "solver (4 substeps by default)\n", engine::WorldDef{}.velocity_iterations);
+  // The settings left at 0 ("automatic") as the engine resolves them for these scenes.
+  engine::WorldDef seed_def;
+  seed_def.solver = engine::ContactSolver::kSeed;
+  const engine::World seed_world(seed_def);
+  const engine::World substep_world{engine::WorldDef{}};
+  std::printf("\nseed: %d passes of impulses and a projection per step; substep: the default solver, "
+              "%d pass per substep, %d substeps by default\n", seed_world.Def().velocity_iterations,
+              substep_world.Def().velocity_iterations, substep_world.Def().substeps);
 
   int status = 0;
   for (const Result& r : results) {
