@@ -69,7 +69,7 @@ clean:
 
 # make bench: every benchmark program into bench-out/, then docs/benchmarks.md and its plots in
 # docs/img/ (bench/plots/make_page.sh), with Box2D 2.4 and Chipmunk 7 from Debian beside ballbox.
-# About half an hour; never part of make test or CI.
+# About 20 minutes; never part of make test or CI.
 BENCH_BUILD ?= build-benchmarks
 .PHONY: bench
 bench:

@@ -23,13 +23,13 @@ set xtics (1000, 2000, 4000, 8000, 16000, 32000, 64000)
 engines = '"ballbox" "Box2D 2.4.1" "Chipmunk 7.0.3"'
 colors = '#1f77b4 #d62728 #2ca02c'
 slope(s, e) = system(sprintf("awk -F, -v s='%s' -v e='%s' '{gsub(/\"/, \"\")} $1 == s && $2 == e {printf \"%%.2f\", $3}' %s", s, e, slopes))
-pick(s, e, v) = (strcol(1) eq s && strcol(3) eq e) ? v : NaN
+# One engine's rows of one scene (the CSV interleaves engines within a size), so lines join them.
+series(s, e) = sprintf("%s | awk -F'\\t' -v s='%s' -v e='%s' '$1 == s && $3 == e'", csv, s, e)
 
 set multiplot layout 1,2
 do for [s in '"circle pour" "box pile"'] {
-  set title sprintf('%s (r 0.25 m / 0.5 m boxes, nothing turns), whole-world step', s)
-  plot for [i = 1:3] csv skip 1 using (pick(s, word(engines, i), $2)):(pick(s, word(engines, i), $6)) \
-       with linespoints lw 2 pt 7 ps 0.9 lc rgb word(colors, i) \
+  set title sprintf('%s: %s, nothing turns, whole-world step', s, s eq 'box pile' ? 'boxes of 0.5 m' : 'circles of radius 0.25 m')
+  plot for [i = 1:3] series(s, word(engines, i)) using 2:6 with linespoints lw 2 pt 7 ps 0.9 lc rgb word(colors, i) \
        title (slope(s, word(engines, i)) eq '' ? word(engines, i) : sprintf('%s (slope %s)', word(engines, i), slope(s, word(engines, i))))
 }
 unset multiplot
