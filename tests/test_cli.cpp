@@ -19,6 +19,7 @@
 #include "game/scene.h"
 #include "game/script.h"
 #include "game/session.h"
+#include "run_program.h"
 
 namespace fs = std::filesystem;
 
@@ -39,13 +40,6 @@ void RequireUsageError(const std::vector<std::string>& args, const std::string& 
   CHECK(cl.Error().message == message);
 }
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::vector<std::string> Split(const std::string& text, char separator) {
   std::vector<std::string> parts;
   std::string part;
@@ -62,24 +56,14 @@ fs::path ScratchDir(const std::string& name) {
   return dir;
 }
 
-struct Run {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Run = testing::ProgramRun;
+using testing::ReadFile;
 
 // Runs the ballbox binary with `args`, stdout and stderr captured to files beside `dir`.
 Run RunBallbox(const fs::path& dir, const std::vector<std::string>& args) {
   std::string command = std::string("'") + BALLBOX_EXE + "'";
   for (const std::string& a : args) command += " '" + a + "'";
-  const std::string out = dir.string() + ".stdout", err = dir.string() + ".stderr";
-  command += " >'" + out + "' 2>'" + err + "' </dev/null";
-  const int status = std::system(command.c_str());
-  Run run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  run.out = ReadFile(out);
-  run.err = ReadFile(err);
-  return run;
+  return testing::RunShell(command, fs::current_path(), dir);
 }
 
 std::string LastLine(const std::string& text) {

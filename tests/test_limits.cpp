@@ -14,6 +14,7 @@
 #include "game/limits.h"
 #include "game/scene.h"
 #include "game/script.h"
+#include "run_program.h"
 
 namespace fs = std::filesystem;
 
@@ -40,21 +41,10 @@ std::string OneCircle(const std::string& body_keys) {
   return R"({"bodies": [{"shape": "circle", "radius": 0.5, "position": [0, 0])" + body_keys + "}]}";
 }
 
-struct Run {
-  int exit_code = -1;
-  std::string err;
-};
+using Run = testing::ProgramRun;
 
 Run Ballbox(const std::string& args, const fs::path& cwd) {
-  const fs::path err = cwd / "stderr.txt";
-  const std::string command = "cd '" + cwd.string() + "' && '" BALLBOX_EXE "' " + args +
-                              " >/dev/null 2>'" + err.string() + "' </dev/null";
-  const int status = std::system(command.c_str());
-  std::ifstream in(err);
-  Run run{WIFEXITED(status) ? WEXITSTATUS(status) : -1,
-          std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>())};
-  fs::remove(err);
-  return run;
+  return testing::RunShell("'" BALLBOX_EXE "' " + args, cwd, cwd / "captured");
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "game/script.h"
 #include "game/session.h"
 #include "render/window.h"
+#include "run_program.h"
 
 namespace fs = std::filesystem;
 
@@ -33,32 +34,11 @@ fs::path FreshDir(const std::string& name) {
   return dir;
 }
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-struct Run {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Run = testing::ProgramRun;
+using testing::ReadFile;
 
 // Runs a shell command in `cwd` with stdout and stderr captured to files outside it.
-Run Shell(const std::string& command, const fs::path& cwd) {
-  const fs::path out = cwd.parent_path() / (cwd.filename().string() + ".stdout");
-  const fs::path err = cwd.parent_path() / (cwd.filename().string() + ".stderr");
-  const std::string line = "cd '" + cwd.string() + "' && { " + command + " ; } >'" +
-                           out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(line.c_str());
-  Run run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = ReadFile(out);
-  run.err = ReadFile(err);
-  fs::remove(out);
-  fs::remove(err);
-  return run;
-}
+Run Shell(const std::string& command, const fs::path& cwd) { return testing::RunShell(command, cwd, cwd); }
 
 std::string Exe() { return "'" BALLBOX_EXE "'"; }
 

@@ -20,6 +20,7 @@
 #include "render/context.h"
 #include "render/png_writer.h"
 #include "render/renderer.h"
+#include "run_program.h"
 
 namespace fs = std::filesystem;
 
@@ -32,31 +33,12 @@ fs::path FreshDir(const std::string& name) {
   return dir;
 }
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-struct Run {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Run = testing::ProgramRun;
+using testing::ReadFile;
 
 // Runs `ballbox <args>` in `cwd`, stdout and stderr captured to files (so not a terminal).
 Run Ballbox(const std::string& args, const fs::path& cwd) {
-  const fs::path out = cwd / "stdout.txt";
-  const fs::path err = cwd / "stderr.txt";
-  const std::string command = "cd '" + cwd.string() + "' && '" BALLBOX_EXE "' " + args + " >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  Run run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = ReadFile(out);
-  run.err = ReadFile(err);
-  fs::remove(out);
-  fs::remove(err);
-  return run;
+  return testing::RunShell("'" BALLBOX_EXE "' " + args, cwd, cwd / "captured");
 }
 
 std::set<std::string> FileNames(const fs::path& dir) {
