@@ -12,15 +12,6 @@ namespace engine::detail {
 
 namespace {
 
-// How far point `p` of `sc` has moved apart along the normal since the step's start.
-Vec2 AnchorOffset(const SubstepConstraint& sc, const SubstepPoint& p, std::span<const BodyState> states,
-                  const StepStart& start) {
-  const Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
-                     (states[sc.a].position - start.positions[sc.a]);
-  if (!sc.angular) return moved;
-  return moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
-}
-
 // Velocity of B's anchor relative to A's.
 Vec2 RelativeVelocity(const SubstepPoint& p, const BodyState& a, const BodyState& b) {
   return (b.velocity + Cross(b.angular_velocity, p.anchor_b)) -
@@ -102,11 +93,6 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
     }
     constraints->push_back(sc);
   }
-}
-
-double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
-                         std::span<const BodyState> states, const StepStart& start) {
-  return p.base_separation + Dot(AnchorOffset(sc, p, states, start), sc.normal);
 }
 
 void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {

@@ -112,6 +112,7 @@ BodyId World::CreateBody(const BodyDef& def) {
   info.bullet = def.bullet;
   info.linear_damping = def.linear_damping;
   info.angular_damping = def.angular_damping;
+  if (def.linear_damping != 0.0 || def.angular_damping != 0.0) ++damped_bodies_;
   info.drag_coefficient = def.drag_coefficient >= 0.0 ? def.drag_coefficient
                           : shape.type == ShapeType::kCircle ? kCircleDrag
                                                               : kBoxDrag;
@@ -352,7 +353,9 @@ void World::StepSubstep() {
   const double shock_tolerance = 0.5 * g * h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
-    if (CheckFinite()) return;  // the forces overflowed: name the body before contacts spread it
+    // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
+    // alone cannot; the check at the step's end catches anything else.)
+    if (ForcesBeyondGravity() && CheckFinite()) return;
     detail::WarmStart(substep_constraints_, states_);
     for (int pass = 0; pass < def_.velocity_iterations; ++pass) {
       detail::SolveContacts(substep_constraints_, states_, start, inv_h);
@@ -386,6 +389,11 @@ bool World::CheckFinite() {
     }
   }
   return false;
+}
+
+bool World::ForcesBeyondGravity() const {
+  return damped_bodies_ > 0 || !springs_.empty() || def_.fluid_density != 0.0 ||
+         def_.gravitational_constant != 0.0;
 }
 
 void World::UpdateTurned() {

@@ -182,6 +182,8 @@ class World {
   void UpdateSleep();
   /// Records a fault for the first body (in id order) with a non-finite state; true if any.
   bool CheckFinite();
+  /// Whether any force besides gravity acts (damping, drag, springs, gravitation).
+  bool ForcesBeyondGravity() const;
   /// How far each body has turned since the step's start, for the contacts' separations.
   void UpdateTurned();
   /// How far a body may reach within a step (speculative margin), m.
@@ -192,6 +194,7 @@ class World {
   std::vector<BodyState> states_;
   std::vector<BodyInfo> infos_;
   std::vector<SpringDef> springs_;
+  std::size_t damped_bodies_ = 0;  ///< bodies with linear or angular damping
   std::int64_t step_count_ = 0;
   std::optional<NumericFault> fault_;
   // Sleep state per body; `awake` doubles as the "moving" mask the integrators read.
