@@ -42,8 +42,6 @@ struct ContactConstraint {
 /// Substep solver: one point of a contact. Pairs that cannot turn use a single point at the
 /// centres (anchors zero): every point of their manifold has the same Jacobian.
 struct SubstepPoint {
-  Vec2 anchor_a;           ///< from A's centre at the step's start, m
-  Vec2 anchor_b;
   /// Separation at the step's start less Dot(anchor_b − anchor_a, normal), so that adding the
   /// anchors' current offset gives the separation now.
   double base_separation;
@@ -52,24 +50,28 @@ struct SubstepPoint {
   double normal_impulse;   ///< accumulated per substep, warm-started from the last step
   double tangent_impulse;
   double push_impulse;     ///< accumulated this substep by the push-out (split impulse)
+  Vec2 anchor_a;           ///< from A's centre at the step's start, m (zero without turning)
+  Vec2 anchor_b;
 };
 
-/// Substep solver: its working state for one contact.
-struct SubstepConstraint {
+/// Substep solver: its working state for one contact. Laid out for the passes over pairs that
+/// cannot turn, most of a large scene: all they read lies in the first two cache lines (the
+/// header and the first point's scalars); the angular and impact-pass fields come last.
+struct alignas(64) SubstepConstraint {
   BodyId a;
   BodyId b;
   std::uint32_t contact;  ///< index into the world's contacts, to store impulses back
+  int point_count;
+  bool angular;           ///< either body can turn: points carry anchors and angular terms
   Vec2 normal;
   double inv_mass_a;
   double inv_mass_b;
-  double inv_inertia_a;
-  double inv_inertia_b;
   double friction;
+  SubstepPoint points[2];
   double restitution;
   double impact_lag;       ///< m the impact pass asks the bodies to be moved apart after the step
-  bool angular;            ///< either body can turn: points carry anchors and angular terms
-  int point_count;
-  SubstepPoint points[2];
+  double inv_inertia_a;
+  double inv_inertia_b;
 };
 
 }  // namespace engine
