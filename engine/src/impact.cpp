@@ -44,11 +44,9 @@ double FreeSeparation(double s0, double v, double a, int n, double h, double c) 
 // differs from the exact reflection below by ½·a·r²·(1 + e) (r the time left after the impact),
 // second order and below this integrator's own first-order error; it is kept so that scenes
 // with the default integrator step exactly as before.
-// Meeting just at the step's end counts: left to the next step, the contact solver would see the
-// pair touching and absorb the impact before the bounce.
-bool MirroredBounce(double s0, double vn, double a, double e, int n, double h, double slop, Bounce* out) {
+bool MirroredBounce(double s0, double vn, double a, double e, int n, double h, Bounce* out) {
   const double s_free = FreeSeparation(s0, vn, a, n, h, 1.0);
-  if (s_free >= slop) return false;
+  if (s_free >= 0.0) return false;  // no contact within the step: the next step's impact pass sees it
   const double s_end = -e * s_free;
   const double energy = 0.5 * vn * vn - a * s0 + 0.5 * a * h * vn;
   // Solve ½v² + ½·a·h·v − (a·s_end + e²·H) = 0 for the separating root.
@@ -92,8 +90,8 @@ bool BounceAtImpact(double s0, double vn, double a, double e, int n, double h, d
 // integrated in `n` substeps of `h`; nothing when free flight would not bring the pair into
 // contact within this step.
 bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double e, int n, double h,
-                   double slop, Bounce* out) {
-  if (integrator == Integrator::kSemiImplicitEuler) return MirroredBounce(s0, vn, a, e, n, h, slop, out);
+                   Bounce* out) {
+  if (integrator == Integrator::kSemiImplicitEuler) return MirroredBounce(s0, vn, a, e, n, h, out);
   return BounceAtImpact(s0, vn, a, e, n, h, KickOffset(integrator), out);
 }
 
@@ -135,7 +133,7 @@ void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyStat
       const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
       Bounce bounce;
       if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, sc.restitution,
-                         def.substeps, h, def.linear_slop, &bounce)) {
+                         def.substeps, h, &bounce)) {
         continue;
       }
       const double impulse = (bounce.start_velocity - vn) * normal_mass;
