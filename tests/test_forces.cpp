@@ -285,6 +285,52 @@ TEST_CASE("skip: a spring of stiffness 0 and damping 0 changes no bit", "[forces
             {.after = [](engine::World* w) { w->AddSpring(Spring(2, {0.2, 0.1}, 4, {-0.3, 0.2}, 1.0, 5.0, 0.0)); }});
 }
 
+TEST_CASE("skip: springs with nothing to pull, among springs that pull, change no bit", "[forces][skip]") {
+  // The force pass sees only the springs that act, in the order they were added: a chain of
+  // three bodies hung from the world, with idle springs before, between and after the real ones
+  // (and one to a static body), steps bit for bit like the chain alone. The control, one of them
+  // given a stiffness, must differ.
+  auto run = [](Integrator integrator, bool rotation, double idle_stiffness) {
+    engine::WorldDef def;
+    def.integrator = integrator;
+    def.rotation = rotation;
+    engine::World plain(def), other(def);
+    for (engine::World* w : {&plain, &other}) {
+      w->CreateBody(testing::Static(testing::Box({0, -0.5}, {12, 1})));
+      for (int i = 0; i < 3; ++i) w->CreateBody(testing::WithMass(testing::Box({1.0 * i, 4 - 1.0 * i}, {0.6, 0.3}), 1.0));
+    }
+    const engine::SpringDef pulls[] = {Spring(1, {0.2, 0.1}, std::nullopt, {0, 6}, 1.5, 40.0, 0.5),
+                                       Spring(1, {-0.3, 0}, 2, {0.1, 0.1}, 1.0, 25.0, 0.0),
+                                       Spring(2, {0, 0}, 3, {0.3, -0.1}, 1.2, 0.0, 2.0)};
+    const engine::SpringDef idle[] = {Spring(3, {0.1, 0}, std::nullopt, {4, 4}, 0.5, idle_stiffness, 0.0),
+                                      Spring(2, {0.2, -0.1}, 1, {0, 0}, 2.0, 0.0, 0.0),
+                                      Spring(3, {0, 0.1}, 0, {1, 0.5}, 0.0, 0.0, 0.0),
+                                      Spring(1, {0, 0}, 3, {0, 0}, 3.0, 0.0, 0.0)};
+    for (const engine::SpringDef& spring : pulls) plain.AddSpring(spring);
+    other.AddSpring(idle[0]);
+    other.AddSpring(pulls[0]);
+    other.AddSpring(idle[1]);
+    other.AddSpring(pulls[1]);
+    other.AddSpring(idle[2]);
+    other.AddSpring(pulls[2]);
+    other.AddSpring(idle[3]);
+    bool same = true;
+    for (int step = 0; step < 240; ++step) {
+      plain.Step();
+      other.Step();
+      same = same && plain.StateHash() == other.StateHash();
+    }
+    return same;
+  };
+  for (bool rotation : {false, true}) {
+    for (Integrator integrator : kIntegrators) {
+      INFO(Name(integrator) << (rotation ? ", rotation" : ", no rotation"));
+      CHECK(run(integrator, rotation, 0.0));
+      CHECK_FALSE(run(integrator, rotation, 5.0));
+    }
+  }
+}
+
 TEST_CASE("skip: linear and angular damping of 0, or with nothing to damp, change no bit", "[forces][skip]") {
   // Given as 0 on moving bodies (the default, spelled out), and given at all on static bodies,
   // which never move.

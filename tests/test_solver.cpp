@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bench/work_precision_scenarios.h"
 #include "engine/world.h"
 #include "world_builders.h"
 
@@ -13,7 +14,13 @@ using testing::Static;
 using testing::WithMass;
 using testing::WithMaterial;
 
+namespace wp = work_precision;
+
 namespace {
+
+constexpr engine::Integrator kIntegrators[] = {
+    engine::Integrator::kSemiImplicitEuler, engine::Integrator::kExplicitEuler, engine::Integrator::kVelocityVerlet,
+    engine::Integrator::kMidpoint, engine::Integrator::kRungeKutta4};
 
 // Apex heights (above the contact height) of a ball of restitution e dropped from h0 onto a
 // static floor, one per flight after each bounce, sampled at the end of every step.
@@ -58,6 +65,77 @@ TEST_CASE("a ball dropped from 10 m bounces to e^2n·h within 0.5% for five boun
       const double h = def.dt / def.substeps;
       CHECK(apexes[n] <= expected + 9.81 * h * h / 8);
     }
+  }
+}
+
+TEST_CASE("S7 at 60 Hz: every integrator bounces to e^2n·h0 within 0.5% and never higher", "[solver][integrators]") {
+  // accuracy.md S7: h0 = 1 m, e = 0.8. The impact pass places each bounce on the integrator's own
+  // free flight, so no method's bounce may gain what another's would lose.
+  const double e = 0.8, h0 = 1.0;
+  for (engine::Integrator integrator : kIntegrators) {
+    for (int substeps : {1, 4}) {
+      engine::WorldDef def;
+      def.gravity = {0, -9.81};
+      def.integrator = integrator;
+      def.substeps = substeps;
+      const std::vector<double> apexes = BounceApexes(e, h0, 5, def);
+      REQUIRE(apexes.size() == 5);
+      const double h = def.dt / substeps;
+      for (std::size_t n = 0; n < apexes.size(); ++n) {
+        const double expected = std::pow(e, 2.0 * (n + 1)) * h0;
+        INFO("integrator " << static_cast<int>(integrator) << ", " << substeps << " substeps, bounce " << n + 1
+                           << ": apex " << apexes[n] << " m, e^2n·h0 = " << expected);
+        CHECK(std::abs(apexes[n] - expected) / expected < 0.005);
+        // Every method's step points lie on a parabola of the right energy (the Euler pair's up to
+        // g·h²/8 above the true apex); a sampled apex can only fall short of it.
+        CHECK(apexes[n] <= expected + 9.81 * h * h / 8);
+      }
+    }
+  }
+}
+
+TEST_CASE("S7: Verlet, midpoint and RK4 bounce exactly (time of impact), at any step", "[solver][integrators]") {
+  // They integrate constant acceleration exactly, and the impact pass reflects that parabola
+  // at its root: the whole trajectory is the closed form's to rounding.
+  const wp::Scenario s7 = wp::Scenarios().back();
+  REQUIRE(s7.id == "S7");
+  for (engine::Integrator integrator :
+       {engine::Integrator::kVelocityVerlet, engine::Integrator::kMidpoint, engine::Integrator::kRungeKutta4}) {
+    for (int rate : {30, 60, 240, 960}) {
+      INFO("integrator " << static_cast<int>(integrator) << ", h = 1/" << rate);
+      CHECK(wp::Measure(s7, integrator, rate).position_error < 1e-9);
+    }
+  }
+}
+
+TEST_CASE("S7: the Euler pair's trajectory converges at first order, never below the floor", "[solver][integrators]") {
+  // Their step points follow the exact flight shifted by h/2 in time, so the largest position
+  // error is about the impact speed times h/2, at every h. Bounces used to be triggered when free
+  // flight would end within the slop (5 mm) of the floor, and then mirrored to e·s below it: an
+  // error of up to (1 + e)·slop ≈ 9 mm that did not shrink with h.
+  const wp::Scenario s7 = wp::Scenarios().back();
+  REQUIRE(s7.id == "S7");
+  const double impact_speed = std::sqrt(2 * wp::kG * wp::kBounceHeight);
+  for (engine::Integrator integrator : {engine::Integrator::kSemiImplicitEuler, engine::Integrator::kExplicitEuler}) {
+    for (int rate : {60, 120, 240, 480, 960, 1920, 3840}) {
+      const wp::Figures f = wp::Measure(s7, integrator, rate);
+      const double shift = 0.5 * impact_speed / rate;
+      INFO("integrator " << static_cast<int>(integrator) << ", h = 1/" << rate << ": error " << f.position_error
+                         << " m, speed·h/2 = " << shift << " m");
+      CHECK(f.position_error >= 0.9 * shift);
+      // Semi-implicit Euler within 1 %; explicit Euler up to 12 % more at some h (1/480 s), where the
+      // contact solver's speculative bound (which assumes positions move with the kicked velocity)
+      // stops the ball a little early on the step before an impact.
+      CHECK(f.position_error <= (integrator == engine::Integrator::kSemiImplicitEuler ? 1.01 : 1.2) * shift);
+    }
+    engine::World world = s7.build(integrator, 1.0 / 3840);
+    double lowest = 1.0;
+    for (int step = 0; step < 3 * 3840; ++step) {
+      world.Step();
+      lowest = std::min(lowest, s7.observed(world).y);
+    }
+    INFO("integrator " << static_cast<int>(integrator) << ": lowest contact height " << lowest << " m");
+    CHECK(lowest >= 0.0);
   }
 }
 

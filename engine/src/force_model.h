@@ -13,7 +13,7 @@ struct ForceModel {
  public:
   const WorldDef& def;
   std::span<const BodyInfo> infos;
-  std::span<const SpringDef> springs;
+  std::span<const SpringDef> springs;    ///< the springs that act (stiffness or damping not 0)
   std::span<const std::uint8_t> moving;  ///< bodies that are integrated (awake and dynamic)
   bool rotation;                         ///< torques turn into angular acceleration
 

@@ -18,25 +18,82 @@ struct Bounce {
   double lag;             ///< separation to add after the step
 };
 
-// The bounce of a pair approaching at `vn` from separation `s0` under relative acceleration `a`,
-// integrated in `n` substeps of `h`; nothing when the pair would not come within `slop` of each
-// other in this step. Meeting just at the step's end counts: left to the next step, the contact
-// solver would see the pair touching and absorb the impact before the bounce.
-bool ComputeBounce(double s0, double vn, double a, double e, int n, double h, double slop,
-                   Bounce* out) {
-  // Where free flight would take the pair by the end of the step (semi-implicit Euler).
-  const double kicks = h * h * n * (n + 1) / 2.0;
-  const double s_free = s0 + n * h * vn + a * kicks;
-  if (s_free >= slop) return false;
-  const double s_end = -e * s_free;  // mirrored: where a bounce at the moment of impact ends up
+// Under a constant acceleration a, every integrator puts a body at its step points on a parabola
+// s0 + w·t + ½·a·t², whose slope w is the velocity v offset by c halves of a kick, w = v + ½·c·a·h:
+// c = 1 for semi-implicit Euler (it moves with the velocity after the kick), −1 for explicit
+// Euler (before it), 0 for velocity Verlet, midpoint and RK4, which follow the parabola exactly.
+// ½·w² − a·s is what each conserves in free flight (for semi-implicit Euler that is its modified
+// energy H = ½v² − a·s + ½·a·h·v, up to a constant).
+double KickOffset(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler: return 1.0;
+    case Integrator::kExplicitEuler: return -1.0;
+    case Integrator::kVelocityVerlet:
+    case Integrator::kMidpoint:
+    case Integrator::kRungeKutta4: return 0.0;
+  }
+  return 0.0;
+}
+
+// The separation after n substeps of h of free flight from (s0, v): s0 + n·h·v + a·h²·n(n + c)/2.
+double FreeSeparation(double s0, double v, double a, int n, double h, double c) {
+  return s0 + n * h * v + a * (h * h * n * (n + c) / 2.0);
+}
+
+// Semi-implicit Euler: the bounce keeps e²·H, placed at the mirrored position −e·s_free. This
+// differs from the exact reflection below by ½·a·r²·(1 + e) (r the time left after the impact),
+// second order and below this integrator's own first-order error (S7's largest error is the
+// same to three digits either way); it is kept so that bounces under the default integrator keep
+// their bits (the default scene's golden state hash).
+bool MirroredBounce(double s0, double vn, double a, double e, int n, double h, Bounce* out) {
+  const double s_free = FreeSeparation(s0, vn, a, n, h, 1.0);
+  if (s_free >= 0.0) return false;  // no contact within the step: the next step's impact pass sees it
+  const double s_end = -e * s_free;
   const double energy = 0.5 * vn * vn - a * s0 + 0.5 * a * h * vn;
   // Solve ½v² + ½·a·h·v − (a·s_end + e²·H) = 0 for the separating root.
   const double half_ah = 0.5 * a * h;
   const double discriminant = half_ah * half_ah + 2.0 * (a * s_end + e * e * energy);
   const double v_end = -half_ah + std::sqrt(std::max(discriminant, 0.0));
   out->start_velocity = v_end - a * n * h;
-  out->lag = s_end - (s0 + n * h * out->start_velocity + a * kicks);
+  out->lag = s_end - FreeSeparation(s0, out->start_velocity, a, n, h, 1.0);
   return true;
+}
+
+// Every other integrator: the parabola reflected where it meets s = 0 (its first root τ in the
+// step), leaving at −e times the slope it arrives with. For Verlet, midpoint and RK4 under
+// constant acceleration this is the exact bounce, to rounding. A pair already touching bounces
+// at once, from where it is.
+bool BounceAtImpact(double s0, double vn, double a, double e, int n, double h, double c, Bounce* out) {
+  const double step = n * h;
+  const double w0 = vn + 0.5 * c * a * h;
+  double tau = 0.0, w_impact = w0, s_impact = s0;
+  if (s0 > 0.0) {
+    // First root of s0 + w0·t + ½·a·t², in the form that does not cancel: t = 2·s0 / (√D − w0).
+    const double discriminant = w0 * w0 - 2.0 * a * s0;
+    if (discriminant < 0.0) return false;  // the pair turns back before it meets
+    const double root = std::sqrt(discriminant);
+    if (root - w0 <= 0.0) return false;
+    tau = 2.0 * s0 / (root - w0);
+    if (tau >= step) return false;  // no contact within the step: the next step's impact pass sees it
+    w_impact = -root;
+    s_impact = 0.0;
+  }
+  if (w_impact >= 0.0) return false;
+  const double rest = step - tau;
+  const double w_end = -e * w_impact + a * rest;
+  const double s_end = s_impact - e * w_impact * rest + 0.5 * a * rest * rest;
+  out->start_velocity = w_end - 0.5 * c * a * h - a * step;
+  out->lag = s_end - FreeSeparation(s0, out->start_velocity, a, n, h, c);
+  return true;
+}
+
+// The bounce of a pair approaching at `vn` from separation `s0` under relative acceleration `a`,
+// integrated in `n` substeps of `h`; nothing when free flight would not bring the pair into
+// contact within this step.
+bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double e, int n, double h,
+                   Bounce* out) {
+  if (integrator == Integrator::kSemiImplicitEuler) return MirroredBounce(s0, vn, a, e, n, h, out);
+  return BounceAtImpact(s0, vn, a, e, n, h, KickOffset(integrator), out);
 }
 
 }  // namespace
@@ -76,8 +133,8 @@ void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyStat
       }
       const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
       Bounce bounce;
-      if (!ComputeBounce(separation, vn, relative_acceleration, sc.restitution,
-                         def.substeps, h, def.linear_slop, &bounce)) {
+      if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, sc.restitution,
+                         def.substeps, h, &bounce)) {
         continue;
       }
       const double impulse = (bounce.start_velocity - vn) * normal_mass;

@@ -17,10 +17,12 @@ namespace engine::detail {
 /// al., "Reflections on Simultaneous Impact", SIGGRAPH 2012, discuss why simultaneous models
 /// cannot do this).
 ///
-/// The bounce keeps e² of the relative motion's energy exactly, as the integrator sees it:
-/// semi-implicit Euler with step h under a constant relative acceleration a conserves
-/// H = ½v² − a·s + ½·a·h·v (s the separation) in free flight, so mapping H to e²·H at the mirrored
-/// position −e·s makes every apex e² times the last, free of the step's phase.
+/// The bounce keeps e² of the relative motion's energy exactly, as the integrator sees it: under
+/// a constant relative acceleration a, each integrator's free flight conserves ½w² − a·s, with
+/// w = v + ½·c·a·h (c = 1 semi-implicit Euler, −1 explicit Euler, 0 the methods exact for
+/// constant acceleration), so every apex is e² times the last, free of the step's phase and of
+/// the integrator. The bounce is the reflection of that flight at its time of impact, or for
+/// semi-implicit Euler e²·H at the mirrored position −e·s (impact.cpp says why).
 /// `accelerations` holds each body's acceleration (zero for static and sleeping ones).
 void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def);

@@ -57,8 +57,7 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> s
     join(c.a, c.b);
   }
   for (const SpringDef& spring : springs) {
-    const bool acts = spring.stiffness != 0.0 || spring.damping != 0.0;
-    if (acts && spring.body_b && !infos[spring.body_a].is_static && !infos[*spring.body_b].is_static) {
+    if (spring.body_b && !infos[spring.body_a].is_static && !infos[*spring.body_b].is_static) {
       join(spring.body_a, *spring.body_b);
     }
   }

@@ -19,8 +19,8 @@ struct SleepState {
 
 /// After a step: counts resting time (slow, and held by a contact or pushed by no force:
 /// `accelerations` are each body's free accelerations) and puts to sleep every island (bodies
-/// linked by touching contacts or springs, static bodies excluded) whose bodies have all rested
-/// for `time_to_sleep`.
+/// linked by touching contacts or `springs`, the ones that act, static bodies excluded) whose
+/// bodies have all rested for `time_to_sleep`.
 void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep);

@@ -155,6 +155,7 @@ void World::AddSpring(const SpringDef& def) {
               IsNonNegativeFinite(def.damping),
           "AddSpring: rest length, stiffness and damping must be finite and >= 0");
   springs_.push_back(def);
+  if (def.stiffness != 0.0 || def.damping != 0.0) acting_springs_.push_back(def);
 }
 
 AABB World::BodyBounds(BodyId id) const {
@@ -233,9 +234,8 @@ void World::FindCandidatePairs() {
     }
   }
   // So does a spring (one that acts) from a moving body.
-  for (const SpringDef& spring : springs_) {
+  for (const SpringDef& spring : acting_springs_) {
     if (!spring.body_b || awake_[spring.body_a] == awake_[*spring.body_b]) continue;
-    if (spring.stiffness == 0.0 && spring.damping == 0.0) continue;
     const BodyId sleeper = awake_[spring.body_a] ? *spring.body_b : spring.body_a;
     if (!infos_[sleeper].is_static) detail::WakeIsland(sleeper, infos_, {rest_time_, awake_, island_});
   }
@@ -305,7 +305,7 @@ void World::BuildContacts() {
 }
 
 detail::ForceModel World::Forces() const {
-  return {def_, infos_, springs_, awake_, def_.rotation};
+  return {def_, infos_, acting_springs_, awake_, def_.rotation};
 }
 
 void World::StepSeed() {
@@ -392,7 +392,7 @@ bool World::CheckFinite() {
 }
 
 bool World::ForcesBeyondGravity() const {
-  return damped_bodies_ > 0 || !springs_.empty() || def_.fluid_density != 0.0 ||
+  return damped_bodies_ > 0 || !acting_springs_.empty() || def_.fluid_density != 0.0 ||
          def_.gravitational_constant != 0.0;
 }
 
@@ -406,7 +406,7 @@ void World::UpdateSleep() {
   accelerations_.resize(states_.size());
   angular_accelerations_.resize(states_.size());
   Forces().Evaluate(states_, accelerations_, angular_accelerations_);
-  detail::UpdateSleep(contacts_, springs_, accelerations_, states_, infos_, def_,
+  detail::UpdateSleep(contacts_, acting_springs_, accelerations_, states_, infos_, def_,
                       {rest_time_, awake_, island_});
 }
 

@@ -195,6 +195,9 @@ class World {
   std::vector<BodyInfo> infos_;
   std::vector<SpringDef> springs_;
   std::size_t damped_bodies_ = 0;  ///< bodies with linear or angular damping
+  /// The springs that pull at all (stiffness or damping not 0), in the order added: the only ones
+  /// the force evaluations, waking and sleep see, so a spring with nothing to pull costs nothing.
+  std::vector<SpringDef> acting_springs_;
   std::int64_t step_count_ = 0;
   std::optional<NumericFault> fault_;
   // Sleep state per body; `awake` doubles as the "moving" mask the integrators read.
