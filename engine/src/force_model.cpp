@@ -41,7 +41,7 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
     angular[i] = 0.0;
   }
 
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && (damping || def.fluid_density != 0.0); ++i) {
     if (!moving[i]) continue;
     const BodyInfo& info = infos[i];
     const BodyState& s = states[i];

@@ -16,6 +16,7 @@ struct ForceModel {
   std::span<const SpringDef> springs;    ///< the springs that act (stiffness or damping not 0)
   std::span<const std::uint8_t> moving;  ///< bodies that are integrated (awake and dynamic)
   bool rotation;                         ///< torques turn into angular acceleration
+  bool damping;                          ///< some body has linear or angular damping
 
   /// Linear and angular acceleration of every body in `states` (zero for bodies not moving).
   void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,

@@ -109,7 +109,7 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
   // takes an implicit Euler step with the rate from the step's start instead,
   // v' = (v + h·a_other) / (1 + h·rate), stable at any h and at rest exactly at terminal speed.
   constexpr double kStiffDrag = 0.5;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && (forces.damping || forces.def.fluid_density != 0.0); ++i) {
     if (!forces.moving[i]) continue;
     if (forces.def.fluid_density == 0.0 && forces.infos[i].linear_damping == 0.0) continue;  // no drag
     // Judged at the start and after one kick: a body at rest gains speed within the step.

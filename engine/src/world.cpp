@@ -305,7 +305,7 @@ void World::BuildContacts() {
 }
 
 detail::ForceModel World::Forces() const {
-  return {def_, infos_, acting_springs_, awake_, def_.rotation};
+  return {def_, infos_, acting_springs_, awake_, def_.rotation, damped_bodies_ > 0};
 }
 
 void World::StepSeed() {
