@@ -211,14 +211,23 @@ TEST_CASE("a sliding box stops after v²/(2μg) within v·dt, then stays put", "
 
 TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][friction]") {
   // A steady sideways push of 0.9·μ·m·g, as gravity tilted so: tan θ = 0.9·μ < μ (S10, static).
+  // Every integrator: one that moves a held body by its free drift would creep 22 mm in 2 s.
   const double mu = 0.6, g = 9.81;
   engine::WorldDef def;
   def.gravity = {0.9 * mu * g, -g};
-  engine::World world(def);
-  world.CreateBody(WithMaterial(Static(Box({0, -0.5}, {20, 1})), 0, mu));
-  world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
-  for (int i = 0; i < 120; ++i) world.Step();
-  CHECK(std::abs(world.State(1).position.x) <= 1e-9);
+  for (const engine::Integrator integrator : kIntegrators) {
+    for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSeed}) {
+      engine::WorldDef held = def;
+      held.integrator = integrator;
+      held.solver = solver;
+      engine::World world(held);
+      world.CreateBody(WithMaterial(Static(Box({0, -0.5}, {20, 1})), 0, mu));
+      world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
+      for (int i = 0; i < 120; ++i) world.Step();
+      INFO("integrator " << static_cast<int>(integrator) << ", solver " << static_cast<int>(solver));
+      CHECK(std::abs(world.State(1).position.x) <= 1e-9);
+    }
+  }
 
   // The same push a little over μmg slides, at (1.1 − 1)·μ·g.
   engine::WorldDef slipping = def;
@@ -228,6 +237,32 @@ TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][
   sliding.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
   for (int i = 0; i < 60; ++i) sliding.Step();
   CHECK(sliding.State(1).velocity.x == Approx(0.1 * mu * g * 1.0).epsilon(1e-9));
+}
+
+TEST_CASE("a box resting on the floor stays on it with every integrator, not hovering", "[solver][integrators]") {
+  // Free drift moves a body by v₀·h + ½·a·h² (Verlet, midpoint, RK4); the contact cancels the
+  // gravity kick, so a body moved by its drift and not by its velocity would rise ½·g·h² a step
+  // and hover 1.4 mm over the floor, then fall back at every step.
+  for (const engine::Integrator integrator : kIntegrators) {
+    engine::WorldDef def;
+    def.integrator = integrator;
+    def.sleeping = false;
+    engine::World world(def);
+    world.CreateBody(Static(Box({0, -0.5}, {20, 1})));
+    world.CreateBody(Box({0, 0.5}, {1, 1}));
+    double highest = 0.5, lowest = 0.5, fastest = 0;
+    for (int i = 0; i < 120; ++i) {
+      world.Step();
+      highest = std::max(highest, world.State(1).position.y);
+      lowest = std::min(lowest, world.State(1).position.y);
+      fastest = std::max(fastest, engine::Length(world.State(1).velocity));
+    }
+    INFO("integrator " << static_cast<int>(integrator) << ": y in [" << lowest << ", " << highest
+                       << "], fastest " << fastest << " m/s");
+    CHECK(highest - 0.5 <= 1e-9);
+    CHECK(0.5 - lowest <= 1e-9);
+    CHECK(fastest <= 1e-9);
+  }
 }
 
 TEST_CASE("resting bodies fall asleep after half a second and stop costing work", "[solver][sleep]") {

@@ -129,12 +129,12 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 }
 
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
-                std::span<const std::uint8_t> moving, bool rotation, const FreeMotion& m,
-                double h) {
+                std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
+                bool rotation, const FreeMotion& m, double h) {
   for (std::size_t i = 0; i < states.size(); ++i) {
     if (!moving[i]) continue;
     BodyState& s = states[i];
-    if (integrator == Integrator::kSemiImplicitEuler) {
+    if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {
       s.position += s.velocity * h;
       if (rotation) s.angle += s.angular_velocity * h;
     } else {

@@ -33,9 +33,13 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
               double h, FreeMotion* motion);
 
 /// Moves every moving body: by h·drift, plus h times whatever the contacts changed its velocity
-/// by since FreeStep. Semi-implicit Euler moves by h·v exactly.
+/// by since FreeStep. Semi-implicit Euler moves by h·v exactly, and so does a body a contact
+/// pushed this step (`pushed`; empty means none): a contact's impulse acts at the start of the
+/// step, so h·v is where it leaves the body. The higher-order drift would move a body held at
+/// rest by its contacts by −½·a·h² a step (Verlet, midpoint, RK4; −a·h² for explicit Euler):
+/// hovering over the floor and creeping against a push that friction holds.
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
-                std::span<const std::uint8_t> moving, bool rotation, const FreeMotion& motion,
-                double h);
+                std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
+                bool rotation, const FreeMotion& motion, double h);
 
 }  // namespace engine::detail

@@ -314,7 +314,8 @@ void World::StepSeed() {
   if (CheckFinite()) return;  // the forces overflowed: name the body before contacts spread it
   detail::PrepareContacts(contacts_, states_, infos_, def_.restitution_threshold, &seed_constraints_);
   detail::SolveVelocities(seed_constraints_, states_, infos_, def_.velocity_iterations);
-  detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, dt);
+  MarkPushed(seed_constraints_);
+  detail::MoveBodies(def_.integrator, states_, awake_, pushed_, def_.rotation, *free_motion_, dt);
   detail::CorrectPositions(contacts_, positions_before_, states_, infos_, def_.linear_slop,
                            def_.position_correction);
 }
@@ -364,7 +365,8 @@ void World::StepSubstep() {
       detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
                              def_.linear_slop, up, shock_tolerance);
     }
-    detail::MoveBodies(def_.integrator, states_, awake_, def_.rotation, *free_motion_, h);
+    MarkPushed(substep_constraints_);
+    detail::MoveBodies(def_.integrator, states_, awake_, pushed_, def_.rotation, *free_motion_, h);
     if (def_.rotation) UpdateTurned();
     detail::PushOut(substep_constraints_, states_, start, push, push_out_rate,
                     def_.max_push_out_speed, def_.linear_slop);
@@ -389,6 +391,18 @@ bool World::CheckFinite() {
     }
   }
   return false;
+}
+
+template <typename Constraint>
+void World::MarkPushed(const std::vector<Constraint>& constraints) {
+  pushed_.clear();
+  if (def_.integrator == Integrator::kSemiImplicitEuler) return;  // it moves every body by h·v
+  pushed_.assign(states_.size(), 0);
+  for (const Constraint& c : constraints) {
+    for (int k = 0; k < c.point_count; ++k) {
+      if (c.points[k].normal_impulse > 0.0) pushed_[c.a] = pushed_[c.b] = 1;
+    }
+  }
 }
 
 bool World::ForcesBeyondGravity() const {

@@ -182,6 +182,10 @@ class World {
   void UpdateSleep();
   /// Records a fault for the first body (in id order) with a non-finite state; true if any.
   bool CheckFinite();
+  /// Sets `pushed_` to the bodies a contact pushed (positive normal impulse), for the
+  /// integrators that move bodies by more than h·v; empty for semi-implicit Euler.
+  template <typename Constraint>
+  void MarkPushed(const std::vector<Constraint>& constraints);
   /// Whether any force besides gravity acts (damping, drag, springs, gravitation).
   bool ForcesBeyondGravity() const;
   /// How far each body has turned since the step's start, for the contacts' separations.
@@ -215,6 +219,7 @@ class World {
   std::unique_ptr<detail::FreeMotion> free_motion_;
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;
+  std::vector<std::uint8_t> pushed_;
   std::vector<Vec2> push_velocities_;
   std::vector<double> push_angular_velocities_;
   std::vector<double> angles_before_;
