@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_common.h"
 #include "bench/stress_scenes.h"
 #include "engine/broadphase.h"
 #include "engine/world.h"
@@ -28,6 +29,12 @@
 #endif
 
 namespace {
+
+using bench::Median;
+using bench::CpuModel;
+using bench::LoadAverage;
+using bench::Compiler;
+using bench::Progress;
 
 using Clock = std::chrono::steady_clock;
 using engine::AABB;
@@ -233,23 +240,11 @@ double ThreadSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 void Mix(std::uint64_t* hash, std::uint64_t value) {
   for (int k = 0; k < 8; ++k) {
     *hash ^= (value >> (8 * k)) & 0xff;
     *hash *= 1099511628211ull;
   }
-}
-
-// Progress goes to a terminal only, so redirected output holds the results alone.
-void Progress(const std::string& text) {
-  static const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal) std::fprintf(stderr, "\r\033[K%s", text.c_str());
 }
 
 // One scene at one size: every choice steps its own copy of the same deterministic scene, timed
@@ -454,31 +449,6 @@ std::vector<WorldResult> MeasureWorld(const Options& options) {
   }
   Progress("");
   return results;
-}
-
-std::string CpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
-
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
-std::string Compiler() {
-#if defined(__clang__)
-  return std::string("clang ") + __VERSION__;
-#elif defined(__GNUC__)
-  return std::string("g++ ") + __VERSION__;
-#else
-  return __VERSION__;
-#endif
 }
 
 bool ParseSizes(const std::string& text, std::vector<std::size_t>* sizes) {

@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_common.h"
 #include "game/commands.h"
 #include "game/frame_sequence.h"
 #include "game/session.h"
@@ -19,6 +20,10 @@
 #include "render/renderer.h"
 
 namespace {
+
+using bench::Median;
+using bench::CpuModel;
+using bench::LoadAverage;
 
 using Clock = std::chrono::steady_clock;
 
@@ -33,27 +38,6 @@ struct Settings {
 
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
-}
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string CpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
-
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
 }
 
 std::uintmax_t FolderBytes(const std::string& dir) {

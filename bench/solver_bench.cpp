@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_common.h"
 #include "bench/solver_scenes.h"
 #include "engine/world.h"
 
@@ -23,6 +24,13 @@
 #endif
 
 namespace {
+
+using bench::Median;
+using bench::CpuModel;
+using bench::LoadAverage;
+using bench::Compiler;
+using bench::Number;
+using bench::Progress;
 
 using Clock = std::chrono::steady_clock;
 
@@ -57,50 +65,12 @@ double ThreadSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string CpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
-
-std::string LoadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
-std::string Compiler() {
-#if defined(__clang__)
-  return std::string("clang ") + __VERSION__;
-#elif defined(__GNUC__)
-  return std::string("g++ ") + __VERSION__;
-#else
-  return __VERSION__;
-#endif
-}
-
 std::string SolverName(solver_bench::Setting s) {
   return s.solver == engine::ContactSolver::kSeed ? "seed" : "substep";
 }
 
 std::string SubstepsText(solver_bench::Setting s) {
   return s.solver == engine::ContactSolver::kSeed ? "-" : std::to_string(s.substeps);
-}
-
-std::string Number(double value) {
-  if (std::isnan(value)) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
 }
 
 std::string FiguresText(const std::vector<solver_bench::Figure>& figures) {
@@ -125,12 +95,6 @@ bool Selected(const Options& options, solver_bench::Setting s) {
   if (!options.solver_filter.empty() && options.solver_filter != SolverName(s)) return false;
   return s.solver == engine::ContactSolver::kSeed || options.substeps_filter == 0 ||
          options.substeps_filter == s.substeps;
-}
-
-// Progress goes to a terminal only, so redirected output holds the results alone.
-void Progress(const std::string& text) {
-  static const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal) std::fprintf(stderr, "\r\033[K%s", text.c_str());
 }
 
 // One scene: a warm-up run per setting that also measures the figures (outside any timed
