@@ -15,8 +15,8 @@ namespace engine::detail {
 
 /// A direct solve applies to an island (bodies linked by contacts between turning pairs, static
 /// bodies excluded) that holds a contact across which one body is at least this many times
-/// heavier than the other. Box2D's manual names 10:1 as the ratio beyond which its solver
-/// struggles; below it Gauss-Seidel holds a rotating column of three boxes within 0.5 mm.
+/// heavier than the other. Box2D's manual (Limitations) says stacking degrades past 10:1; below
+/// it Gauss-Seidel holds a rotating column of three boxes within 0.5 mm.
 inline constexpr double kDirectMassRatio = 10.0;
 
 /// Islands with more rows than this are left to Gauss-Seidel: the dense factorisation grows
