@@ -42,6 +42,7 @@ struct Options {
   std::string solver_filter;  // "seed", "substep" or empty for both
   int substeps_filter = 0;    // 0: every substep count
   std::string out_dir = "bench-out";
+  bool rotation = false;      // the scenes with turning bodies
 };
 
 // Quick mode: enough steps to touch every phase (contacts form in the first step), one repeat.
@@ -108,7 +109,7 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
   for (solver_bench::Setting setting : solver_bench::Settings()) {
     if (!Selected(options, setting)) continue;
     Progress(scene.name + ": " + SolverName(setting) + " " + SubstepsText(setting) + ", figures");
-    engine::World world = solver_bench::MakeWorld(scene, setting);
+    engine::World world = solver_bench::MakeWorld(scene, setting, options.rotation);
     Result result{scene.name, steps, setting, scene.measure(world, steps), {}, {}, true};
     results.push_back(result);
     hashes.push_back(world.StateHash());
@@ -118,7 +119,7 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
       Result& result = results[k];
       Progress(scene.name + ": " + SolverName(result.setting) + " " + SubstepsText(result.setting) +
                ", run " + std::to_string(r + 1) + "/" + std::to_string(repeats));
-      engine::World world = solver_bench::MakeWorld(scene, result.setting);
+      engine::World world = solver_bench::MakeWorld(scene, result.setting, options.rotation);
       // The first step sorts the broad phase from scratch; Box2D's benchmark leaves it out too.
       world.Step();
       const double cpu_start = ThreadSeconds();
@@ -203,9 +204,11 @@ bool ParseArgs(int argc, char** argv, Options& options) {
       options.substeps_filter = std::max(0, std::atoi(argv[++i]));
     } else if (arg == "--out" && has_value) {
       options.out_dir = argv[++i];
+    } else if (arg == "--rotation") {
+      options.rotation = true;
     } else {
       std::fprintf(stderr,
-                   "usage: bench_solver [--quick] [--repeats R] [--out DIR]\n"
+                   "usage: bench_solver [--quick] [--repeats R] [--out DIR] [--rotation]\n"
                    "                    [--scene TEXT] [--solver seed|substep] [--substeps N] [--steps N]\n");
       return false;
     }
@@ -227,8 +230,9 @@ int main(int argc, char** argv) {
   }
 
   const int repeats = options.quick ? 1 : options.repeats;
-  std::printf("bench_solver%s: contact solvers side by side on the axis-aligned stress scenes, 60 Hz, "
-              "sleeping off\n", options.quick ? " --quick (smoke run: figures are not the tests')" : "");
+  std::printf("bench_solver%s: contact solvers side by side on the %s stress scenes, 60 Hz, "
+              "sleeping off\n", options.quick ? " --quick (smoke run: figures are not the tests')" : "",
+              options.rotation ? "turning (rotation on)" : "axis-aligned");
   std::printf("timing: one thread; ms/step (wall, steady_clock) over steps 2..N (step 1 builds the broad "
               "phase from scratch); a warm-up run per row measures the figures, then median and min of %d "
               "timed run%s, settings interleaved; CPU ms/step is the thread's CPU time\n",
@@ -241,11 +245,15 @@ int main(int argc, char** argv) {
   // The settings left at 0 ("automatic") as the engine resolves them for these scenes.
   engine::WorldDef seed_def;
   seed_def.solver = engine::ContactSolver::kSeed;
+  seed_def.rotation = options.rotation;
   const engine::World seed_world(seed_def);
-  const engine::World substep_world{engine::WorldDef{}};
+  engine::WorldDef substep_def;
+  substep_def.rotation = options.rotation;
+  const engine::World substep_world(substep_def);
   std::printf("\nseed: %d passes of impulses and a projection per step; substep: the default solver, "
-              "%d pass per substep, %d substeps by default\n", seed_world.Def().velocity_iterations,
-              substep_world.Def().velocity_iterations, substep_world.Def().substeps);
+              "%d pass%s per substep, %d substeps by default\n", seed_world.Def().velocity_iterations,
+              substep_world.Def().velocity_iterations, substep_world.Def().velocity_iterations == 1 ? "" : "es",
+              substep_world.Def().substeps);
 
   int status = 0;
   for (const Result& r : results) {

@@ -50,10 +50,13 @@ struct Scene {
   std::function<std::vector<Figure>(engine::World&, int steps)> measure;
 };
 
-inline engine::World MakeWorld(const Scene& scene, Setting setting) {
+/// `rotation`: the same scene with turning bodies (the substep solver then takes 4 passes per
+/// substep instead of 1).
+inline engine::World MakeWorld(const Scene& scene, Setting setting, bool rotation = false) {
   engine::WorldDef def = scene.def;
   def.solver = setting.solver;
   def.substeps = setting.substeps;
+  def.rotation = rotation;
   engine::World world(def);
   scene.build(world);
   return world;

@@ -78,8 +78,11 @@ bool CollideOrientedBoxes(const OrientedBox& a, const OrientedBox& b, Manifold* 
     const double d = Dot(inc.normals[i], n);
     if (d < most_against) most_against = d, inc_face = i;
   }
+  // Each point is named by the end of the incident edge it comes from, clipped or not (Box2D v3
+  // names its clipped points the same way): when two boxes of the same width are stacked, a
+  // rounding error decides whether an end is clipped, and an id that changed with it would lose
+  // that point's warm-start impulse at random.
   Vec2 clipped[2] = {inc.corners[inc_face], inc.corners[(inc_face + 1) % 4]};
-  std::uint8_t ids[2] = {0, 1};
 
   // Clip the incident edge to the reference face's extent along its tangent.
   const Vec2 v1 = ref.corners[ref_face];
@@ -95,10 +98,8 @@ bool CollideOrientedBoxes(const OrientedBox& a, const OrientedBox& b, Manifold* 
     if (d0 < 0.0 && d1 < 0.0) return false;  // the edge misses the face (only within the margin)
     if (d0 < 0.0) {
       clipped[0] = clipped[0] + (d0 / (d0 - d1)) * (clipped[1] - clipped[0]);
-      ids[0] = static_cast<std::uint8_t>(2 + side);  // a clipped point is a new feature
     } else if (d1 < 0.0) {
       clipped[1] = clipped[1] + (d1 / (d1 - d0)) * (clipped[0] - clipped[1]);
-      ids[1] = static_cast<std::uint8_t>(2 + side);
     }
   }
 
@@ -109,7 +110,7 @@ bool CollideOrientedBoxes(const OrientedBox& a, const OrientedBox& b, Manifold* 
     if (separation > margin) continue;
     // Midway between the incident point and its projection on the reference face.
     const Vec2 point = clipped[i] - (0.5 * separation) * n;
-    const auto id = static_cast<std::uint8_t>((flip ? 0x80 : 0) | (ref_face << 4) | (inc_face << 2) | ids[i]);
+    const auto id = static_cast<std::uint8_t>((flip ? 0x80 : 0) | (ref_face << 4) | (inc_face << 2) | i);
     out->points[out->point_count++] = {point, -separation, id};
   }
   return out->point_count > 0;

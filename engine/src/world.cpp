@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "direct_solver.h"
 #include "force_model.h"
 #include "impact.h"
 #include "integrate.h"
@@ -73,7 +74,9 @@ World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
 World::World(const WorldDef& def)
-    : def_(Resolve(def)), free_motion_(std::make_unique<detail::FreeMotion>()) {
+    : def_(Resolve(def)),
+      free_motion_(std::make_unique<detail::FreeMotion>()),
+      direct_solver_(std::make_unique<detail::DirectSolver>()) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
@@ -330,6 +333,9 @@ void World::StepSubstep() {
 
   detail::PrepareSubstepConstraints(contacts_, infos_, states_, &substep_constraints_);
   detail::BuildShockOrder(substep_constraints_, infos_, &shock_level_, &shock_order_);
+  // Islands of turning bodies that hold a large mass ratio get their contacts solved exactly.
+  const bool direct =
+      def_.rotation && detail::PrepareDirectSolve(substep_constraints_, infos_, direct_solver_.get());
   detail::ResolveImpacts(substep_constraints_, states_, accelerations_, def_);  // bounces first
   push_velocities_.resize(states_.size());
   push_angular_velocities_.resize(states_.size());
@@ -361,6 +367,7 @@ void World::StepSubstep() {
     for (int pass = 0; pass < def_.velocity_iterations; ++pass) {
       detail::SolveContacts(substep_constraints_, states_, start, inv_h);
     }
+    if (direct) detail::SolveDirect(direct_solver_.get(), substep_constraints_, states_, start, inv_h);
     if (has_up) {
       detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
                              def_.linear_slop, up, shock_tolerance);
@@ -370,6 +377,10 @@ void World::StepSubstep() {
     if (def_.rotation) UpdateTurned();
     detail::PushOut(substep_constraints_, states_, start, push, push_out_rate,
                     def_.max_push_out_speed, def_.linear_slop);
+    if (direct) {
+      detail::PushOutDirect(direct_solver_.get(), substep_constraints_, states_, start, push, push_out_rate,
+                            def_.max_push_out_speed, def_.linear_slop);
+    }
     detail::MoveByPush(states_, push, def_.rotation, h);
     if (def_.rotation) UpdateTurned();
   }

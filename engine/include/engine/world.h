@@ -18,6 +18,7 @@ namespace engine {
 namespace detail {
 struct FreeMotion;
 struct ForceModel;
+struct DirectSolver;
 }  // namespace detail
 
 enum class ShapeType : std::uint8_t { kCircle, kBox };
@@ -228,6 +229,7 @@ class World {
   std::vector<SubstepConstraint> substep_constraints_;
   std::vector<std::uint32_t> shock_level_;
   std::vector<std::uint32_t> shock_order_;
+  std::unique_ptr<detail::DirectSolver> direct_solver_;  ///< islands with a large mass ratio
   BroadPhase broad_phase_;  ///< every structure, so the choice can change between steps
 };
 

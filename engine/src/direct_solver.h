@@ -1,0 +1,90 @@
+// Direct solve of the contacts of islands that hold a large mass ratio, with rotation on: a heavy
+// body on light ones needs more Gauss-Seidel passes than any step can afford (their convergence
+// slows with the ratio), so these islands get their contact impulses from an exact solve of the
+// complementarity problem instead, after the passes. Internal.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/world.h"
+#include "substep_solver.h"
+
+namespace engine::detail {
+
+/// A direct solve applies to an island (bodies linked by contacts between turning pairs, static
+/// bodies excluded) that holds a contact across which one body is at least this many times
+/// heavier than the other. Box2D's manual (Limitations) says stacking degrades past 10:1; below
+/// it Gauss-Seidel holds a rotating column of three boxes within 0.5 mm.
+inline constexpr double kDirectMassRatio = 10.0;
+
+/// Islands with more rows than this are left to Gauss-Seidel: the dense factorisation grows
+/// with the cube of the rows. One row per contact point and one friction row per contact: a
+/// column of n boxes on the ground has 3n rows.
+inline constexpr int kDirectMaxRows = 128;
+
+/// The solver's working state for the islands of one step; reused from step to step.
+struct DirectSolver {
+  /// A normal row of one point (`point` ≥ 0) or the friction row of a whole contact (−1): in 2D
+  /// the friction rows of a face's two points are the same row, so a contact has one, at the
+  /// points' mean anchor, within μ times the sum of its normal impulses.
+  struct Row {
+    std::uint32_t constraint;
+    std::int32_t point;
+    std::uint32_t first_normal;  ///< friction rows: the island row of the contact's first normal
+  };
+  struct Island {
+    std::uint32_t first_row;    ///< rows [first_row, first_row + rows): normals, then friction
+    std::uint32_t normal_rows;
+    std::uint32_t rows;
+    std::size_t matrix;         ///< offset of its K = J·M⁻¹·Jᵀ (rows × rows) in `matrix`
+    std::uint32_t first_body;   ///< its moving bodies: bodies[first_body, first_body + body_count)
+    std::uint32_t body_count;
+  };
+  std::vector<Row> rows;
+  std::vector<Island> islands;
+  std::vector<double> matrix;
+  std::vector<std::uint32_t> bodies;
+  /// Per row: free, or held at its lower or upper bound. Kept from substep to substep, so that a
+  /// solve usually starts from the right guess and reuses its factor.
+  std::vector<std::uint8_t> bound;
+  std::vector<std::uint8_t> push_bound;  ///< the same for the push-out (normal rows)
+  /// Per friction row: the limit its last answer was found with.
+  std::vector<double> last_limit;
+  /// Cholesky factors of the free rows, one slot per island for the velocities and one for the
+  /// push-out, each kept while its free rows stay the same.
+  std::vector<std::vector<double>> factor;
+  std::vector<std::vector<std::uint32_t>> factor_rows;
+  /// The contacts (body pairs, in pair order) solved directly this step and the step before.
+  std::vector<BodyPair> pairs, previous_pairs;
+  std::vector<std::uint8_t> direct_contact;  ///< per constraint of this step
+  // Scratch.
+  std::vector<std::uint32_t> parent;
+  std::vector<std::uint8_t> flagged;
+  std::vector<double> x, q, lo, hi, limit, rhs;
+  std::vector<std::uint32_t> free_rows;
+  std::vector<BodyState> saved;
+};
+
+/// Finds the islands that need a direct solve (at most kDirectMaxRows rows) and builds their
+/// effective-mass matrices for this step; false when there are none. A contact solved directly
+/// last step and left to Gauss-Seidel now loses its warm-start impulses.
+bool PrepareDirectSolve(std::span<SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                        DirectSolver* solver);
+
+/// After the Gauss-Seidel passes of a substep: replaces the impulses of each prepared island's
+/// contacts with the exact answer, so that no contact approaches (beyond what its gap allows)
+/// and friction holds within Coulomb's cone. An island whose solve fails keeps what
+/// Gauss-Seidel gave it.
+void SolveDirect(DirectSolver* solver, std::span<SubstepConstraint> constraints,
+                 std::span<BodyState> states, const StepStart& start, double inv_h);
+
+/// After Gauss-Seidel's push-out (PushOut): replaces each prepared island's push impulses with
+/// the exact answer of its push-out problem (the same K, normal rows only), so that a light body
+/// caught in overlap between a heavy one and the ground is not pushed through the ground.
+void PushOutDirect(DirectSolver* solver, std::span<SubstepConstraint> constraints,
+                   std::span<const BodyState> states, const StepStart& start, PushVelocities push,
+                   double push_out_rate, double max_push_out_speed, double linear_slop);
+
+}  // namespace engine::detail
