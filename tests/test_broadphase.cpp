@@ -89,8 +89,9 @@ struct AutoBroadPhase {
 
 // The pair budget's rule written out plainly (engine::PairCollector): every overlapping pair is
 // charged to its narrower body (the higher id between equal widths); a body charged with more
-// pairs than its quota keeps its 4 best: static partners first, then the deepest overlap (the
-// lesser of the two axes), then the partner nearest in id, then the lower id.
+// pairs than its quota, grown by its box's area over its own (at most 256), keeps its 4 best:
+// static partners first, then the deepest overlap (the lesser of the two axes), then the partner
+// nearest in id, then the lower id.
 std::vector<BodyPair> BudgetedPairs(const std::vector<AABB>& boxes, const std::vector<engine::PairQuota>& quotas,
                                     std::size_t* crowded) {
   std::vector<BodyPair> all;
@@ -101,7 +102,10 @@ std::vector<BodyPair> BudgetedPairs(const std::vector<AABB>& boxes, const std::v
   *crowded = 0;
   for (std::uint32_t c = 0; c < boxes.size(); ++c) {
     std::vector<BodyPair>& mine = charged[c];
-    if (mine.size() > quotas[c].quota) {
+    const AABB& box = boxes[c];
+    const double grown =
+        std::ceil(quotas[c].quota * (box.upper.x - box.lower.x) * (box.upper.y - box.lower.y) / quotas[c].area);
+    if (mine.size() > std::min(grown, 256.0)) {
       ++*crowded;
       auto rank = [&](const BodyPair& p) {
         const std::uint32_t o = p.a == c ? p.b : p.a;
@@ -297,11 +301,15 @@ TEMPLATE_TEST_CASE("pair budget: every broad phase keeps what the rule keeps, pi
     boxes.push_back({at, at + Vec2{1.0 + i % 3, 1.0 + i % 2}});
   }
   std::shuffle(boxes.begin(), boxes.end(), rng);
-  std::uniform_int_distribution<int> width(1, 3), quota(3, 40), kind(0, 19);
+  // Some boxes grown to two or four times the body's own area: their quota grows alike.
+  std::uniform_int_distribution<int> width(1, 3), quota(3, 40), kind(0, 19), growth(0, 2);
   std::vector<engine::PairQuota> quotas(boxes.size());
-  for (auto& q : quotas) {
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    engine::PairQuota& q = quotas[i];
     q.width = kind(rng) == 0 ? std::numeric_limits<double>::infinity() : width(rng);
     q.quota = static_cast<std::uint32_t>(quota(rng));
+    const AABB& b = boxes[i];
+    q.area = (b.upper.x - b.lower.x) * (b.upper.y - b.lower.y) / (1 << growth(rng));
   }
   TestType broad_phase;
   std::vector<BodyPair> pairs;
@@ -321,7 +329,7 @@ TEST_CASE("pair budget: the collector's account of a pile", "[broadphase]") {
   // 100 equal boxes at one point: body i is charged with the i pairs to lower ids, so bodies 33
   // and up (quota 32) are crowded and keep 4 each.
   std::vector<AABB> boxes(100, AABB{{0, 0}, {1, 1}});
-  std::vector<engine::PairQuota> quotas(boxes.size(), engine::PairQuota{1.0, 32});
+  std::vector<engine::PairQuota> quotas(boxes.size(), engine::PairQuota{1.0, 32, 1.0});
   engine::BroadPhase broad_phase;
   std::vector<BodyPair> pairs;
   broad_phase.FindPairs(engine::BroadPhaseType::kSweepAndPrune, boxes, &pairs, quotas);

@@ -131,8 +131,8 @@ TEST_CASE("pair budget: a big box carrying many small circles is untouched", "[b
 }
 
 TEST_CASE("pair budget: a long plank under circles wider than it is untouched", "[budget]") {
-  // A 10 m plank 10 cm thick (aspect 100, quota 256) under a row of 80 circles 12.5 cm across:
-  // every pair is charged to the plank, which holds them all.
+  // A 10 m plank 10 cm thick (aspect 100: quota 256, the most) under a row of 80 circles
+  // 12.5 cm across: every pair is charged to the plank, which holds them all (and the floor).
   std::vector<engine::BodyDef> bodies = Container(12, 10);
   bodies.push_back(testing::Box({0, 0.05}, {10, 0.1}));
   for (int i = 0; i < 80; ++i) bodies.push_back(testing::Circle({-4.9375 + 0.125 * i, 0.1625}, 0.0625));
@@ -142,7 +142,8 @@ TEST_CASE("pair budget: a long plank under circles wider than it is untouched", 
 TEST_CASE("pair budget: a dense crowd moving fast together is untouched", "[budget]") {
   // 400 touching circles flying together at half and at one and a half diameters a step: the
   // speculative margins grow every box by as much, so each meets the 24 in a 5 by 5 block around
-  // it, or the 80 in a 9 by 9 one, and the quota grows with the box (to about 130, then 256).
+  // it, or the 80 in a 9 by 9 one, and the quota grows with the box's area (from 16 to 66, or to
+  // the most there is, 256).
   for (const int speed : {30, 90}) {
     std::vector<engine::BodyDef> bodies;
     for (int row = 0; row < 20; ++row) {

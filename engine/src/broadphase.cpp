@@ -58,9 +58,23 @@ void PairCollector::Keep(std::uint32_t body, const Rank& rank) {
   list[k] = rank;
 }
 
-void PairCollector::AddToCrowd(std::uint32_t body, std::uint32_t other) {
+std::uint32_t PairCollector::GrownQuota(std::uint32_t body) const {
+  const AABB& box = boxes_[body];
+  const double growth = (box.upper.x - box.lower.x) * (box.upper.y - box.lower.y) / quotas_[body].area;
+  // A NaN (a body of no area) or a growth past the limit both give the limit.
+  const double quota = std::ceil(quotas_[body].quota * growth);
+  return quota < PairQuota::kMaxQuota ? static_cast<std::uint32_t>(quota) : PairQuota::kMaxQuota;
+}
+
+void PairCollector::AddPastQuota(std::uint32_t body, std::uint32_t other) {
   if (crowd_of_.empty()) crowd_of_.assign(boxes_.size(), kNone);
   if (crowd_of_[body] == kNone) {
+    // Only bodies past their own quota get here, few outside a pile: the grown quota is worked
+    // out for them alone, each time (it only depends on the box).
+    if (charged_[body] <= GrownQuota(body)) {
+      pairs_->push_back(other < body ? BodyPair{other, body} : BodyPair{body, other});
+      return;
+    }
     crowd_of_[body] = static_cast<std::uint32_t>(crowd_body_.size());
     crowd_body_.push_back(body);
     const Rank last{true, std::numeric_limits<double>::infinity(), kNone, kNone};

@@ -60,23 +60,25 @@ constexpr double kSpeculativeSlops = 4.0;
 // The pair budget (PairCollector, docs/limits.md): a body keeps every pair charged to it, that
 // is every pair with a body at least as wide as itself, up to its quota. Solid circles or
 // squares of one size can give a body at most 8 such pairs (a 3 by 3 block: the diagonal ones
-// through the grown bounding boxes), squares turned 45° 12: 32 is four times what circles need.
-// A box also carries up to two bodies at least as wide per unit of its aspect along each long
-// side: 4 more per unit of aspect. The broad phase sees boxes grown by the speculative margin,
-// which for a crowd moving together meet others in proportion to their area: the quota grows by
-// the same factor, the grown box's area over the body's own. At most kMaxPairQuota.
-constexpr std::uint32_t kPairQuota = 32;
-constexpr std::uint32_t kPairQuotaPerAspect = 4;
-constexpr double kMaxPairQuota = 256;
+// through the bounding boxes), so 16 is twice what they need; squares turned 45° meet 12, but
+// their bounding boxes have twice their area, which doubles the quota (below). A box also
+// carries up to two bodies at least as wide per unit of its aspect along each long side: 4 more
+// per unit of aspect, up to PairQuota::kMaxQuota. The collector grows the quota with the box the
+// broad phase is given, grown by the speculative margin or turned (PairQuota::area).
+constexpr double kPairQuota = 16;
+constexpr double kPairQuotaPerAspect = 4;
 
-double BaseQuota(const Shape& shape) {
-  if (shape.type == ShapeType::kCircle) return kPairQuota;
-  const double aspect = std::max(shape.half_extents.x, shape.half_extents.y) /
-                        std::min(shape.half_extents.x, shape.half_extents.y);
-  return std::min(kMaxPairQuota, kPairQuota + kPairQuotaPerAspect * std::ceil(aspect - 1.0));
+PairQuota QuotaOf(const Shape& shape, bool is_static) {
+  constexpr double kMax = PairQuota::kMaxQuota;
+  if (shape.type == ShapeType::kCircle) {
+    const double d = 2.0 * shape.radius;
+    return {is_static ? kInfinity : d, static_cast<std::uint32_t>(kPairQuota), d * d};
+  }
+  const Vec2 h = shape.half_extents;
+  const double aspect = std::max(h.x, h.y) / std::min(h.x, h.y);
+  const double quota = std::min(kMax, kPairQuota + kPairQuotaPerAspect * std::ceil(aspect - 1.0));
+  return {is_static ? kInfinity : 2.0 * std::min(h.x, h.y), static_cast<std::uint32_t>(quota), 4.0 * h.x * h.y};
 }
-
-double Area(const AABB& box) { return (box.upper.x - box.lower.x) * (box.upper.y - box.lower.y); }
 
 // The settings a scene left at 0 ("automatic") get the values its kind of world needs: the
 // axis-aligned game is solved exactly with one pass per substep (shock propagation finishes
@@ -158,6 +160,7 @@ BodyId World::CreateBody(const BodyDef& def) {
   rest_time_.push_back(0.0);
   awake_.push_back(def.is_static ? 0 : 1);
   island_.push_back(0);
+  quotas_.push_back(QuotaOf(shape, def.is_static));
   return static_cast<BodyId>(states_.size() - 1);
 }
 
@@ -241,19 +244,11 @@ void World::FindCandidatePairs() {
   const std::size_t n = states_.size();
   bounds_.resize(n);
   reach_.resize(n);
-  if (def_.pair_budget) quotas_.resize(n);
   for (BodyId id = 0; id < n; ++id) {
     reach_[id] = Reach(id);
     const Vec2 grow{reach_[id], reach_[id]};
     const AABB b = BodyBounds(id);
     bounds_[id] = {b.lower - grow, b.upper + grow};
-    if (def_.pair_budget) {
-      const Shape& shape = infos_[id].shape;
-      const double width = shape.type == ShapeType::kCircle ? 2.0 * shape.radius
-                                                            : 2.0 * std::min(shape.half_extents.x, shape.half_extents.y);
-      const double quota = std::min(kMaxPairQuota, std::ceil(BaseQuota(shape) * (Area(bounds_[id]) / Area(b))));
-      quotas_[id] = {infos_[id].is_static ? kInfinity : width, static_cast<std::uint32_t>(quota)};
-    }
   }
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.
   broad_phase_.FindPairs(def_.broad_phase, bounds_, &pairs_,

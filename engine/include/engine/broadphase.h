@@ -37,8 +37,15 @@ struct PairQuota {
   /// The body's narrowest width, m: a circle's diameter, a box's shorter side; +infinity for a
   /// static body, which is never charged for a pair with a moving one.
   double width;
-  /// How many pairs charged to the body it keeps in full; past that it is in a crowd.
+  /// How many pairs charged to the body it keeps in full while its box is its own size; past
+  /// that it is in a crowd.
   std::uint32_t quota;
+  /// m², the area of the body's own (unturned) bounding box. A box the broad phase is given grown
+  /// beyond it meets others in proportion to its area, and the quota grows in the same proportion,
+  /// up to kMaxQuota.
+  double area;
+
+  static constexpr std::uint32_t kMaxQuota = 256;
 };
 
 /// The pair budget, the one place that bounds what a broad phase reports, so that every broad
@@ -69,7 +76,7 @@ class PairCollector {
     if (++charged_[charged] <= quotas_[charged].quota) {
       pairs_->push_back(p);
     } else {
-      AddToCrowd(charged, p.a == charged ? p.b : p.a);
+      AddPastQuota(charged, p.a == charged ? p.b : p.a);
     }
   }
   /// Applies the budget and sorts the pairs by (a, b).
@@ -102,8 +109,11 @@ class PairCollector {
   };
   std::uint32_t Charged(BodyPair p) const { return quotas_[p.a].width < quotas_[p.b].width ? p.a : p.b; }
   Rank RankOf(std::uint32_t body, std::uint32_t other) const;
-  /// A pair past `body`'s quota: into its list of the best, if it ranks there.
-  void AddToCrowd(std::uint32_t body, std::uint32_t other);
+  /// The quota for `body`'s box as given: its own, grown with the box's area.
+  std::uint32_t GrownQuota(std::uint32_t body) const;
+  /// A pair past `body`'s own quota: kept while within the grown quota, past that into the list
+  /// of its best, if it ranks there.
+  void AddPastQuota(std::uint32_t body, std::uint32_t other);
   void Keep(std::uint32_t body, const Rank& rank);
 
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();

@@ -173,7 +173,7 @@ class World {
   /// both 0 unless bodies are piled up (docs/limits.md).
   std::size_t CrowdedBodyCount() const { return crowded_bodies_; }
   std::uint64_t DroppedPairCount() const { return dropped_pairs_; }
-  /// The most pairs charged to one body in the last step, against quotas of 32 and up (a measure
+  /// The most pairs charged to one body in the last step, against quotas of 16 and up (a measure
   /// of how far a scene is from the budget; 0 with the budget off).
   std::uint32_t MostChargedPairs() const { return most_charged_; }
   /// False while the body sleeps (and always for static bodies).
@@ -209,7 +209,7 @@ class World {
   std::vector<double> rest_time_;
   std::vector<std::uint8_t> awake_;
   std::vector<std::uint32_t> island_;
-  std::vector<PairQuota> quotas_;  ///< per body, from its shape and reach: the pair budget's inputs
+  std::vector<PairQuota> quotas_;  ///< per body, from its shape: the pair budget's inputs
   std::size_t crowded_bodies_ = 0;
   std::uint64_t dropped_pairs_ = 0;
   std::uint32_t most_charged_ = 0;
