@@ -261,7 +261,8 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     Relayout();
     reinserts_since_relayout_ = 0;
   }
-  // A crowded tree kept no candidates; an update that would outgrow the limit changes nothing.
+  // A crowded tree kept no candidates, and an update that would outgrow the limit gives way to
+  // a whole traversal, which finds out whether the tree is still crowded.
   if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates())) {
     FindAllCandidates(boxes);
   }
