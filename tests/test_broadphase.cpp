@@ -3,10 +3,13 @@
 // result must not depend on which one runs.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 #include "bench/stress_scenes.h"
@@ -78,10 +81,48 @@ std::size_t RequireAllPairs(BroadPhase& broad_phase, const std::vector<AABB>& bo
 // The automatic choice behind the same call as the structures.
 struct AutoBroadPhase {
   engine::BroadPhase chooser;
-  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
-    chooser.FindPairs(engine::BroadPhaseType::kAuto, boxes, pairs);
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const engine::PairQuota> quotas = {}) {
+    chooser.FindPairs(engine::BroadPhaseType::kAuto, boxes, pairs, quotas);
   }
 };
+
+// The pair budget's rule written out plainly (engine::PairCollector): every overlapping pair is
+// charged to its narrower body (the higher id between equal widths); a body charged with more
+// pairs than its quota, grown by its box's area over its own (at most 256), keeps its 4 best:
+// static partners first, then the deepest overlap (the lesser of the two axes), then the partner
+// nearest in id, then the lower id.
+std::vector<BodyPair> BudgetedPairs(const std::vector<AABB>& boxes, const std::vector<engine::PairQuota>& quotas,
+                                    std::size_t* crowded) {
+  std::vector<BodyPair> all;
+  engine::FindPairsAllPairs(boxes, &all);
+  std::vector<std::vector<BodyPair>> charged(boxes.size());
+  for (const BodyPair& p : all) charged[quotas[p.a].width < quotas[p.b].width ? p.a : p.b].push_back(p);
+  std::vector<BodyPair> kept;
+  *crowded = 0;
+  for (std::uint32_t c = 0; c < boxes.size(); ++c) {
+    std::vector<BodyPair>& mine = charged[c];
+    const AABB& box = boxes[c];
+    const double grown =
+        std::ceil(quotas[c].quota * (box.upper.x - box.lower.x) * (box.upper.y - box.lower.y) / quotas[c].area);
+    if (mine.size() > std::min(grown, 256.0)) {
+      ++*crowded;
+      auto rank = [&](const BodyPair& p) {
+        const std::uint32_t o = p.a == c ? p.b : p.a;
+        const AABB& b = boxes[c];
+        const AABB& q = boxes[o];
+        const double depth = std::min(std::min(b.upper.x, q.upper.x) - std::max(b.lower.x, q.lower.x),
+                                      std::min(b.upper.y, q.upper.y) - std::max(b.lower.y, q.lower.y));
+        return std::make_tuple(!std::isinf(quotas[o].width), -depth, o < c ? c - o : o - c, o);
+      };
+      std::sort(mine.begin(), mine.end(), [&](const BodyPair& p, const BodyPair& q) { return rank(p) < rank(q); });
+      mine.resize(engine::PairCollector::kCrowdPairs);
+    }
+    kept.insert(kept.end(), mine.begin(), mine.end());
+  }
+  std::sort(kept.begin(), kept.end(), [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
+  return kept;
+}
 
 }  // namespace
 
@@ -247,6 +288,74 @@ TEMPLATE_TEST_CASE("broad phase: identical boxes all pair with each other", "[br
   CHECK(RequireAllPairs(broad_phase, boxes) == 2 * (150 * 149 / 2));
 }
 
+TEMPLATE_TEST_CASE("pair budget: every broad phase keeps what the rule keeps, piles and all", "[broadphase]",
+                   BROAD_PHASES) {
+  // Boxes scattered about, and a pile of 300 around one spot (some exactly on top of each
+  // other), of three widths and some static, with small quotas so that crowds form outside the
+  // pile too. Whatever order a structure finds pairs in, the kept set must be the rule's.
+  std::mt19937_64 rng(21);
+  auto boxes = RandomBoxes(rng, 500, 40);
+  std::uniform_real_distribution<double> near(-0.5, 0.5);
+  for (int i = 0; i < 300; ++i) {
+    const Vec2 at = i % 5 == 0 ? Vec2{20, 20} : Vec2{20 + near(rng), 20 + near(rng)};
+    boxes.push_back({at, at + Vec2{1.0 + i % 3, 1.0 + i % 2}});
+  }
+  std::shuffle(boxes.begin(), boxes.end(), rng);
+  // Some boxes grown to two or four times the body's own area: their quota grows alike.
+  std::uniform_int_distribution<int> width(1, 3), quota(3, 40), kind(0, 19), growth(0, 2);
+  std::vector<engine::PairQuota> quotas(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    engine::PairQuota& q = quotas[i];
+    q.width = kind(rng) == 0 ? std::numeric_limits<double>::infinity() : width(rng);
+    q.quota = static_cast<std::uint32_t>(quota(rng));
+    const AABB& b = boxes[i];
+    q.area = (b.upper.x - b.lower.x) * (b.upper.y - b.lower.y) / (1 << growth(rng));
+  }
+  TestType broad_phase;
+  std::vector<BodyPair> pairs;
+  for (int step = 0; step < 25; ++step) {
+    INFO("step " << step);
+    std::size_t crowded = 0;
+    const std::vector<BodyPair> expected = BudgetedPairs(boxes, quotas, &crowded);
+    broad_phase.FindPairs(boxes, &pairs, quotas);
+    REQUIRE(pairs.size() == expected.size());
+    REQUIRE(pairs == expected);
+    CHECK(crowded > (step == 0 ? 250u : 0u));  // the pile, and more, while the moves scatter it
+    Move(rng, boxes);
+  }
+}
+
+TEST_CASE("pair budget: the collector's account of a pile", "[broadphase]") {
+  // 100 equal boxes at one point: body i is charged with the i pairs to lower ids, so bodies 33
+  // and up (quota 32) are crowded and keep 4 each.
+  std::vector<AABB> boxes(100, AABB{{0, 0}, {1, 1}});
+  std::vector<engine::PairQuota> quotas(boxes.size(), engine::PairQuota{1.0, 32, 1.0});
+  engine::BroadPhase broad_phase;
+  std::vector<BodyPair> pairs;
+  broad_phase.FindPairs(engine::BroadPhaseType::kSweepAndPrune, boxes, &pairs, quotas);
+  const engine::PairCollector& budget = broad_phase.LastCollector();
+  CHECK(budget.CrowdedCount() == 100 - 33);
+  CHECK(budget.MostCharged() == 99);
+  const std::size_t kept = 33 * 32 / 2 + (100 - 33) * 4;
+  CHECK(pairs.size() == kept);
+  CHECK(budget.DroppedCount() == 100 * 99 / 2 - kept);
+  // With every box in the same place the nearest ids win: body 50 keeps 49, 48, 47, 46.
+  for (std::uint32_t a : {46u, 47u, 48u, 49u}) {
+    CHECK(std::find(pairs.begin(), pairs.end(), BodyPair{a, 50}) != pairs.end());
+  }
+  // A static partner comes first, however shallow: put body 0 (static) at the corner.
+  boxes[0] = {{0.99, 0.99}, {2, 2}};
+  quotas[0].width = std::numeric_limits<double>::infinity();
+  broad_phase.FindPairs(engine::BroadPhaseType::kSweepAndPrune, boxes, &pairs, quotas);
+  for (std::uint32_t b = 1; b < 100; ++b) {
+    CHECK(std::find(pairs.begin(), pairs.end(), BodyPair{0, b}) != pairs.end());
+  }
+  // Without quotas, every pair.
+  broad_phase.FindPairs(engine::BroadPhaseType::kSweepAndPrune, boxes, &pairs);
+  CHECK(pairs.size() == 100 * 99 / 2);
+  CHECK(broad_phase.LastCollector().CrowdedCount() == 0);
+}
+
 TEMPLATE_TEST_CASE("broad phase: sizes over six orders of magnitude", "[broadphase]", BROAD_PHASES) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> log_size(-3, 3);
@@ -285,6 +394,52 @@ TEST_CASE("sweep and prune: a coherent step costs few swaps", "[broadphase]") {
   std::vector<BodyPair> expected;
   engine::FindPairsAllPairs(boxes, &expected);
   CHECK(pairs == expected);
+}
+
+TEST_CASE("sweep and prune: a reshuffle past the swap budget ends in a full sort, same order", "[broadphase]") {
+  std::mt19937_64 rng(17);
+  auto boxes = RandomBoxes(rng, 2000, 90);
+  engine::SweepAndPrune sap;
+  std::vector<BodyPair> pairs, expected;
+  sap.FindPairs(boxes, &pairs);
+  // Mirror every box in x: insertion sort would need about n² / 2 swaps.
+  for (auto& b : boxes) b = {{-b.upper.x, b.lower.y}, {-b.lower.x, b.upper.y}};
+  sap.FindPairs(boxes, &pairs);
+  const auto budget = static_cast<std::int64_t>(8 * 2 * boxes.size() + 1024);
+  CHECK(sap.LastSwapCount() > budget);
+  CHECK(sap.LastSwapCount() <= budget + static_cast<std::int64_t>(2 * boxes.size()));
+  engine::FindPairsAllPairs(boxes, &expected);
+  CHECK(pairs == expected);
+  // And back to small steps: the order is the one insertion sort keeps.
+  for (int step = 0; step < 5; ++step) {
+    Move(rng, boxes);
+    RequireAllPairs(sap, boxes);
+  }
+}
+
+TEST_CASE("AABB tree: a pile past the candidate limit keeps no candidates, the pairs stay exact",
+          "[broadphase]") {
+  std::mt19937_64 rng(19);
+  auto boxes = RandomBoxes(rng, 400, 40);
+  engine::AabbTree tree;
+  RequireAllPairs(tree, boxes);
+  CHECK_FALSE(tree.Crowded());
+  // 200 of them onto one spot: 19 900 pairs, past 16 a body (and 1024).
+  const auto home = boxes;
+  for (int i = 0; i < 200; ++i) boxes[2 * i] = {{5, 5}, {6, 6}};
+  RequireAllPairs(tree, boxes);
+  CHECK(tree.Crowded());
+  Move(rng, boxes);
+  RequireAllPairs(tree, boxes);
+  CHECK(tree.Crowded());
+  // Back where they were: the tree keeps its candidates again.
+  boxes = home;
+  RequireAllPairs(tree, boxes);
+  CHECK_FALSE(tree.Crowded());
+  for (int step = 0; step < 5; ++step) {
+    Move(rng, boxes);
+    RequireAllPairs(tree, boxes);
+  }
 }
 
 TEST_CASE("uniform grid: cells follow the typical box, a floor stays out of them", "[broadphase]") {

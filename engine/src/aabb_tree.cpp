@@ -81,6 +81,7 @@ void AabbTree::Clear() {
   leaf_of_.clear();
   previous_.clear();
   candidates_.clear();
+  crowded_ = false;
   reinserts_since_relayout_ = 0;
 }
 
@@ -211,8 +212,9 @@ void AabbTree::Rotate(std::int32_t a) {
   node_o.height = 1 + std::max(nodes_[node_o.child1].height, nodes_[node_o.child2].height);
 }
 
-void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
-  pairs->clear();
+void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                         std::span<const PairQuota> quotas) {
+  collector_.Begin(boxes, quotas, pairs);
   const std::size_t n = boxes.size();
   if (n < leaf_of_.size()) Clear();  // bodies went away: start over
 
@@ -259,23 +261,29 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     Relayout();
     reinserts_since_relayout_ = 0;
   }
-  if (4 * moved_list_.size() > n) {
-    FindAllCandidates();
-  } else if (!moved_list_.empty()) {
-    UpdateCandidates();
+  // A crowded tree kept no candidates, and an update that would outgrow the limit gives way to
+  // a whole traversal, which finds out whether the tree is still crowded.
+  if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates())) {
+    FindAllCandidates(boxes);
   }
-
-  // The candidates are sorted, so the pairs come out sorted.
-  for (const BodyPair& p : candidates_) {
-    if (Overlaps(boxes[p.a], boxes[p.b])) pairs->push_back(p);
+  if (!crowded_) {
+    for (const BodyPair& p : candidates_) {
+      if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
+    }
   }
+  collector_.Finish();
 }
 
-void AabbTree::FindAllCandidates() {
+std::size_t AabbTree::CandidateLimit() const { return kCandidatesPerBody * leaf_of_.size() + 1024; }
+
+void AabbTree::FindAllCandidates(std::span<const AABB> boxes) {
   // The tree against itself: each subtree against itself, and the two children of every node
   // against each other, descending only where fat boxes overlap. A pair of nodes goes on the
-  // stack only once their boxes are known to overlap.
+  // stack only once their boxes are known to overlap. Candidates beyond the limit (bodies piled
+  // up) are not kept: every overlapping pair goes to the collector instead, which bounds them.
   candidates_.clear();
+  crowded_ = false;
+  const std::size_t limit = CandidateLimit();
   stack_.clear();
   auto push_if_overlapping = [this](std::int32_t a, std::int32_t b) {
     if (Overlaps(nodes_[a].box, nodes_[b].box)) stack_.push_back({a, b});
@@ -294,7 +302,19 @@ void AabbTree::FindAllCandidates() {
     }
     const Node& nb = nodes_[b];
     if (na.IsLeaf() && nb.IsLeaf()) {
+      if (crowded_) {
+        if (Overlaps(boxes[na.body], boxes[nb.body])) collector_.Add(na.body, nb.body);
+        continue;
+      }
       candidates_.push_back(detail::MakePair(na.body, nb.body));
+      if (candidates_.size() > limit) {
+        crowded_ = true;
+        for (const BodyPair& p : candidates_) {
+          if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
+        }
+        candidates_.clear();
+        candidates_.shrink_to_fit();
+      }
       continue;
     }
     // Split the bigger side, so the two stay of similar size as they descend.
@@ -306,14 +326,15 @@ void AabbTree::FindAllCandidates() {
       push_if_overlapping(a, nb.child2);
     }
   }
-  detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
+  if (!crowded_) detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
 }
 
-void AabbTree::UpdateCandidates() {
+bool AabbTree::UpdateCandidates() {
   // Drop the moved bodies' pairs, query the tree for each moved body's new ones (a pair of two
   // moved bodies is taken from the smaller id only), then merge the two sorted lists.
   std::erase_if(candidates_, [this](BodyPair p) { return moved_[p.a] || moved_[p.b]; });
   fresh_.clear();
+  const std::size_t limit = CandidateLimit();
   for (std::uint32_t i : moved_list_) {
     const AABB& box = nodes_[leaf_of_[i]].box;
     query_stack_.clear();
@@ -330,6 +351,7 @@ void AabbTree::UpdateCandidates() {
       const std::uint32_t j = node.body;
       if (j != i && (!moved_[j] || i < j)) fresh_.push_back(detail::MakePair(i, j));
     }
+    if (candidates_.size() + fresh_.size() > limit) return false;
   }
   std::sort(fresh_.begin(), fresh_.end(),
             [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
@@ -337,6 +359,7 @@ void AabbTree::UpdateCandidates() {
   std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin(),
              [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
   candidates_.swap(sorted_scratch_);
+  return true;
 }
 
 // Insertions scatter new nodes over the array, and the traversal below jumps between them; in

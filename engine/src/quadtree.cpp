@@ -11,7 +11,6 @@
 #include <numeric>
 
 #include "engine/broadphase.h"
-#include "pair_sort.h"
 
 namespace engine {
 
@@ -51,11 +50,14 @@ constexpr Vec2 kFar{kInf, kInf};
 
 }  // namespace
 
-void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
-  pairs->clear();
+void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                         std::span<const PairQuota> quotas) {
+  collector_.Begin(boxes, quotas, pairs);
   last_depth_ = 0;
-  if (boxes.size() < 2) return;
-  pairs_ = pairs;
+  if (boxes.size() < 2) {
+    collector_.Finish();
+    return;
+  }
   levels_.resize(kMaxDepth + 1);
   // Boxes are copied into the item lists, so each level reads its boxes in order.
   std::vector<Item>& root = levels_[0];
@@ -67,7 +69,7 @@ void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     bounds.Add(boxes[i], everywhere);
   }
   Build(0, everywhere, 0, boxes.size(), bounds);
-  detail::SortPairs(boxes.size(), pairs, &sorted_scratch_, &counts_);
+  collector_.Finish();
 }
 
 void Quadtree::TestAllPairs(const Region& region, const Item* items, std::size_t count) {
@@ -78,7 +80,7 @@ void Quadtree::TestAllPairs(const Region& region, const Item* items, std::size_t
       if (!Overlaps(a, b)) continue;
       const Vec2 p = OverlapCorner(a, b);
       if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-        pairs_->push_back(detail::MakePair(items[i].body, items[j].body));
+        collector_.Add(items[i].body, items[j].body);
       }
     }
   }
@@ -132,7 +134,7 @@ void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::si
         if (!Overlaps(r.box, b)) continue;
         const Vec2 p = OverlapCorner(r.box, b);
         if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-          pairs_->push_back(detail::MakePair(r.body, items[k].body));
+          collector_.Add(r.body, items[k].body);
         }
       }
     }

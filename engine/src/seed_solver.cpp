@@ -12,6 +12,7 @@ void PrepareContacts(std::span<const Contact> contacts, std::span<const BodyStat
                      std::span<const BodyInfo> infos, double restitution_threshold,
                      std::vector<ContactConstraint>* constraints) {
   constraints->clear();
+  constraints->reserve(contacts.size());
   for (const Contact& c : contacts) {
     ContactConstraint cc;
     cc.a = c.a;

@@ -49,6 +49,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
                                std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints) {
   constraints->clear();
+  constraints->reserve(contacts.size());
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     SubstepConstraint sc;

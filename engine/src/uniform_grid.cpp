@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "engine/broadphase.h"
-#include "pair_sort.h"
 
 namespace engine {
 
@@ -78,13 +77,17 @@ std::uint32_t UniformGrid::Bucket(std::int32_t x, std::int32_t y) const {
   return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> hash_shift_);
 }
 
-void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) {
-  pairs->clear();
+void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                            std::span<const PairQuota> quotas) {
+  collector_.Begin(boxes, quotas, pairs);
   const std::size_t n = boxes.size();
   large_.clear();
   small_.clear();
   entries_.clear();
-  if (n < 2) return;
+  if (n < 2) {
+    collector_.Finish();
+    return;
+  }
   if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
 
   // Which cells each box touches; large boxes set aside.
@@ -153,7 +156,7 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
         for (std::uint32_t j = i + 1; j < end; ++j) {
           const Entry& q = entries_[j];
           if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) {
-            pairs->push_back({p.body, q.body});
+            collector_.Add(p.body, q.body);
           }
         }
       }
@@ -161,16 +164,16 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
     }
   }
 
-  FindLargePairs(boxes, pairs);
-  detail::SortPairs(n, pairs, &sorted_scratch_, &counts_);
+  FindLargePairs(boxes);
+  collector_.Finish();
 }
 
-void UniformGrid::FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) const {
+void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {
   for (std::size_t i = 0; i < large_.size(); ++i) {
     const std::uint32_t a = large_[i];
     const AABB& box = boxes[a];
     for (std::size_t j = i + 1; j < large_.size(); ++j) {
-      if (Overlaps(box, boxes[large_[j]])) pairs->push_back({a, large_[j]});
+      if (Overlaps(box, boxes[large_[j]])) collector_.Add(a, large_[j]);
     }
     if (small_.empty()) continue;
 
@@ -183,7 +186,7 @@ void UniformGrid::FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPa
     const std::int64_t cells = (std::int64_t{walk.x1} - walk.x0 + 1) * (std::int64_t{walk.y1} - walk.y0 + 1);
     if (cells > static_cast<std::int64_t>(small_.size())) {
       for (std::uint32_t s : small_) {
-        if (Overlaps(box, boxes[s])) pairs->push_back(detail::MakePair(a, s));
+        if (Overlaps(box, boxes[s])) collector_.Add(a, s);
       }
       continue;
     }
@@ -196,7 +199,7 @@ void UniformGrid::FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPa
           // The same one-cell rule, with the large box's first column and row.
           if (e.x == x && e.y == y && (r.x0 == x || (e.first & 1)) && (r.y0 == y || (e.first & 2)) &&
               Overlaps(box, e.box)) {
-            pairs->push_back(detail::MakePair(a, e.body));
+            collector_.Add(a, e.body);
           }
         }
       }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "direct_solver.h"
 #include "force_model.h"
@@ -26,6 +27,8 @@ void Require(bool condition, const char* what) {
   std::fprintf(stderr, "engine precondition failed: %s\n", what);
   std::abort();
 }
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool IsPositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
 bool IsNonNegativeFinite(double v) { return std::isfinite(v) && v >= 0.0; }
@@ -54,6 +57,29 @@ constexpr double kFastFraction = 0.5;
 // Speculative contacts start this far apart (Box2D's 4 × linear slop), so a body coming to
 // rest is caught a little before it touches.
 constexpr double kSpeculativeSlops = 4.0;
+
+// The pair budget (PairCollector, docs/limits.md): a body keeps every pair charged to it, that
+// is every pair with a body at least as wide as itself, up to its quota. Solid circles or
+// squares of one size can give a body at most 8 such pairs (a 3 by 3 block: the diagonal ones
+// through the bounding boxes), so 16 is twice what they need; squares turned 45° meet 12, but
+// their bounding boxes have twice their area, which doubles the quota (below). A box also
+// carries up to two bodies at least as wide per unit of its aspect along each long side: 4 more
+// per unit of aspect, up to PairQuota::kMaxQuota. The collector grows the quota with the box the
+// broad phase is given, grown by the speculative margin or turned (PairQuota::area).
+constexpr double kPairQuota = 16;
+constexpr double kPairQuotaPerAspect = 4;
+
+PairQuota QuotaOf(const Shape& shape, bool is_static) {
+  constexpr double kMax = PairQuota::kMaxQuota;
+  if (shape.type == ShapeType::kCircle) {
+    const double d = 2.0 * shape.radius;
+    return {is_static ? kInfinity : d, static_cast<std::uint32_t>(kPairQuota), d * d};
+  }
+  const Vec2 h = shape.half_extents;
+  const double aspect = std::max(h.x, h.y) / std::min(h.x, h.y);
+  const double quota = std::min(kMax, kPairQuota + kPairQuotaPerAspect * std::ceil(aspect - 1.0));
+  return {is_static ? kInfinity : 2.0 * std::min(h.x, h.y), static_cast<std::uint32_t>(quota), 4.0 * h.x * h.y};
+}
 
 // The settings a scene left at 0 ("automatic") get the values its kind of world needs: the
 // axis-aligned game is solved exactly with one pass per substep (shock propagation finishes
@@ -138,6 +164,7 @@ BodyId World::CreateBody(const BodyDef& def) {
   rest_time_.push_back(0.0);
   awake_.push_back(def.is_static ? 0 : 1);
   island_.push_back(0);
+  quotas_.push_back(QuotaOf(shape, def.is_static));
   return static_cast<BodyId>(states_.size() - 1);
 }
 
@@ -228,7 +255,13 @@ void World::FindCandidatePairs() {
     const AABB b = BodyBounds(id);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
-  broad_phase_.FindPairs(def_.broad_phase, bounds_, &pairs_);
+  // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.
+  broad_phase_.FindPairs(def_.broad_phase, bounds_, &pairs_,
+                         def_.pair_budget ? std::span<const PairQuota>(quotas_) : std::span<const PairQuota>());
+  const PairCollector& budget = broad_phase_.LastCollector();
+  crowded_bodies_ = budget.CrowdedCount();
+  dropped_pairs_ = budget.DroppedCount();
+  most_charged_ = budget.MostCharged();
   // A moving body reaching a sleeping one wakes its whole island before anything is solved.
   for (const BodyPair& p : pairs_) {
     if (awake_[p.a] != awake_[p.b]) {
@@ -249,6 +282,9 @@ void World::FindCandidatePairs() {
 void World::BuildContacts() {
   previous_contacts_.swap(contacts_);
   contacts_.clear();
+  // At most one contact a pair: reserving that much at once avoids growth by doubling, which
+  // could hold twice what a large pile needs.
+  contacts_.reserve(pairs_.size());
   std::size_t previous = 0;
   for (const BodyPair& pair : pairs_) {
     const BodyInfo& ia = infos_[pair.a];
@@ -428,6 +464,11 @@ void World::UpdateTurned() {
 }
 
 void World::UpdateSleep() {
+  // A body in a crowd is being pushed out of a pile, not resting, even when nothing else moves
+  // it (no gravity): it stays awake, and so does its island, until the pile has spread.
+  for (const std::uint32_t body : broad_phase_.LastCollector().CrowdedBodies()) {
+    if (awake_[body]) rest_time_[body] = 0.0;
+  }
   accelerations_.resize(states_.size());
   angular_accelerations_.resize(states_.size());
   Forces().Evaluate(states_, accelerations_, angular_accelerations_);

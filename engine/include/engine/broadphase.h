@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -31,14 +32,117 @@ struct BodyPair {
 /// of boxes. Pairs come out sorted by (a, b).
 void FindPairsAllPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
 
+/// Per body, what the pair budget needs to know (World fills it in from the shapes).
+struct PairQuota {
+  /// The body's narrowest width, m: a circle's diameter, a box's shorter side; +infinity for a
+  /// static body, which is never charged for a pair with a moving one.
+  double width;
+  /// How many pairs charged to the body it keeps in full while its box is its own size; past
+  /// that it is in a crowd.
+  std::uint32_t quota;
+  /// m², the area of the body's own (unturned) bounding box. A box the broad phase is given grown
+  /// beyond it meets others in proportion to its area, and the quota grows in the same proportion,
+  /// up to kMaxQuota.
+  double area;
+
+  static constexpr std::uint32_t kMaxQuota = 256;
+};
+
+/// The pair budget, the one place that bounds what a broad phase reports, so that every broad
+/// phase keeps exactly the same pairs. Each pair is charged to its narrower body (between equal
+/// widths, the one with the higher id). A body charged with no more pairs than its quota keeps
+/// them all; one charged with more is in a crowd that solid bodies cannot form (bodies piled at
+/// one point) and keeps only its kCrowdPairs best: static partners first, then the deepest
+/// overlap of the two boxes, then the lower id. Which pairs survive depends on the boxes alone,
+/// never on the order a broad phase finds them in. A crowded body's pairs past its quota go
+/// straight to a list of its kCrowdPairs best, so the collector never holds more than its quota
+/// (plus that list) for a body, and n bodies piled at one point cost O(n) memory (the time stays O(n²) while every pair overlaps: each is
+/// still looked at). docs/limits.md has the numbers. Without quotas the collector only sorts.
+/// Pairs come out sorted by (a, b).
+class PairCollector {
+ public:
+  /// What a body in a crowd keeps.
+  static constexpr std::uint32_t kCrowdPairs = 4;
+
+  /// Starts a call: `pairs` is cleared and filled by Add; `quotas` is empty or one per box.
+  void Begin(std::span<const AABB> boxes, std::span<const PairQuota> quotas, std::vector<BodyPair>* pairs);
+  void Add(std::uint32_t i, std::uint32_t j) {
+    const BodyPair p = i < j ? BodyPair{i, j} : BodyPair{j, i};
+    if (quotas_.empty()) {
+      pairs_->push_back(p);
+      return;
+    }
+    const std::uint32_t charged = Charged(p);
+    if (++charged_[charged] <= quotas_[charged].quota) {
+      pairs_->push_back(p);
+    } else {
+      AddPastQuota(charged, p.a == charged ? p.b : p.a);
+    }
+  }
+  /// Applies the budget and sorts the pairs by (a, b).
+  void Finish();
+
+  /// Bodies past their quota in the last call (0 whenever nothing is piled up).
+  std::size_t CrowdedCount() const { return crowd_body_.size(); }
+  /// The bodies past their quota in the last call, in the order they got there.
+  std::span<const std::uint32_t> CrowdedBodies() const { return crowd_body_; }
+  /// Pairs the budget left out in the last call.
+  std::uint64_t DroppedCount() const { return dropped_; }
+  /// The most pairs charged to one body in the last call (0 without quotas).
+  std::uint32_t MostCharged() const { return most_charged_; }
+
+ private:
+  /// How a crowded body ranks a partner, best first: static partners, then the deepest overlap
+  /// of the two boxes (the lesser of the two axes), then the lower id. A strict order, so the
+  /// kept set is the same whatever order the pairs come in.
+  struct Rank {
+    bool moving;
+    double shallowness;  ///< minus the overlap, m
+    std::uint32_t id_distance;
+    std::uint32_t other;
+    friend bool operator<(const Rank& p, const Rank& q) {
+      if (p.moving != q.moving) return q.moving;
+      if (p.shallowness != q.shallowness) return p.shallowness < q.shallowness;
+      if (p.id_distance != q.id_distance) return p.id_distance < q.id_distance;
+      return p.other < q.other;
+    }
+  };
+  std::uint32_t Charged(BodyPair p) const { return quotas_[p.a].width < quotas_[p.b].width ? p.a : p.b; }
+  Rank RankOf(std::uint32_t body, std::uint32_t other) const;
+  /// The quota for `body`'s box as given: its own, grown with the box's area.
+  std::uint32_t GrownQuota(std::uint32_t body) const;
+  /// A pair past `body`'s own quota: kept while within the grown quota, past that into the list
+  /// of its best, if it ranks there.
+  void AddPastQuota(std::uint32_t body, std::uint32_t other);
+  void Keep(std::uint32_t body, const Rank& rank);
+
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+  std::span<const AABB> boxes_;
+  std::span<const PairQuota> quotas_;
+  std::vector<BodyPair>* pairs_ = nullptr;
+  std::vector<std::uint32_t> charged_;  ///< per body: pairs charged to it in this call
+  std::vector<std::uint32_t> crowd_of_;  ///< per body, once any is crowded: its list, or kNone
+  std::vector<std::uint32_t> crowd_body_;  ///< per list: its body
+  /// kCrowdPairs per crowded body, best first; the unused ends rank last.
+  std::vector<Rank> kept_;
+  std::uint64_t dropped_ = 0;
+  std::uint32_t most_charged_ = 0;
+  std::vector<BodyPair> scratch_;
+  std::vector<std::uint32_t> counts_;
+};
+
 /// Sweep and prune: endpoint lists kept from step to step and re-sorted by insertion sort,
 /// which costs O(n + swaps) when bodies move little between steps (temporal coherence).
 /// Sweeps the x axis, then checks y for pairs overlapping in x. Pairs come out sorted by (a, b).
 class SweepAndPrune {
  public:
-  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
 
-  /// Swaps made by the last insertion sort; a measure of how coherent the motion was.
+  /// Swaps made by the last insertion sort (up to the budget that hands over to a full sort); a
+  /// measure of how coherent the motion was.
   std::int64_t LastSwapCount() const { return last_swap_count_; }
 
  private:
@@ -57,8 +161,7 @@ class SweepAndPrune {
   std::vector<Endpoint> endpoints_;
   std::vector<ActiveInterval> active_;
   std::vector<std::uint32_t> active_slot_;  ///< where each open body sits in active_
-  std::vector<BodyPair> sorted_scratch_;
-  std::vector<std::uint32_t> counts_;
+  PairCollector collector_;
   std::int64_t last_swap_count_ = 0;
 };
 
@@ -70,7 +173,9 @@ class SweepAndPrune {
 /// similar-sized boxes. Pairs come out sorted by (a, b).
 class UniformGrid {
  public:
-  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
 
   /// m; 0 before the first call.
   double CellSize() const { return cell_size_; }
@@ -91,7 +196,7 @@ class UniformGrid {
   void ChooseCellSize(std::span<const AABB> boxes);
   CellRange Cells(const AABB& box) const;
   std::uint32_t Bucket(std::int32_t x, std::int32_t y) const;
-  void FindLargePairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs) const;
+  void FindLargePairs(std::span<const AABB> boxes);
 
   double cell_size_ = 0.0;
   double inv_cell_size_ = 0.0;
@@ -106,8 +211,7 @@ class UniformGrid {
   std::vector<std::uint32_t> bucket_start_;
   std::vector<Entry> entries_;
   std::vector<double> extent_scratch_;
-  std::vector<BodyPair> sorted_scratch_;
-  std::vector<std::uint32_t> counts_;
+  PairCollector collector_;
 };
 
 /// A quadtree built top-down each step from reused buffers: a node with more than a few boxes
@@ -117,7 +221,9 @@ class UniformGrid {
 /// the split stays in the node and is tested against the whole subtree. Pairs come out sorted.
 class Quadtree {
  public:
-  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
 
   /// The deepest node the last call made (the root is 0).
   int LastDepth() const { return last_depth_; }
@@ -144,15 +250,13 @@ class Quadtree {
   void Build(int depth, const Region& region, std::size_t begin, std::size_t end, const Bounds& bounds);
   void TestAllPairs(const Region& region, const Item* items, std::size_t count);
 
-  std::vector<BodyPair>* pairs_ = nullptr;
   /// levels_[d] holds the items of the nodes at depth d being worked on: the four children of one
   /// node, side by side.
   std::vector<std::vector<Item>> levels_;
   std::vector<Item> residents_;
   std::vector<std::uint8_t> quadrants_;
   int last_depth_ = 0;
-  std::vector<BodyPair> sorted_scratch_;
-  std::vector<std::uint32_t> counts_;
+  PairCollector collector_;
 };
 
 /// A dynamic AABB tree (after Box2D's b2DynamicTree, Erin Catto): one leaf per body holding a
@@ -165,7 +269,13 @@ class Quadtree {
 /// order. Pairs come out sorted by (a, b).
 class AabbTree {
  public:
-  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
+  /// True while the fat boxes overlap in more pairs than the tree keeps (kCandidatesPerBody a
+  /// body): the pairs are then found by a traversal every call, and none are kept.
+  bool Crowded() const { return crowded_; }
+  static constexpr std::size_t kCandidatesPerBody = 16;
 
   /// Leaves removed and inserted again by the last call (new bodies included).
   std::size_t LastReinsertCount() const { return last_reinserts_; }
@@ -200,10 +310,13 @@ class AabbTree {
   void Clear();
   /// Renumbers the nodes in depth-first order, so that a subtree sits together in memory.
   void Relayout();
-  /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself.
-  void FindAllCandidates();
-  /// The same, from last call's list, by querying the tree for the moved leaves only.
-  void UpdateCandidates();
+  /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself;
+  /// past the candidate limit the pairs go straight to the collector and the tree is crowded.
+  void FindAllCandidates(std::span<const AABB> boxes);
+  /// The same, from last call's list, by querying the tree for the moved leaves only; false when
+  /// the list would outgrow the candidate limit (the caller then traverses the whole tree).
+  bool UpdateCandidates();
+  std::size_t CandidateLimit() const;
 
   std::vector<Node> nodes_;
   std::vector<Node> relayout_scratch_;
@@ -223,8 +336,10 @@ class AabbTree {
   std::size_t reinserts_since_relayout_ = 0;
   bool forget_motion_ = false;
   std::size_t last_reinserts_ = 0;
+  bool crowded_ = false;
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
+  PairCollector collector_;
 };
 
 /// Every broad phase behind one call, each keeping its state from call to call, and the automatic
@@ -238,16 +353,24 @@ class AabbTree {
 /// the rule: docs/broadphase.md.
 class BroadPhase {
  public:
-  void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  /// `quotas`: empty (every pair), or one per box (the pair budget, see PairCollector).
+  void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
 
   /// The structure the last call used (never kAuto).
   BroadPhaseType LastUsed() const { return last_used_; }
+  /// The pair budget's account of the last call.
+  const PairCollector& LastCollector() const;
 
   static constexpr std::size_t kAllPairsMaxBodies = 16;
 
  private:
-  void FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs);
+  void FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                     std::span<const PairQuota> quotas);
+  void FindPairsAllPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                         std::span<const PairQuota> quotas);
 
+  PairCollector all_pairs_;
   SweepAndPrune sweep_and_prune_;
   UniformGrid uniform_grid_;
   Quadtree quadtree_;

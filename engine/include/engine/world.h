@@ -87,6 +87,10 @@ struct WorldDef {
   bool continuous = true;
   double sleep_speed = 0.05;            ///< m/s below which a body counts as resting
   double time_to_sleep = 0.5;           ///< s an island must rest before it sleeps
+  /// Bodies piled up keep a bounded number of contacts (the pair budget, docs/limits.md), so
+  /// memory stays linear in the body count; false: every overlapping pair is a contact, at a cost
+  /// quadratic in a pile's size (for tests that compare the two).
+  bool pair_budget = true;
 };
 
 /// What every step writes.
@@ -166,6 +170,13 @@ class World {
   /// The contacts found in the last step, in body-pair order (with the substep solver these
   /// include speculative ones, with a gap: negative depth).
   const std::vector<Contact>& Contacts() const { return contacts_; }
+  /// Bodies the pair budget found in a crowd in the last step, and the pairs it left out there;
+  /// both 0 unless bodies are piled up (docs/limits.md).
+  std::size_t CrowdedBodyCount() const { return crowded_bodies_; }
+  std::uint64_t DroppedPairCount() const { return dropped_pairs_; }
+  /// The most pairs charged to one body in the last step, against quotas of 16 and up (a measure
+  /// of how far a scene is from the budget; 0 with the budget off).
+  std::uint32_t MostChargedPairs() const { return most_charged_; }
   /// False while the body sleeps (and always for static bodies).
   bool IsAwake(BodyId id) const { return awake_[id] != 0; }
 
@@ -209,6 +220,10 @@ class World {
   std::vector<double> rest_time_;
   std::vector<std::uint8_t> awake_;
   std::vector<std::uint32_t> island_;
+  std::vector<PairQuota> quotas_;  ///< per body, from its shape: the pair budget's inputs
+  std::size_t crowded_bodies_ = 0;
+  std::uint64_t dropped_pairs_ = 0;
+  std::uint32_t most_charged_ = 0;
 
   // Scratch reused across steps, so a step allocates nothing once the scene has settled in.
   std::vector<AABB> bounds_;
