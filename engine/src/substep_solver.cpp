@@ -12,15 +12,6 @@ namespace engine::detail {
 
 namespace {
 
-// How far point `p` of `sc` has moved apart along the normal since the step's start.
-Vec2 AnchorOffset(const SubstepConstraint& sc, const SubstepPoint& p, std::span<const BodyState> states,
-                  const StepStart& start) {
-  const Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
-                     (states[sc.a].position - start.positions[sc.a]);
-  if (!sc.angular) return moved;
-  return moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
-}
-
 // Velocity of B's anchor relative to A's.
 Vec2 RelativeVelocity(const SubstepPoint& p, const BodyState& a, const BodyState& b) {
   return (b.velocity + Cross(b.angular_velocity, p.anchor_b)) -
@@ -57,10 +48,12 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints) {
-  constraints->clear();
+  // Filled in place, every field a constraint reads set (a point past point_count is never read):
+  // copying each one in would cost a call to memcpy apiece.
+  constraints->resize(contacts.size());
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    SubstepConstraint sc;
+    SubstepConstraint& sc = (*constraints)[i];
     sc.a = c.a;
     sc.b = c.b;
     sc.contact = i;
@@ -100,13 +93,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
         p.push_impulse = 0.0;
       }
     }
-    constraints->push_back(sc);
   }
-}
-
-double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
-                         std::span<const BodyState> states, const StepStart& start) {
-  return p.base_separation + Dot(AnchorOffset(sc, p, states, start), sc.normal);
 }
 
 void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {

@@ -29,9 +29,18 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
                         double inv_mass_a, double inv_mass_b, double inv_inertia_a,
                         double inv_inertia_b);
 
-/// The separation of point `p` of `sc` now, m (negative when overlapping).
-double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
-                         std::span<const BodyState> states, const StepStart& start);
+/// The separation of point `p` of `sc` now, m (negative when overlapping): the separation at the
+/// step's start plus how far the anchors have moved apart along the normal since. Inline: every
+/// pass over the contacts asks it for every point.
+inline double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
+                                std::span<const BodyState> states, const StepStart& start) {
+  Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
+               (states[sc.a].position - start.positions[sc.a]);
+  if (sc.angular) {
+    moved = moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
+  }
+  return p.base_separation + Dot(moved, sc.normal);
+}
 
 /// Applies the accumulated impulses again, so the solve starts from last step's answer.
 void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);
