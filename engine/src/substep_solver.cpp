@@ -48,11 +48,12 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints) {
-  constraints->clear();
-  constraints->reserve(contacts.size());
+  // Filled in place, every field a constraint reads set (a point past point_count is never read):
+  // copying each one in would cost a call to memcpy apiece.
+  constraints->resize(contacts.size());
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    SubstepConstraint sc;
+    SubstepConstraint& sc = (*constraints)[i];
     sc.a = c.a;
     sc.b = c.b;
     sc.contact = i;
@@ -92,25 +93,225 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
         p.push_impulse = 0.0;
       }
     }
-    constraints->push_back(sc);
   }
 }
 
-void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {
-  for (const SubstepConstraint& sc : constraints) {
-    const Vec2 t = LeftPerp(sc.normal);
-    if (!sc.angular) {
-      const SubstepPoint& p = sc.points[0];
-      const Vec2 impulse = p.normal_impulse * sc.normal + p.tangent_impulse * t;
-      states[sc.a].velocity -= sc.inv_mass_a * impulse;
-      states[sc.b].velocity += sc.inv_mass_b * impulse;
-      continue;
+namespace {
+
+// The least relative normal velocity the contact solve allows point `p` of `sc` now: rigid, no
+// approach at all when touching; across a gap, no more than closes it this substep.
+[[gnu::always_inline]] inline double TargetVelocity(const SubstepConstraint& sc, const SubstepPoint& p,
+                                                    std::span<const BodyState> states,
+                                                    const StepStart& start, double inv_h) {
+  return -std::max(CurrentSeparation(sc, p, states, start), 0.0) * inv_h;
+}
+
+// For WarmStart: drops point `p`'s tangent impulse if that was sliding friction and the pair now
+// slides along it (judged as the impulses go on, as the pass would see it), and returns the
+// impulse to apply again. Inlined: it runs for every contact in every substep.
+[[gnu::always_inline]] inline Vec2 WarmImpulse(const SubstepConstraint& sc, SubstepPoint& p, Vec2 t,
+                                               const BodyState& a, const BodyState& b) {
+  // A stored tangent impulse at least this close to the cone's edge was sliding friction (the
+  // clamp puts it exactly there; the margin covers the force-free scale's rounding).
+  constexpr double kSliding = 1.0 - 1e-9;
+  const Vec2 relative = sc.angular ? RelativeVelocity(p, a, b) : b.velocity - a.velocity;
+  if (p.tangent_impulse * Dot(relative, t) > 0.0 &&
+      std::abs(p.tangent_impulse) >= kSliding * sc.friction * p.normal_impulse) {
+    p.tangent_impulse = 0.0;
+  }
+  return p.normal_impulse * sc.normal + p.tangent_impulse * t;
+}
+
+}  // namespace
+
+// The warm start re-applies last substep's impulses λw, the guess that the contacts need the
+// same again. That holds for contacts carrying a load (a stack holding up its weight gets the
+// same impulse every substep), not for one-off ones: the impulse that stopped two bodies running
+// into each other, applied again, drives them apart at the speed they met, and one Gauss-Seidel
+// pass takes that back only for an isolated pair. In a large packed cluster the remainder grows
+// from substep to substep. Measured on 625 circles packed in a box without gravity
+// (docs/solver.md, "Warm start"), two things pump:
+//
+// 1. Sliding friction. A tangent impulse stored at the edge of Coulomb's cone was kinetic
+//    friction: the normal impulse and the direction of sliding fixed it. Once the pair slides
+//    the other way, applying it again pushes the sliding along, which friction never does.
+//    Kinetic energy ran away (×42 in 7 steps at 4 substeps) only with friction, and not once
+//    these impulses were dropped. Static friction (inside the cone) is kept: piles hold their
+//    shape by it.
+// 2. Normal impulses of collisions, re-applied. These alone never ran away, but they make the
+//    kinetic energy rise from one step to the next (by up to 25 % at 4 substeps and 38 % at 8,
+//    without friction).
+//
+// For (2) the bound comes from what one pass of SolveContacts is: projected Gauss-Seidel, that
+// is coordinate descent on the merit function of the contact problem (Catto, "Iterative
+// Dynamics with Temporal Coherence", GDC 2005, poses sequential impulses as this problem):
+//   G(λ) = ½·λᵀAλ + λᵀ(u₀ − t),   A = J·M⁻¹·Jᵀ,
+// λ the impulses applied this substep, u₀ the contact velocities before them, t the targets
+// (0 touching, −gap/h across a gap). The kinetic energy the impulses add is
+// ΔKE(λ) = ½·λᵀAλ + λᵀu₀ = G(λ) + λᵀt ≤ G(λ), as t ≤ 0 and only normal impulses (≥ 0) have
+// targets. Each row of the pass moves its impulse to the minimum of G along that row within its
+// bounds, so G never rises (a friction row whose cone just shrank with its normal impulse is the
+// one exception: Coulomb's law needs that clamp; LimitContactEnergy answers for it). From the
+// start point αλw, G(αλw) = α·a + ½α²·b, and α = clamp(−a / b, 0, 1) gives G(αλw) ≤ G(0) = 0:
+// the contacts then only take energy out. For a resting stack λw exactly cancels the gravity
+// kick, G's minimum along λw: α = 1.
+//
+// That bound is applied only where no applied force acts (`loaded`). A loaded pile needs its
+// warm start whole: one pass per substep builds the support of a deep pile up only over many
+// substeps, and a lasting shortfall becomes sinking (a 2000-circle pour sinks through its floor
+// when every warm start loses 1 %, measured). Where nothing pushes the bodies together, no
+// contact carries a load, and the scale costs no support.
+
+double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+                 std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
+                 const StepStart& start, double inv_h, WarmStartImpulses scratch) {
+  // Every contact loaded (gravity): the impulses go straight on.
+  if (loaded.empty()) {
+    for (SubstepConstraint& sc : constraints) {
+      BodyState& a = states[sc.a];
+      BodyState& b = states[sc.b];
+      const Vec2 t = LeftPerp(sc.normal);
+      if (!sc.angular) {
+        const Vec2 impulse = WarmImpulse(sc, sc.points[0], t, a, b);
+        a.velocity -= sc.inv_mass_a * impulse;
+        b.velocity += sc.inv_mass_b * impulse;
+        continue;
+      }
+      for (int k = 0; k < sc.point_count; ++k) {
+        SubstepPoint& p = sc.points[k];
+        ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
+      }
     }
+    return 1.0;
+  }
+  const bool rotation = !scratch.angular.empty();
+  for (Vec2& p : scratch.linear) p = {};
+  for (double& l : scratch.angular) l = 0.0;
+  // The force-free part of a = λwᵀ(u₀ − t): its targets' side here, its bodies' side below.
+  double a = 0.0;
+  bool any_free = false;
+  for (SubstepConstraint& sc : constraints) {
+    BodyState& body_a = states[sc.a];
+    BodyState& body_b = states[sc.b];
+    const Vec2 t = LeftPerp(sc.normal);
+    const bool free = !loaded[sc.a] && !loaded[sc.b];
+    any_free = any_free || free;
     for (int k = 0; k < sc.point_count; ++k) {
-      const SubstepPoint& p = sc.points[k];
-      ApplyImpulse(sc, p, p.normal_impulse * sc.normal + p.tangent_impulse * t, states[sc.a], states[sc.b]);
+      SubstepPoint& p = sc.points[k];
+      const Vec2 impulse = WarmImpulse(sc, p, t, body_a, body_b);
+      if (!free) {
+        ApplyImpulse(sc, p, impulse, body_a, body_b);
+        continue;
+      }
+      a -= p.normal_impulse * TargetVelocity(sc, p, states, start, inv_h);
+      scratch.linear[sc.a] -= impulse;
+      scratch.linear[sc.b] += impulse;
+      if (sc.angular) {
+        scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
+        scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+      }
     }
   }
+  if (!any_free) return 1.0;
+  // With the loaded part applied: λwᵀ(u₀ − t) = Σ P·v (+ L·ω) + the targets' side, and
+  // λwᵀAλw = Σ |P|²/m (+ L²/I), P and L each body's sums of the force-free impulses.
+  double b = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const Vec2 p = scratch.linear[i];
+    a += Dot(p, states[i].velocity);
+    b += infos[i].inv_mass * Dot(p, p);
+    if (rotation) {
+      const double l = scratch.angular[i];
+      a += l * states[i].angular_velocity;
+      b += infos[i].inv_inertia * l * l;
+    }
+  }
+  if (!(b > 0.0)) return 1.0;  // no force-free impulse moves anything
+  const double alpha = std::clamp(-a / b, 0.0, 1.0);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].velocity += (alpha * infos[i].inv_mass) * scratch.linear[i];
+    if (rotation) states[i].angular_velocity += (alpha * infos[i].inv_inertia) * scratch.angular[i];
+  }
+  if (alpha != 1.0) {
+    for (SubstepConstraint& sc : constraints) {
+      if (loaded[sc.a] || loaded[sc.b]) continue;
+      for (int k = 0; k < sc.point_count; ++k) {
+        sc.points[k].normal_impulse *= alpha;
+        sc.points[k].tangent_impulse *= alpha;
+      }
+    }
+  }
+  return alpha;
+}
+
+double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo> infos) {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const BodyState& s = states[i];
+    energy += 0.5 * infos[i].mass * Dot(s.velocity, s.velocity);
+    if (infos[i].inv_inertia != 0.0) {
+      energy += 0.5 * infos[i].inertia * s.angular_velocity * s.angular_velocity;
+    }
+  }
+  return energy;
+}
+
+double LimitContactEnergy(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+                          std::span<const BodyInfo> infos, double energy_before,
+                          WarmStartImpulses scratch) {
+  // Rises this small are the rounding of the sums themselves.
+  constexpr double kRoundoff = 1e-12;
+  const double excess = KineticEnergy(states, infos) - energy_before;
+  if (!(excess > kRoundoff * energy_before)) return 0.0;
+  // P, L: each body's sum of this substep's contact impulses. Taking back the fraction d of
+  // them leaves KE(d) = KE − d·S + ½d²·Q, S = Σ P·v (+ L·ω), Q = Σ |P|²/m (+ L²/I). KE(1) is
+  // the energy before the contacts acted, so the least d with KE(d) = energy_before is in (0, 1]:
+  // 2·excess / Q when that is below 1. Unrelated contacts elsewhere make Q large and d small.
+  const bool rotation = !scratch.angular.empty();
+  for (Vec2& p : scratch.linear) p = {};
+  for (double& l : scratch.angular) l = 0.0;
+  for (const SubstepConstraint& sc : constraints) {
+    const Vec2 t = LeftPerp(sc.normal);
+    for (int k = 0; k < sc.point_count; ++k) {
+      const SubstepPoint& p = sc.points[k];
+      const Vec2 impulse = p.normal_impulse * sc.normal + p.tangent_impulse * t;
+      scratch.linear[sc.a] -= impulse;
+      scratch.linear[sc.b] += impulse;
+      if (sc.angular) {
+        scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
+        scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+      }
+    }
+  }
+  double slope = 0.0, curvature = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const Vec2 p = scratch.linear[i];
+    slope += Dot(p, states[i].velocity);
+    curvature += infos[i].inv_mass * Dot(p, p);
+    if (rotation) {
+      slope += scratch.angular[i] * states[i].angular_velocity;
+      curvature += infos[i].inv_inertia * scratch.angular[i] * scratch.angular[i];
+    }
+  }
+  if (!(curvature > 0.0)) return 0.0;
+  // The smaller root of ½Q·d² − S·d + excess = 0, written to keep its digits when excess is
+  // tiny; without a real root (rounding), the minimum of KE(d).
+  const double discriminant = slope * slope - 2.0 * curvature * excess;
+  const double d = std::clamp(discriminant > 0.0 && slope > 0.0
+                                  ? 2.0 * excess / (slope + std::sqrt(discriminant))
+                                  : slope / curvature,
+                              0.0, 1.0);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].velocity -= (d * infos[i].inv_mass) * scratch.linear[i];
+    if (rotation) states[i].angular_velocity -= (d * infos[i].inv_inertia) * scratch.angular[i];
+  }
+  for (SubstepConstraint& sc : constraints) {
+    for (int k = 0; k < sc.point_count; ++k) {
+      sc.points[k].normal_impulse *= 1.0 - d;
+      sc.points[k].tangent_impulse *= 1.0 - d;
+    }
+  }
+  return d;
 }
 
 void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
@@ -122,9 +323,7 @@ void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState
     const Vec2 t = LeftPerp(n);
     if (!sc.angular) {
       SubstepPoint& p = sc.points[0];
-      // Rigid: no approach at all when touching; across a gap, no more than closes it this substep.
-      const double s = CurrentSeparation(sc, p, states, start);
-      const double min_vn = -std::max(s, 0.0) * inv_h;
+      const double min_vn = TargetVelocity(sc, p, states, start, inv_h);
       const double vn = Dot(b.velocity - a.velocity, n);
       const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn - vn), 0.0);
       const double dn = new_normal - p.normal_impulse;
@@ -144,7 +343,7 @@ void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState
     }
     double min_vn[2], vn[2];
     for (int k = 0; k < sc.point_count; ++k) {
-      min_vn[k] = -std::max(CurrentSeparation(sc, sc.points[k], states, start), 0.0) * inv_h;
+      min_vn[k] = TargetVelocity(sc, sc.points[k], states, start, inv_h);
       vn[k] = Dot(RelativeVelocity(sc.points[k], a, b), n);
     }
     double x[2];

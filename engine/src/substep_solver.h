@@ -29,9 +29,9 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
                         double inv_mass_a, double inv_mass_b, double inv_inertia_a,
                         double inv_inertia_b);
 
-/// The separation of point `p` of `sc` now, m (negative when overlapping): its separation at the
-/// step's start plus how far its anchors have moved apart along the normal since. Inline: every
-/// pass asks it of every contact.
+/// The separation of point `p` of `sc` now, m (negative when overlapping): the separation at the
+/// step's start plus how far the anchors have moved apart along the normal since. Inline: every
+/// pass over the contacts asks it for every point.
 inline double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint& p,
                                 std::span<const BodyState> states, const StepStart& start) {
   Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
@@ -42,8 +42,35 @@ inline double CurrentSeparation(const SubstepConstraint& sc, const SubstepPoint&
   return p.base_separation + Dot(moved, sc.normal);
 }
 
-/// Applies the accumulated impulses again, so the solve starts from last step's answer.
-void WarmStart(std::span<const SubstepConstraint> constraints, std::span<BodyState> states);
+/// Scratch for `WarmStart`, one entry per body: the sums of the force-free contacts' warm-start
+/// impulses on each body (`angular` empty when nothing turns).
+struct WarmStartImpulses {
+  std::span<Vec2> linear;
+  std::span<double> angular;
+};
+
+/// Applies the impulses accumulated so far again, so the solve starts from the last answer
+/// (docs/solver.md, "Warm start"), except
+/// - sliding friction that would now push the pair the way it slides: a tangent impulse stored
+///   at the edge of Coulomb's cone is dropped when the relative sliding is along it;
+/// - the impulses of force-free contacts, those whose bodies carry no applied force (`loaded` is
+///   0 for both; an empty `loaded` means every body is loaded), are scaled by the factor in
+///   [0, 1] that leaves the least kinetic energy, so that there the contacts only take energy
+///   out. Returns that factor (1 when nothing is force-free).
+double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+                 std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
+                 const StepStart& start, double inv_h, WarmStartImpulses scratch);
+
+/// Kinetic energy of all bodies, J (rotation counted only where the body can turn).
+double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo> infos);
+
+/// For a world where no applied force acts: if the substep's contact impulses left more kinetic
+/// energy than `energy_before` (the warm start's bound has one exception: a friction impulse cut
+/// back to a cone that shrank with its normal impulse), takes back the least fraction of every
+/// contact's impulse that brings it down to `energy_before`. Returns that fraction (0: none).
+double LimitContactEnergy(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+                          std::span<const BodyInfo> infos, double energy_before,
+                          WarmStartImpulses scratch);
 
 /// One Gauss-Seidel pass over all contacts: touching bodies may not approach, bodies with a gap
 /// may close no more than it this substep (speculative contact), friction within Coulomb's cone.

@@ -376,6 +376,23 @@ void World::StepSubstep() {
   push_velocities_.resize(states_.size());
   push_angular_velocities_.resize(states_.size());
   const detail::PushVelocities push{push_velocities_, push_angular_velocities_};
+  // Which bodies an applied force pushes: their contacts may carry a load, and the warm start
+  // keeps it whole; the warm start of force-free contacts never adds energy. Gravity (uniform or
+  // mutual) loads every moving body; otherwise a spring loads the bodies it pulls. Drag and
+  // damping only slow a body down and load nothing.
+  const bool all_loaded = def_.gravity != Vec2{} || def_.gravitational_constant != 0.0;
+  loaded_.assign(all_loaded ? 0 : states_.size(), 0);
+  for (const SpringDef& spring : springs_) {
+    if (all_loaded || (spring.stiffness == 0.0 && spring.damping == 0.0)) continue;
+    loaded_[spring.body_a] = awake_[spring.body_a];
+    if (spring.body_b) loaded_[*spring.body_b] = awake_[*spring.body_b];
+  }
+  // Nothing loaded at all: a closed world without applied forces, where the contacts must never
+  // add kinetic energy; a last check per substep holds them to it.
+  const bool force_free = !all_loaded && std::find(loaded_.begin(), loaded_.end(), 1) == loaded_.end();
+  warm_free_.resize(all_loaded ? 0 : states_.size());
+  warm_free_angular_.resize(all_loaded || !def_.rotation ? 0 : states_.size());
+  const detail::WarmStartImpulses warm{warm_free_, warm_free_angular_};
   if (def_.rotation) {
     angles_before_.resize(states_.size());
     turned_.resize(states_.size());
@@ -399,11 +416,13 @@ void World::StepSubstep() {
     // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
     // alone cannot; the check at the step's end catches anything else.)
     if (ForcesBeyondGravity() && CheckFinite()) return;
-    detail::WarmStart(substep_constraints_, states_);
+    const double energy_before = force_free ? detail::KineticEnergy(states_, infos_) : 0.0;
+    detail::WarmStart(substep_constraints_, states_, infos_, loaded_, start, inv_h, warm);
     for (int pass = 0; pass < def_.velocity_iterations; ++pass) {
       detail::SolveContacts(substep_constraints_, states_, start, inv_h);
     }
     if (direct) detail::SolveDirect(direct_solver_.get(), substep_constraints_, states_, start, inv_h);
+    if (force_free) detail::LimitContactEnergy(substep_constraints_, states_, infos_, energy_before, warm);
     if (has_up) {
       detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
                              def_.linear_slop, up, shock_tolerance);

@@ -238,6 +238,9 @@ class World {
   std::vector<std::uint8_t> pushed_;
   std::vector<Vec2> push_velocities_;
   std::vector<double> push_angular_velocities_;
+  std::vector<std::uint8_t> loaded_;  ///< an applied force acts on the body (substep solver)
+  std::vector<Vec2> warm_free_;
+  std::vector<double> warm_free_angular_;
   std::vector<double> angles_before_;
   std::vector<Rot> turned_;
   std::vector<ContactConstraint> seed_constraints_;
