@@ -1,6 +1,6 @@
-// Islands by union-find over the contacts of turning pairs; per island a dense K = J·M⁻¹·Jᵀ built
-// once per step, and per substep a box-constrained QP solved by block principal pivoting on
-// Cholesky factors that are kept while the set of free rows stays the same.
+// Islands by union-find over the contacts of turning pairs; per island K = J·M⁻¹·Jᵀ built once
+// per step (dense, and row by row as its non-zeros), and per substep a few box-constrained QPs
+// solved by block principal pivoting on a Cholesky factor that is kept and updated row by row.
 #include "direct_solver.h"
 
 #include <algorithm>
@@ -14,17 +14,21 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Relative regularisation of K's diagonal. A statically indeterminate island (a box on two legs)
-// has more rows than its bodies have freedoms, so K is singular; this picks one of its equally
-// valid answers. It costs a velocity error of a billionth of a row's own response to its impulse:
-// a 1000:1 column sinks 1.5 µm in 10 s.
-constexpr double kRegularisation = 1e-9;
+// The QPs are regularised proximally (Rockafellar, "Monotone operators and the proximal point
+// algorithm", 1976): ρ·diag(K) is added to K and ρ·diag(K)·x_previous taken off q, so each QP
+// has one answer, the one nearest the last (a statically indeterminate island, a box on two
+// legs, has many; without a choice the pivoting wandered among them). Repeating the QP from its
+// own answer converges to the exact answer of the unregularised problem; kVelocityTolerance
+// (m/s, on what is left of ρ·diag(K)·Δx) ends the repeats, at most kMaxSolves of them. The
+// push-out takes the same ρ about zero.
+constexpr double kProximal = 1e-5;
+constexpr double kVelocityTolerance = 1e-7;
+constexpr int kMaxSolves = 4;
 
-// Friction limits are held fixed in each QP (μ times the normal impulses found before); a new
-// round follows only when a limit that binds has moved by more than this fraction of the
-// island's largest, and at most this many rounds per substep.
+// Friction limits are held fixed in each QP: the first takes the limits the last answer ended
+// with, each later one μ times the normal impulses just found. They count as settled when no
+// binding limit moved by more than this fraction of the island's largest.
 constexpr double kLimitTolerance = 1e-6;
-constexpr int kFrictionRounds = 4;
 
 enum : std::uint8_t { kFree, kAtLower, kAtUpper };
 
@@ -75,57 +79,79 @@ double Coupling(const SubstepConstraint& ci, const Jacobian& ji, const SubstepCo
   return k;
 }
 
-// In-place Cholesky factor (lower, row-major) of the n×n matrix in `a`; false unless positive
-// definite.
-bool Factor(double* a, int n) {
+// In-place Cholesky factor (lower, row-major, rows `stride` apart) of the n×n matrix in `a`;
+// false unless positive definite.
+bool Factor(double* a, int n, int stride) {
   for (int j = 0; j < n; ++j) {
-    double d = a[j * n + j];
-    for (int k = 0; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
+    double d = a[j * stride + j];
+    for (int k = 0; k < j; ++k) d -= a[j * stride + k] * a[j * stride + k];
     if (!(d > 0.0)) return false;
     d = std::sqrt(d);
-    a[j * n + j] = d;
+    a[j * stride + j] = d;
     for (int i = j + 1; i < n; ++i) {
-      double s = a[i * n + j];
-      for (int k = 0; k < j; ++k) s -= a[i * n + k] * a[j * n + k];
-      a[i * n + j] = s / d;
+      double s = a[i * stride + j];
+      for (int k = 0; k < j; ++k) s -= a[i * stride + k] * a[j * stride + k];
+      a[i * stride + j] = s / d;
     }
   }
   return true;
 }
 
 // Solves L·Lᵀ·x = b in place.
-void Substitute(const double* l, int n, double* x) {
+void Substitute(const double* l, int n, int stride, double* x) {
   for (int i = 0; i < n; ++i) {
     double s = x[i];
-    for (int k = 0; k < i; ++k) s -= l[i * n + k] * x[k];
-    x[i] = s / l[i * n + i];
+    for (int k = 0; k < i; ++k) s -= l[i * stride + k] * x[k];
+    x[i] = s / l[i * stride + i];
   }
   for (int i = n - 1; i >= 0; --i) {
     double s = x[i];
-    for (int k = i + 1; k < n; ++k) s -= l[k * n + i] * x[k];
-    x[i] = s / l[i * n + i];
+    for (int k = i + 1; k < n; ++k) s -= l[k * stride + i] * x[k];
+    x[i] = s / l[i * stride + i];
   }
 }
 
-// The box-constrained QP min ½·xᵀKx + qᵀx over lo ≤ x ≤ hi, as the mixed complementarity
-// problem w = K·x + q with w = 0 where x lies strictly inside its bounds, w ≥ 0 at lo, w ≤ 0 at
-// hi. Block principal pivoting (Júdice and Pires, "A block principal pivoting algorithm for
-// large-scale strictly monotone linear complementarity problems", Computers & Operations
-// Research 21, 1994): solve the free rows with every other row at its bound, then move every
-// row that contradicts its condition at once; after three such moves that do not reduce the
-// number of contradictions, move only the last one (Murty's rule), which ends for a positive
-// definite K.
+// Removes row and column p from the n×n factor: the rows below move up one, and Givens
+// rotations of neighbouring columns take out what they held right of the diagonal (rotations
+// from the right leave L·Lᵀ unchanged). O(n²); false if a pivot vanishes.
+bool DeleteFromFactor(double* l, int n, int stride, int p) {
+  for (int i = p; i < n - 1; ++i) {
+    for (int c = 0; c <= i + 1; ++c) l[i * stride + c] = l[(i + 1) * stride + c];
+  }
+  for (int j = p; j < n - 1; ++j) {
+    const double a = l[j * stride + j], b = l[j * stride + j + 1];
+    const double r = std::hypot(a, b);
+    if (!(r > 0.0)) return false;
+    const double c = a / r, s = b / r;
+    for (int i = j; i < n - 1; ++i) {
+      const double u = l[i * stride + j], v = l[i * stride + j + 1];
+      l[i * stride + j] = c * u + s * v;
+      l[i * stride + j + 1] = c * v - s * u;
+    }
+  }
+  return true;
+}
+
+// The box-constrained QP min ½·xᵀ(K + ρD)x + qᵀx over lo ≤ x ≤ hi (D = diag K), as the mixed
+// complementarity problem w = (K + ρD)·x + q with w = 0 where x lies strictly inside its bounds,
+// w ≥ 0 at lo and w ≤ 0 at hi. Block principal pivoting (Júdice and Pires, "A block principal
+// pivoting algorithm for large-scale strictly monotone linear complementarity problems",
+// Computers & Operations Research 21, 1994): solve the free rows with every other row at its
+// bound, then move every row whose condition the answer breaks at once; after three such moves
+// that do not reduce their number, move only the last one (Murty's rule), which ends for a
+// positive definite matrix.
 class BoxQp {
  public:
-  /// K's rows are `stride` apart; `cache` names the solver's slot of kept factors to use.
-  BoxQp(const double* k, int n, int stride, DirectSolver* s, std::size_t cache)
-      : k_(k), n_(n), stride_(stride), s_(s), cache_(cache) {}
+  /// K's rows are `stride` apart; `cache` names the solver's factor slot to keep and update.
+  BoxQp(const double* k, int n, int stride, double rho, const DirectSolver::Sparse& sparse, DirectSolver* s,
+        std::size_t cache)
+      : k_(k), n_(n), stride_(stride), rho_(rho), sparse_(sparse), s_(s), cache_(cache) {}
 
   /// `bound` is the first guess of each row's state, and the answer's; false if the pivoting
-  /// does not end (it always should) or a factor fails.
+  /// does not end within its budget or a factor fails.
   bool Solve(const double* q, const double* lo, const double* hi, std::uint8_t* bound, double* x) {
     int fewest = n_ + 1, patience = 3;
-    for (int iteration = 0; iteration < 10 * n_ + 20; ++iteration) {
+    for (int iteration = 0; iteration < 4 * n_ + 20; ++iteration) {
       for (int i = 0; i < n_; ++i) {
         if (lo[i] == hi[i]) bound[i] = kAtLower;
         if (bound[i] != kFree) x[i] = bound[i] == kAtLower ? lo[i] : hi[i];
@@ -138,9 +164,7 @@ class BoxQp {
         if (bound[i] == kFree) {
           wrong[i] = x[i] < lo[i] || x[i] > hi[i];
         } else if (lo[i] != hi[i]) {
-          const double* row = k_ + i * stride_;
-          double w = q[i];
-          for (int j = 0; j < n_; ++j) w += row[j] * x[j];
+          const double w = q[i] + rho_ * k_[i * stride_ + i] * x[i] + RowTimes(i, x);
           const double tolerance = 1e-10 * (1.0 + std::abs(q[i]));
           wrong[i] = bound[i] == kAtLower ? w < -tolerance : w > tolerance;
         }
@@ -163,41 +187,93 @@ class BoxQp {
   }
 
  private:
-  // Solves the free rows with every other row at its bound; reuses the slot's factor when the
-  // free rows are the ones it was made for.
+  // Solves the free rows with every other row at its bound. The slot keeps its factor from call
+  // to call and brings it to the new free rows by deleting and appending rows (O(f²) each); only
+  // many changes at once, or a slot of a new step, are factored afresh (O(f³)).
   bool SolveFree(const double* q, const std::uint8_t* bound, double* x) {
-    std::vector<std::uint32_t>& free_rows = s_->free_rows;
-    free_rows.clear();
-    for (int i = 0; i < n_; ++i) {
-      if (bound[i] == kFree) free_rows.push_back(static_cast<std::uint32_t>(i));
+    std::vector<std::uint32_t>& order = s_->factor_rows[cache_];
+    std::vector<double>& l = s_->factor[cache_];
+    const int stride = n_;
+    l.resize(static_cast<std::size_t>(stride) * stride);
+    int f = static_cast<int>(order.size());
+    int gone = 0, free_count = 0;
+    for (int p = 0; p < f; ++p) gone += bound[order[p]] != kFree;
+    for (int i = 0; i < n_; ++i) free_count += bound[i] == kFree;
+    const int added = free_count - (f - gone);
+    bool fresh = !s_->factor_valid[cache_] || 4 * (gone + added) > f + 8;
+    for (int p = f - 1; p >= 0 && !fresh; --p) {
+      if (bound[order[p]] == kFree) continue;
+      fresh = !DeleteFromFactor(l.data(), f, stride, p);
+      order.erase(order.begin() + p);
+      --f;
     }
-    const int f = static_cast<int>(free_rows.size());
-    std::vector<double>& factor = s_->factor[cache_];
-    if (free_rows != s_->factor_rows[cache_]) {
-      factor.resize(static_cast<std::size_t>(f) * f);
+    if (!fresh) {
+      s_->in_factor.assign(n_, 0);
+      for (std::uint32_t r : order) s_->in_factor[r] = 1;
+      for (int i = 0; i < n_ && !fresh; ++i) {
+        if (bound[i] != kFree || s_->in_factor[i]) continue;
+        fresh = !AppendToFactor(l.data(), f, stride, order, static_cast<std::uint32_t>(i));
+        order.push_back(static_cast<std::uint32_t>(i));
+        ++f;
+      }
+    }
+    if (fresh) {
+      order.clear();
+      for (int i = 0; i < n_; ++i) {
+        if (bound[i] == kFree) order.push_back(static_cast<std::uint32_t>(i));
+      }
+      f = static_cast<int>(order.size());
       for (int r = 0; r < f; ++r) {
-        for (int c = 0; c <= r; ++c) factor[r * f + c] = k_[free_rows[r] * stride_ + free_rows[c]];
-        factor[r * f + r] *= 1.0 + kRegularisation;
+        for (int c = 0; c <= r; ++c) l[r * stride + c] = k_[order[r] * stride_ + order[c]];
+        l[r * stride + r] *= 1.0 + rho_;
       }
-      s_->factor_rows[cache_] = free_rows;
-      if (!Factor(factor.data(), f)) {
-        s_->factor_rows[cache_].clear();
-        return false;
-      }
+      s_->factor_valid[cache_] = Factor(l.data(), f, stride);
+      if (!s_->factor_valid[cache_]) return false;
     }
     std::vector<double>& rhs = s_->rhs;
     rhs.resize(f);
     for (int r = 0; r < f; ++r) {
-      const double* row = k_ + free_rows[r] * stride_;
-      double v = -q[free_rows[r]];
-      for (int j = 0; j < n_; ++j) {
-        if (bound[j] != kFree && x[j] != 0.0) v -= row[j] * x[j];
+      double v = -q[order[r]];
+      for (std::uint32_t e = sparse_.begin[order[r]]; e < sparse_.end[order[r]]; ++e) {
+        const std::uint32_t j = sparse_.column[e];
+        if (static_cast<int>(j) >= n_) break;
+        if (bound[j] != kFree && x[j] != 0.0) v -= sparse_.value[e] * x[j];
       }
       rhs[r] = v;
     }
-    Substitute(factor.data(), f, rhs.data());
-    for (int r = 0; r < f; ++r) x[free_rows[r]] = rhs[r];
+    Substitute(l.data(), f, stride, rhs.data());
+    for (int r = 0; r < f; ++r) x[order[r]] = rhs[r];
     return true;
+  }
+
+  // Appends row `row` to the f×f factor of the rows in `order`: its off-diagonal part solves
+  // L·y = K[order, row]. False if the new pivot is not clearly positive.
+  bool AppendToFactor(double* l, int f, int stride, const std::vector<std::uint32_t>& order,
+                      std::uint32_t row) const {
+    double* y = l + f * stride;
+    double sum = 0.0;
+    for (int p = 0; p < f; ++p) {
+      double v = k_[order[p] * stride_ + row];
+      for (int k = 0; k < p; ++k) v -= l[p * stride + k] * y[k];
+      y[p] = v / l[p * stride + p];
+      sum += y[p] * y[p];
+    }
+    const double diagonal = k_[row * stride_ + row] * (1.0 + rho_);
+    const double d2 = diagonal - sum;
+    if (!(d2 > 1e-12 * diagonal)) return false;
+    y[f] = std::sqrt(d2);
+    return true;
+  }
+
+  // Row i of K times x over the row's non-zeros (rows share few bodies), in the first n_ columns.
+  double RowTimes(int i, const double* x) const {
+    double sum = 0.0;
+    for (std::uint32_t e = sparse_.begin[i]; e < sparse_.end[i]; ++e) {
+      const std::uint32_t j = sparse_.column[e];
+      if (static_cast<int>(j) >= n_) break;
+      sum += sparse_.value[e] * x[j];
+    }
+    return sum;
   }
 
   void Move(int i, const double* lo, std::uint8_t* bound, const double* x) const {
@@ -207,6 +283,8 @@ class BoxQp {
   const double* k_;
   int n_;
   int stride_;
+  double rho_;
+  DirectSolver::Sparse sparse_;
   DirectSolver* s_;
   std::size_t cache_;
 };
@@ -225,15 +303,22 @@ void ApplyImpulse(const SubstepConstraint& sc, const SubstepPoint& p, Vec2 impul
   ApplyImpulse(sc, p.anchor_a, p.anchor_b, impulse, a.velocity, a.angular_velocity, b.velocity, b.angular_velocity);
 }
 
+DirectSolver::Sparse SparseRows(const DirectSolver* s, const DirectSolver::Island& island) {
+  return {s->sparse_begin.data() + island.first_row, s->sparse_end.data() + island.first_row,
+          s->sparse_column.data(), s->sparse_value.data()};
+}
+
 bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint> constraints,
                  std::span<BodyState> states, const StepStart& start, double inv_h) {
   const DirectSolver::Island& island = s->islands[index];
   const int m = static_cast<int>(island.rows);
   const int normals = static_cast<int>(island.normal_rows);
   const DirectSolver::Row* rows = s->rows.data() + island.first_row;
+  const double* k = s->matrix.data() + island.matrix;
   std::uint8_t* bound = s->bound.data() + island.first_row;
   double* last_limit = s->last_limit.data() + island.first_row;
   s->x.resize(m), s->q.resize(m), s->lo.resize(m), s->hi.resize(m), s->limit.resize(m);
+  s->centred.resize(m);
   double* x = s->x.data();
   double* q = s->q.data();
   double* lo = s->lo.data();
@@ -247,8 +332,8 @@ bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint
     const SubstepConstraint& sc = constraints[rows[i].constraint];
     const Vec2 t = LeftPerp(sc.normal);
     double friction = 0.0;
-    for (int k = 0; k < sc.point_count; ++k) {
-      const SubstepPoint& p = sc.points[k];
+    for (int n = 0; n < sc.point_count; ++n) {
+      const SubstepPoint& p = sc.points[n];
       ApplyImpulse(sc, p, -(p.normal_impulse * sc.normal + p.tangent_impulse * t), states);
       friction += p.tangent_impulse;
     }
@@ -267,38 +352,40 @@ bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint
       lo[i] = 0.0, hi[i] = kInfinity;
     }
   }
-  // Each QP holds the friction limits fixed, so it is convex and its answer can only take
-  // kinetic energy away (with fixed limits every row's impulse does non-positive work on the
-  // answer's velocity). The first round takes the limits the last answer ended with (warm, as
-  // the impulses are); a later round, μ times the normal impulses just found, if a limit that
-  // binds has moved or an answer left its new cone.
-  BoxQp qp(s->matrix.data() + island.matrix, m, m, s, index);
+  // Each QP holds the friction limits fixed, so it is convex, and its answer can only take
+  // kinetic energy away: with fixed limits every row's impulse does non-positive work on the
+  // answer's velocity (up to the proximal term's residue). Repeat it from its own answer, with
+  // the limits brought up to date, until both settle.
+  BoxQp qp(k, m, m, kProximal, SparseRows(s, island), s, index);
   bool solved = false;
-  for (int round = 0; round < kFrictionRounds; ++round) {
+  double residual = kInfinity;
+  for (int repeat = 0; repeat < kMaxSolves; ++repeat) {
     double largest = 0.0;
     for (int i = normals; i < m; ++i) {
       const SubstepConstraint& sc = constraints[rows[i].constraint];
       double normal = 0.0;
       for (int n = 0; n < sc.point_count; ++n) normal += x[rows[i].first_normal + n];
-      s->limit[i] = round == 0 ? last_limit[i] : sc.friction * normal;
+      s->limit[i] = repeat == 0 ? last_limit[i] : sc.friction * normal;
       largest = std::max(largest, s->limit[i]);
     }
-    const double tolerance = kLimitTolerance * largest;
-    bool moved = round == 0;
+    bool moved = false;
     for (int i = normals; i < m; ++i) {
       const double limit = s->limit[i];
-      moved = moved || (bound[i] != kFree && std::abs(limit - hi[i]) > tolerance) ||
-              std::abs(x[i]) > limit + tolerance;
+      moved = moved || (bound[i] != kFree && std::abs(limit - hi[i]) > kLimitTolerance * largest) ||
+              std::abs(x[i]) > limit + kLimitTolerance * largest;
       lo[i] = -limit, hi[i] = limit;
     }
-    if (!moved) break;
-    solved = qp.Solve(q, lo, hi, bound, x);
+    if (repeat > 0 && !moved && residual < kVelocityTolerance) break;
+    for (int i = 0; i < m; ++i) s->centred[i] = q[i] - kProximal * k[i * m + i] * x[i];
+    s->previous.assign(x, x + m);
+    solved = qp.Solve(s->centred.data(), lo, hi, bound, x);
     if (!solved) break;
+    residual = 0.0;
+    for (int i = 0; i < m; ++i) residual = std::max(residual, kProximal * k[i * m + i] * std::abs(x[i] - s->previous[i]));
   }
   if (!solved) {
     for (std::uint32_t i = 0; i < island.body_count; ++i) states[s->bodies[island.first_body + i]] = s->saved[i];
-    for (int i = 0; i < m; ++i) bound[i] = kFree;
-    return false;
+    return false;  // the row states stay: the next substep's pivoting starts from them
   }
   for (int i = normals; i < m; ++i) last_limit[i] = hi[i];
   // The answer, and the impulses for warm starting and the next pass: normals per point, friction
@@ -329,6 +416,10 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
   s->bodies.clear();
   s->bound.clear();
   s->push_bound.clear();
+  s->sparse_begin.clear();
+  s->sparse_end.clear();
+  s->sparse_column.clear();
+  s->sparse_value.clear();
   s->last_limit.clear();
   s->direct_contact.clear();
   if (std::none_of(constraints.begin(), constraints.end(),
@@ -411,6 +502,16 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
         k[r * m + c] = k[c * m + r] = Coupling(cr, jr, cc, RowJacobian(cc, rows[c].point));
       }
     }
+    // K's non-zeros row by row, in column order.
+    for (int r = 0; r < m; ++r) {
+      s->sparse_begin.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
+      for (int c = 0; c < m; ++c) {
+        if (k[r * m + c] == 0.0) continue;
+        s->sparse_column.push_back(static_cast<std::uint32_t>(c));
+        s->sparse_value.push_back(k[r * m + c]);
+      }
+      s->sparse_end.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
+    }
     // First guesses, from the impulses warm starting brought: the normals that pushed are free,
     // friction is free within μ times its contact's normal impulses; nothing pushes out.
     for (int r = 0; r < m; ++r) {
@@ -436,6 +537,7 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
   // Factor slots: one per island for the velocities, one for the push-out.
   s->factor.resize(2 * s->islands.size());
   s->factor_rows.resize(2 * s->islands.size());
+  s->factor_valid.assign(2 * s->islands.size(), 0);
   for (std::vector<std::uint32_t>& slot : s->factor_rows) slot.clear();
   return !s->islands.empty();
 }
@@ -507,8 +609,8 @@ void PushOutDirect(DirectSolver* s, std::span<SubstepConstraint> constraints, st
       s->q[i] += Dot(j.d, push.linear[sc.b] - push.linear[sc.a]) + j.rb * push.angular[sc.b] -
                  j.ra * push.angular[sc.a];
     }
-    BoxQp qp(s->matrix.data() + island.matrix, normals, static_cast<int>(island.rows), s,
-             s->islands.size() + index);
+    BoxQp qp(s->matrix.data() + island.matrix, normals, static_cast<int>(island.rows), kProximal,
+             SparseRows(s, island), s, s->islands.size() + index);
     if (any && !qp.Solve(s->q.data(), s->lo.data(), s->hi.data(), bound, s->x.data())) {
       std::fill(bound, bound + normals, kAtLower);
       for (int i = 0; i < normals; ++i) s->x[i] = s->limit[i];  // Gauss-Seidel's push stands

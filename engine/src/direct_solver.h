@@ -19,16 +19,18 @@ namespace engine::detail {
 /// it Gauss-Seidel holds a rotating column of three boxes within 0.5 mm.
 inline constexpr double kDirectMassRatio = 10.0;
 
-/// Islands with more rows than this are left to Gauss-Seidel: the dense factorisation grows
-/// with the cube of the rows. One row per contact point and one friction row per contact: a
-/// column of n boxes on the ground has 3n rows.
-inline constexpr int kDirectMaxRows = 128;
+/// Islands with more rows than this are left to Gauss-Seidel: the factor is dense, and 60
+/// random piles with mass ratios up to 1000:1 took 2 times Gauss-Seidel's time with this limit,
+/// 10 times with 128 (docs/solver.md). One row per contact point and one friction row per
+/// contact: a column of n boxes on the ground has 3n.
+inline constexpr int kDirectMaxRows = 96;
 
 /// The solver's working state for the islands of one step; reused from step to step.
 struct DirectSolver {
   /// A normal row of one point (`point` ≥ 0) or the friction row of a whole contact (−1): in 2D
-  /// the friction rows of a face's two points are the same row, so a contact has one, at the
-  /// points' mean anchor, within μ times the sum of its normal impulses.
+  /// the friction rows of a face's two points are the same row (and two equal rows make the
+  /// problem singular), so a contact has one, at the points' mean anchor, within μ times the sum
+  /// of its normal impulses.
   struct Row {
     std::uint32_t constraint;
     std::int32_t point;
@@ -42,9 +44,18 @@ struct DirectSolver {
     std::uint32_t first_body;   ///< its moving bodies: bodies[first_body, first_body + body_count)
     std::uint32_t body_count;
   };
+  /// An island's K row by row as its non-zeros (columns ascending), for products with K.
+  struct Sparse {
+    const std::uint32_t* begin;  ///< per row of the island, into column and value
+    const std::uint32_t* end;
+    const std::uint32_t* column;
+    const double* value;
+  };
   std::vector<Row> rows;
   std::vector<Island> islands;
   std::vector<double> matrix;
+  std::vector<std::uint32_t> sparse_begin, sparse_end, sparse_column;  ///< per row; island columns
+  std::vector<double> sparse_value;
   std::vector<std::uint32_t> bodies;
   /// Per row: free, or held at its lower or upper bound. Kept from substep to substep, so that a
   /// solve usually starts from the right guess and reuses its factor.
@@ -53,17 +64,18 @@ struct DirectSolver {
   /// Per friction row: the limit its last answer was found with.
   std::vector<double> last_limit;
   /// Cholesky factors of the free rows, one slot per island for the velocities and one for the
-  /// push-out, each kept while its free rows stay the same.
+  /// push-out, kept from substep to substep and updated row by row as the free rows change.
   std::vector<std::vector<double>> factor;
   std::vector<std::vector<std::uint32_t>> factor_rows;
+  std::vector<std::uint8_t> factor_valid;
+  std::vector<std::uint8_t> in_factor;  ///< scratch: per row of the island being solved
   /// The contacts (body pairs, in pair order) solved directly this step and the step before.
   std::vector<BodyPair> pairs, previous_pairs;
   std::vector<std::uint8_t> direct_contact;  ///< per constraint of this step
   // Scratch.
   std::vector<std::uint32_t> parent;
   std::vector<std::uint8_t> flagged;
-  std::vector<double> x, q, lo, hi, limit, rhs;
-  std::vector<std::uint32_t> free_rows;
+  std::vector<double> x, q, lo, hi, limit, rhs, centred, previous;
   std::vector<BodyState> saved;
 };
 
@@ -75,8 +87,8 @@ bool PrepareDirectSolve(std::span<SubstepConstraint> constraints, std::span<cons
 
 /// After the Gauss-Seidel passes of a substep: replaces the impulses of each prepared island's
 /// contacts with the exact answer, so that no contact approaches (beyond what its gap allows)
-/// and friction holds within Coulomb's cone. An island whose solve fails keeps what
-/// Gauss-Seidel gave it.
+/// and friction holds within Coulomb's cone. An island whose solve fails (its pivoting runs
+/// past its budget) keeps what Gauss-Seidel gave it this substep.
 void SolveDirect(DirectSolver* solver, std::span<SubstepConstraint> constraints,
                  std::span<BodyState> states, const StepStart& start, double inv_h);
 
