@@ -18,6 +18,11 @@ inline constexpr double kMaxSceneMagnitude = 1e9;
 /// then changes its speed by a finite amount, and its inverse mass is a finite number.
 inline constexpr double kMinBodyMass = 1e-12;
 
+/// The least radius and box side, m: half of a smaller side can round to 0 (a side of 5e-324 is
+/// positive, its half is not), and at a nanometre a body is already rounding noise beside any
+/// position a scene may hold.
+inline constexpr double kMinBodySize = 1e-9;
+
 /// Scene and script files, in bytes: read whole into memory, so a huge file or an endless one
 /// (/dev/zero) is refused rather than allowed to take all memory. A million-body scene is ~70 MB.
 inline constexpr std::uint64_t kMaxInputFileBytes = 128ull << 20;

@@ -82,6 +82,8 @@ double ReadNumber(const Json& value, const std::string& path) {
   return v;
 }
 
+std::string TooSmall() { return "must be at least 1e-09 m (docs/limits.md)"; }
+
 double ReadPositive(const Json& value, const std::string& path) {
   const double v = ReadNumber(value, path);
   if (!(v > 0.0)) throw SceneError{path, "must be > 0"};
@@ -202,6 +204,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
     const Json* radius = Find(body, "radius");
     if (!radius) throw SceneError{path, "a circle needs a \"radius\""};
     def.shape.radius = ReadPositive(*radius, key("radius"));
+    if (!(def.shape.radius >= kMinBodySize)) throw SceneError{key("radius"), TooSmall()};
   } else {
     if (Find(body, "radius")) throw SceneError{key("radius"), "applies to circles only; a box has a \"size\""};
     const Json* size = Find(body, "size");
@@ -209,6 +212,8 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
     const engine::Vec2 s = ReadVec2(*size, key("size"));
     if (!(s.x > 0.0)) throw SceneError{key("size") + "[0]", "must be > 0"};
     if (!(s.y > 0.0)) throw SceneError{key("size") + "[1]", "must be > 0"};
+    if (!(s.x >= kMinBodySize)) throw SceneError{key("size") + "[0]", TooSmall()};
+    if (!(s.y >= kMinBodySize)) throw SceneError{key("size") + "[1]", TooSmall()};
     def.shape.half_extents = 0.5 * s;
   }
 

@@ -71,18 +71,43 @@ TEST_CASE("limits: a number beyond 1e9 is refused with its key path (fuzz: radiu
 
 TEST_CASE("limits: a mass below 1e-12 kg is refused, given or from density and area",
           "[limits][scene]") {
-  // The twin of the fuzz crash, found by reading the fix: a radius of 1e-200 makes density × area 0,
-  // which the engine refuses by stopping the program.
+  // The twin of the fuzz crash, found by reading the fix: a radius of 1e-200 made density × area 0,
+  // which the engine refuses by stopping the program. (Such a radius is now refused as too small;
+  // the smallest radius, 1e-9 m, still gives a mass of 3e-18 kg with the default density.)
   RequireSceneError("scene_mass_underflow.json",
                     "bodies[0]: its mass, density * area, must be at least 1e-12 kg (docs/limits.md)");
   // 5e-324 is > 0, but 1 / 5e-324 is infinite.
   RequireSceneError("scene_mass_too_small.json",
                     "bodies[0].mass: must be at least 1e-12 kg (docs/limits.md)");
-  // Static bodies have no mass, so any size will do for them.
+  // Static bodies have no mass, so any size the size limit allows will do for them.
   const game::Expected<game::Scene> tiny_static = game::ParseScene(
-      R"({"bodies": [{"shape": "circle", "radius": 1e-300, "position": [0, 0], "static": true}]})",
+      R"({"bodies": [{"shape": "circle", "radius": 1e-9, "position": [0, 0], "static": true}]})",
       "s.json", "s");
   CHECK(tiny_static.HasValue());
+}
+
+TEST_CASE("limits: a radius or box side below 1e-9 m is refused (fuzz: a side of 25e-325)",
+          "[limits][scene]") {
+  // Found by fuzz_scene: the side 25e-325 reads as 5e-324, positive, but its half (the box's
+  // half extent) rounds to 0 and the engine stopped the program on its precondition.
+  RequireSceneError("scene_fuzz_size_subnormal.json",
+                    "bodies[0].size[1]: must be at least 1e-09 m (docs/limits.md)");
+  for (const char* shape : {R"("shape": "circle", "radius": 9.9e-10)", R"("shape": "box", "size": [1, 9.9e-10])",
+                            R"("shape": "box", "size": [1e-300, 1], "static": true)"}) {
+    INFO(shape);
+    const game::Expected<game::Scene> scene = game::ParseScene(
+        std::string(R"({"bodies": [{)") + shape + R"(, "position": [0, 0], "mass": 1}]})", "s.json", "s");
+    REQUIRE_FALSE(scene.HasValue());
+    CHECK(scene.Error().exit_code == 2);
+    CHECK_THAT(scene.Error().message, Catch::EndsWith(": must be at least 1e-09 m (docs/limits.md)"));
+  }
+  // Right at the limit: loads and steps.
+  const game::Expected<game::Scene> smallest = game::ParseScene(
+      R"({"bodies": [{"shape": "box", "size": [1e-9, 1e-9], "position": [0, 0], "mass": 1}]})", "s.json", "s");
+  REQUIRE(smallest.HasValue());
+  engine::World world = game::BuildWorld(smallest.Value());
+  world.Step();
+  CHECK(engine::IsFinite(world.State(0).position));
 }
 
 TEST_CASE("limits: values right at the limits load and simulate to finite numbers",
