@@ -252,6 +252,24 @@ TEST_CASE("extreme: 1000 bodies placed at one point hold memory linear in their 
   CHECK(world.Contacts().size() < 5 * kBodies);
 }
 
+namespace {
+
+// `count` circles of 5 cm radius on a golden-angle spiral 1 mm across: every pair overlaps, yet no
+// two centres coincide, so the pile opens out in every direction (coincident centres have no
+// direction and are pushed straight up).
+void AddSpiralPile(engine::World& world, int count) {
+  for (int i = 0; i < count; ++i) {
+    const double angle = 2.39996322972865332 * i;
+    const double r = 0.001 * std::sqrt((i + 0.5) / count);
+    engine::BodyDef ball;
+    ball.shape = {engine::ShapeType::kCircle, 0.05, {}};
+    ball.position = {r * std::cos(angle), r * std::sin(angle)};
+    world.CreateBody(ball);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("extreme: 4000 bodies at one point step in memory linear in their count and spread apart",
           "[robustness][extreme]") {
   // 4000 circles of 5 cm radius within 1 mm of one point, without gravity, so that nothing but
@@ -264,16 +282,7 @@ TEST_CASE("extreme: 4000 bodies at one point step in memory linear in their coun
   engine::WorldDef def;
   def.gravity = {0, 0};
   engine::World world{def};
-  for (int i = 0; i < kBodies; ++i) {
-    // A golden-angle spiral 1 mm across: no two centres coincide, so the pile opens out in
-    // every direction (coincident centres have no direction and are pushed straight up).
-    const double angle = 2.39996322972865332 * i;
-    const double r = 0.001 * std::sqrt((i + 0.5) / kBodies);
-    engine::BodyDef ball;
-    ball.shape = {engine::ShapeType::kCircle, 0.05, {}};
-    ball.position = {r * std::cos(angle), r * std::sin(angle)};
-    world.CreateBody(ball);
-  }
+  AddSpiralPile(world, kBodies);
   auto extent = [&] {
     double low = 0.0, high = 0.0;
     for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
@@ -322,14 +331,7 @@ TEST_CASE("extreme: 1000 bodies at one point spread until none is crowded", "[ro
   engine::WorldDef def;
   def.gravity = {0, 0};
   engine::World world{def};
-  for (int i = 0; i < kBodies; ++i) {
-    const double angle = 2.39996322972865332 * i;
-    const double r = 0.001 * std::sqrt((i + 0.5) / kBodies);
-    engine::BodyDef ball;
-    ball.shape = {engine::ShapeType::kCircle, 0.05, {}};
-    ball.position = {r * std::cos(angle), r * std::sin(angle)};
-    world.CreateBody(ball);
-  }
+  AddSpiralPile(world, kBodies);
   int steps = 0;
   StepFinite(world, 1);
   const std::size_t first_crowd = world.CrowdedBodyCount();
