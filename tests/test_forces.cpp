@@ -226,6 +226,17 @@ struct Variation {
   std::function<void(engine::World*)> after = nullptr;
 };
 
+// Steps both worlds 240 times (4 s at 60 Hz); true if their state hashes match after every step.
+bool SameHashesFor4Seconds(engine::World& plain, engine::World& other) {
+  bool same = true;
+  for (int step = 0; step < 240; ++step) {
+    plain.Step();
+    other.Step();
+    same = same && plain.StateHash() == other.StateHash();
+  }
+  return same;
+}
+
 // A small scene with contacts, stacking and sliding (and spin, with rotation), run for 4 s twice:
 // as `base` makes it, and with `changed` on top. True if the state hashes match at every step.
 bool SameRun(Integrator integrator, bool rotation, const Variation& base, const Variation& changed) {
@@ -253,13 +264,7 @@ bool SameRun(Integrator integrator, bool rotation, const Variation& base, const 
   }
   if (base.after) base.after(&plain), base.after(&other);
   if (changed.after) changed.after(&other);
-  bool same = true;
-  for (int step = 0; step < 240; ++step) {
-    plain.Step();
-    other.Step();
-    same = same && plain.StateHash() == other.StateHash();
-  }
-  return same;
+  return SameHashesFor4Seconds(plain, other);
 }
 
 // `unused` must change no bit with any integrator, with rotation off and on; `used` (the
@@ -314,13 +319,7 @@ TEST_CASE("skip: springs with nothing to pull, among springs that pull, change n
     other.AddSpring(idle[2]);
     other.AddSpring(pulls[2]);
     other.AddSpring(idle[3]);
-    bool same = true;
-    for (int step = 0; step < 240; ++step) {
-      plain.Step();
-      other.Step();
-      same = same && plain.StateHash() == other.StateHash();
-    }
-    return same;
+    return SameHashesFor4Seconds(plain, other);
   };
   for (bool rotation : {false, true}) {
     for (Integrator integrator : kIntegrators) {

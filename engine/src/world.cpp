@@ -382,10 +382,11 @@ void World::StepSubstep() {
   // damping only slow a body down and load nothing.
   const bool all_loaded = def_.gravity != Vec2{} || def_.gravitational_constant != 0.0;
   loaded_.assign(all_loaded ? 0 : states_.size(), 0);
-  for (const SpringDef& spring : springs_) {
-    if (all_loaded || (spring.stiffness == 0.0 && spring.damping == 0.0)) continue;
-    loaded_[spring.body_a] = awake_[spring.body_a];
-    if (spring.body_b) loaded_[*spring.body_b] = awake_[*spring.body_b];
+  if (!all_loaded) {
+    for (const SpringDef& spring : acting_springs_) {
+      loaded_[spring.body_a] = awake_[spring.body_a];
+      if (spring.body_b) loaded_[*spring.body_b] = awake_[*spring.body_b];
+    }
   }
   // Nothing loaded at all: a closed world without applied forces, where the contacts must never
   // add kinetic energy; a last check per substep holds them to it.
