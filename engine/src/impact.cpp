@@ -98,12 +98,14 @@ bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double
 
 }  // namespace
 
-void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<const std::uint32_t> slot,
+                    std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def) {
   const double h = def.dt / def.substeps;
   for (int pass = 0; pass < kMaxImpactPasses; ++pass) {
     bool any = false;
-    for (SubstepConstraint& sc : constraints) {
+    for (const std::uint32_t index : slot) {
+      SubstepConstraint& sc = constraints[index];
       if (sc.restitution == 0.0) continue;
       BodyState& a = states[sc.a];
       BodyState& b = states[sc.b];

@@ -23,8 +23,10 @@ namespace engine::detail {
 /// constant acceleration), so every apex is e² times the last, free of the step's phase and of
 /// the integrator. The bounce is the reflection of that flight at its time of impact, or for
 /// semi-implicit Euler e²·H at the mirrored position −e·s (impact.cpp says why).
-/// `accelerations` holds each body's acceleration (zero for static and sleeping ones).
-void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+/// `accelerations` holds each body's acceleration (zero for static and sleeping ones). The
+/// contacts are visited in contact order, contact i's constraint at `slot[i]`.
+void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<const std::uint32_t> slot,
+                    std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def);
 
 }  // namespace engine::detail

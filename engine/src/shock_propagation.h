@@ -12,20 +12,42 @@
 
 namespace engine::detail {
 
-/// Builds each body's `level` (graph distance through contacts from a static body: static
-/// bodies 0, bodies touching nothing static the highest) and the `order` of the constraints by
-/// their lower level, breadth-first in body-id order.
-void BuildShockOrder(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
-                     std::vector<std::uint32_t>* level, std::vector<std::uint32_t>* order);
+/// One supporting contact as the pass needs it, in the order the pass visits it. Written once a
+/// step and read every substep in order: the pass walks memory straight through instead of
+/// jumping about the constraints.
+struct ShockRow {
+  BodyId a;
+  BodyId b;
+  Vec2 normal;             ///< from a to b
+  double inv_mass_a;       ///< 0 when a is the lower body, held fixed
+  double inv_mass_b;       ///< 0 when b is the lower body
+  double base_separation;  ///< as in SubstepPoint: the separation follows from it and the centres
+};
 
-/// One pass in that order over the supporting contacts (normal within 45° of `up`, the unit
-/// vector against gravity): no contact within the slop may approach faster than its gap allows
+/// Scratch for BuildShockRows, kept between steps so a step allocates nothing.
+struct ShockScratch {
+  std::vector<std::uint32_t> level;  ///< per body: graph distance from a static body
+  std::vector<std::uint32_t> start, neighbours, fill, queue, first;
+};
+
+/// Each body's level (graph distance through contacts from a static body: static bodies 0,
+/// bodies touching nothing static the highest), then the rows of the supporting contacts (normal
+/// within 45° of `up`, the unit vector against gravity, from the lower body to the upper) of
+/// pairs that cannot turn, ordered by their lower level, ties in constraint order: breadth-first
+/// in body-id order, so the pass is deterministic.
+///
+/// Side contacts are left to the solver: pushing rocking neighbours apart here would fight it.
+/// Between turning bodies the pass stays out: holding a centre up would stop a box balanced on a
+/// corner from toppling, and one-sided pushes rectify rocking into a pumping jitter. Their
+/// contacts are solved by more passes instead (World's automatic settings).
+void BuildShockRows(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
+
+/// One pass over the rows: no contact within the slop may approach faster than its gap allows
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse
-/// by mass. Leaves the accumulated impulses alone: this pass only keeps stacks from sinking, so
-/// it acts only where a pair approaches faster than allowed by more than `tolerance` (m/s).
-void PropagateShock(std::span<const std::uint32_t> level, std::span<const std::uint32_t> order,
-                    std::span<const SubstepConstraint> constraints, std::span<BodyState> states,
-                    const StepStart& start, double inv_h, double linear_slop, Vec2 up,
-                    double tolerance);
+/// by mass. Leaves the accumulated impulses alone: this pass only keeps stacks from sinking.
+/// `start_positions` are the centres at the step's start.
+void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
+                    std::span<const Vec2> start_positions, double inv_h, double linear_slop);
 
 }  // namespace engine::detail

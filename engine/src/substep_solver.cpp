@@ -45,15 +45,15 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
           m + inv_inertia_a * r2a * r2a + inv_inertia_b * r2b * r2b};
 }
 
-void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                               std::span<const BodyState> states,
+void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
+                               std::span<const BodyInfo> infos, std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints) {
   // Filled in place, every field a constraint reads set (a point past point_count is never read):
   // copying each one in would cost a call to memcpy apiece.
   constraints->resize(contacts.size());
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    SubstepConstraint& sc = (*constraints)[i];
+    SubstepConstraint& sc = (*constraints)[slot[i]];
     sc.a = c.a;
     sc.b = c.b;
     sc.contact = i;

@@ -18,10 +18,11 @@ struct StepStart {
   std::span<const Rot> turned;  ///< rotation since the step's start; empty without rotation
 };
 
-/// One constraint per contact, with the impulses carried over from the last step.
-/// `positions` are the bodies' centres, to turn contact points into anchors.
-void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                               std::span<const BodyState> states,
+/// One constraint per contact, with the impulses carried over from the last step; contact i's
+/// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
+/// turn contact points into anchors.
+void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
+                               std::span<const BodyInfo> infos, std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints);
 
 /// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.

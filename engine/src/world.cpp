@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <numeric>
 
+#include "contact_colouring.h"
 #include "direct_solver.h"
 #include "force_model.h"
 #include "impact.h"
@@ -102,7 +104,8 @@ World::~World() = default;
 World::World(const WorldDef& def)
     : def_(Resolve(def)),
       free_motion_(std::make_unique<detail::FreeMotion>()),
-      direct_solver_(std::make_unique<detail::DirectSolver>()) {
+      direct_solver_(std::make_unique<detail::DirectSolver>()),
+      shock_scratch_(std::make_unique<detail::ShockScratch>()) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
@@ -156,6 +159,7 @@ BodyId World::CreateBody(const BodyDef& def) {
     info.inertia = Inertia(shape, mass);
     // Without rotation (world or body) nothing can turn the body: infinite inertia.
     info.inv_inertia = def_.rotation && !def.fixed_rotation ? 1.0 / info.inertia : 0.0;
+    if (info.inv_inertia != 0.0) ++turnable_bodies_;
     state.velocity = def.velocity;
     state.angular_velocity = def.angular_velocity;
   }
@@ -367,12 +371,25 @@ void World::StepSubstep() {
   angular_accelerations_.resize(states_.size());
   Forces().Evaluate(states_, accelerations_, angular_accelerations_);
 
-  detail::PrepareSubstepConstraints(contacts_, infos_, states_, &substep_constraints_);
-  detail::BuildShockOrder(substep_constraints_, infos_, &shock_level_, &shock_order_);
+  // Where nothing can turn, shock propagation makes the solve indifferent to order, and the
+  // colour order runs faster. Turning stacks need their passes to converge, which contact order does
+  // better where a scene is built bottom-up: a turning pyramid of base 40 drifts 6.7 mm in 10 s
+  // in contact order against 2.2 cm by colour.
+  if (turnable_bodies_ > 0) {
+    contact_slot_.resize(contacts_.size());
+    std::iota(contact_slot_.begin(), contact_slot_.end(), 0u);
+  } else {
+    detail::ColourContacts(contacts_, infos_, &body_colours_, &contact_slot_);
+  }
+  detail::PrepareSubstepConstraints(contacts_, contact_slot_, infos_, states_, &substep_constraints_);
+  // Shock propagation supports against gravity; without gravity there is no up.
+  const double g = Length(def_.gravity);
+  const bool has_up = g > 0.0;
+  if (has_up) detail::BuildShockRows(substep_constraints_, infos_, -def_.gravity / g, shock_scratch_.get(), &shock_rows_);
   // Islands of turning bodies that hold a large mass ratio get their contacts solved exactly.
   const bool direct =
       def_.rotation && detail::PrepareDirectSolve(substep_constraints_, infos_, direct_solver_.get());
-  detail::ResolveImpacts(substep_constraints_, states_, accelerations_, def_);  // bounces first
+  detail::ResolveImpacts(substep_constraints_, contact_slot_, states_, accelerations_, def_);  // bounces first
   push_velocities_.resize(states_.size());
   push_angular_velocities_.resize(states_.size());
   const detail::PushVelocities push{push_velocities_, push_angular_velocities_};
@@ -406,12 +423,6 @@ void World::StepSubstep() {
   // 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is that times the overlap / h.
   const double push_out_rate =
       (1.0 - std::pow(1.0 - def_.position_correction, 1.0 / def_.substeps)) * inv_h;
-  // Shock propagation supports against gravity; without gravity there is no up.
-  const double g = Length(def_.gravity);
-  const bool has_up = g > 0.0;
-  const Vec2 up = has_up ? -def_.gravity / g : Vec2{};
-  // Half a substep's gravity kick: more approach than that is sinking the solver did not stop.
-  const double shock_tolerance = 0.5 * g * h;
   for (int substep = 0; substep < def_.substeps; ++substep) {
     detail::FreeStep(def_.integrator, Forces(), states_, h, free_motion_.get());
     // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
@@ -425,8 +436,7 @@ void World::StepSubstep() {
     if (direct) detail::SolveDirect(direct_solver_.get(), substep_constraints_, states_, start, inv_h);
     if (force_free) detail::LimitContactEnergy(substep_constraints_, states_, infos_, energy_before, warm);
     if (has_up) {
-      detail::PropagateShock(shock_level_, shock_order_, substep_constraints_, states_, start, inv_h,
-                             def_.linear_slop, up, shock_tolerance);
+      detail::PropagateShock(shock_rows_, states_, positions_before_, inv_h, def_.linear_slop);
     }
     MarkPushed(substep_constraints_);
     detail::MoveBodies(def_.integrator, states_, awake_, pushed_, def_.rotation, *free_motion_, h);

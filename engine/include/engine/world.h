@@ -19,6 +19,8 @@ namespace detail {
 struct FreeMotion;
 struct ForceModel;
 struct DirectSolver;
+struct ShockRow;
+struct ShockScratch;
 }  // namespace detail
 
 enum class ShapeType : std::uint8_t { kCircle, kBox };
@@ -211,6 +213,7 @@ class World {
   std::vector<BodyInfo> infos_;
   std::vector<SpringDef> springs_;
   std::size_t damped_bodies_ = 0;  ///< bodies with linear or angular damping
+  std::size_t turnable_bodies_ = 0;  ///< bodies free to turn (finite inertia)
   /// The springs that pull at all (stiffness or damping not 0), in the order added: the only ones
   /// the force evaluations, waking and sleep see, so a spring with nothing to pull costs nothing.
   std::vector<SpringDef> acting_springs_;
@@ -244,10 +247,12 @@ class World {
   std::vector<double> angles_before_;
   std::vector<Rot> turned_;
   std::vector<ContactConstraint> seed_constraints_;
+  std::vector<std::uint64_t> body_colours_;  ///< the colours each body's contacts have taken
+  std::vector<std::uint32_t> contact_slot_;  ///< each contact's place in the solve order
   std::vector<SubstepConstraint> substep_constraints_;
-  std::vector<std::uint32_t> shock_level_;
-  std::vector<std::uint32_t> shock_order_;
   std::unique_ptr<detail::DirectSolver> direct_solver_;  ///< islands with a large mass ratio
+  std::unique_ptr<detail::ShockScratch> shock_scratch_;
+  std::vector<detail::ShockRow> shock_rows_;
   BroadPhase broad_phase_;  ///< every structure, so the choice can change between steps
 };
 
