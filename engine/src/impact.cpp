@@ -1,6 +1,8 @@
 // Impacts with restitution, pair by pair, with the bounce placed at the moment of impact.
 #include "impact.h"
 
+#include "substep_solver.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -98,59 +100,73 @@ bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double
 
 }  // namespace
 
-void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<const std::uint32_t> slot,
-                    std::span<BodyState> states,
-                    std::span<const Vec2> accelerations, const WorldDef& def) {
+template <typename C>
+void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slot,
+                    std::span<const Contact> contacts, std::span<BodyState> states,
+                    std::span<const Vec2> accelerations, const WorldDef& def, std::vector<double>* lags) {
   const double h = def.dt / def.substeps;
+  lags->assign(contacts.size(), 0.0);
   for (int pass = 0; pass < kMaxImpactPasses; ++pass) {
     bool any = false;
-    for (const std::uint32_t index : slot) {
-      SubstepConstraint& sc = constraints[index];
-      if (sc.restitution == 0.0) continue;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const double restitution = contacts[i].restitution;
+      if (restitution == 0.0) continue;
+      C& sc = constraints[slot[i]];
       BodyState& a = states[sc.a];
       BodyState& b = states[sc.b];
       // A turning pair is struck at the middle of its manifold, so a box landing flat stays flat.
       Vec2 anchor_a, anchor_b;
-      double separation = sc.points[0].base_separation;
-      double normal_mass = sc.points[0].normal_mass;
-      if (sc.angular) {
-        separation = std::numeric_limits<double>::infinity();
-        for (int k = 0; k < sc.point_count; ++k) {
-          const SubstepPoint& p = sc.points[k];
-          anchor_a += p.anchor_a / sc.point_count;
-          anchor_b += p.anchor_b / sc.point_count;
-          separation = std::min(separation, p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal));
+      double separation = Point(sc, 0).base_separation;
+      double normal_mass = Point(sc, 0).normal_mass;
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          separation = std::numeric_limits<double>::infinity();
+          for (int k = 0; k < sc.point_count; ++k) {
+            const SubstepPoint& p = sc.points[k];
+            anchor_a += p.anchor_a / sc.point_count;
+            anchor_b += p.anchor_b / sc.point_count;
+            separation = std::min(separation, p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal));
+          }
+          const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
+          normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
+                               sc.inv_inertia_b * rb * rb);
         }
-        const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
-        normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
-                             sc.inv_inertia_b * rb * rb);
       }
       Vec2 relative = b.velocity - a.velocity;
-      if (sc.angular) relative += Cross(b.angular_velocity, anchor_b) - Cross(a.angular_velocity, anchor_a);
+      if (Turns(sc)) relative += Cross(b.angular_velocity, anchor_b) - Cross(a.angular_velocity, anchor_a);
       const double vn = Dot(relative, sc.normal);
       // Slow impacts, and bounces that would come out slower than the threshold, are left to
       // the contact solver as inelastic: a resting body must not buzz.
-      if (vn >= -def.restitution_threshold || sc.restitution * -vn < def.restitution_threshold) {
+      if (vn >= -def.restitution_threshold || restitution * -vn < def.restitution_threshold) {
         continue;
       }
       const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
       Bounce bounce;
-      if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, sc.restitution,
+      if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, restitution,
                          def.substeps, h, &bounce)) {
         continue;
       }
       const double impulse = (bounce.start_velocity - vn) * normal_mass;
       a.velocity -= (impulse * sc.inv_mass_a) * sc.normal;
       b.velocity += (impulse * sc.inv_mass_b) * sc.normal;
-      if (sc.angular) {
-        a.angular_velocity -= sc.inv_inertia_a * Cross(anchor_a, impulse * sc.normal);
-        b.angular_velocity += sc.inv_inertia_b * Cross(anchor_b, impulse * sc.normal);
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          a.angular_velocity -= sc.inv_inertia_a * Cross(anchor_a, impulse * sc.normal);
+          b.angular_velocity += sc.inv_inertia_b * Cross(anchor_b, impulse * sc.normal);
+        }
       }
-      sc.impact_lag = bounce.lag;
+      (*lags)[i] = bounce.lag;
       any = true;
     }
     if (!any) break;
   }
 }
+
+template void ResolveImpacts(std::span<SubstepConstraint>, std::span<const std::uint32_t>,
+                             std::span<const Contact>, std::span<BodyState>, std::span<const Vec2>,
+                             const WorldDef&, std::vector<double>*);
+template void ResolveImpacts(std::span<LinearConstraint>, std::span<const std::uint32_t>,
+                             std::span<const Contact>, std::span<BodyState>, std::span<const Vec2>,
+                             const WorldDef&, std::vector<double>*);
 
 }  // namespace engine::detail

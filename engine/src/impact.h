@@ -4,13 +4,14 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "engine/world.h"
 
 namespace engine::detail {
 
 /// For each contact whose bodies would meet during this step faster than the restitution
-/// threshold, applies the bounce impulse and records in `impact_lag` how far to move the bodies
+/// threshold, applies the bounce impulse and records in `lags` how far to move the bodies
 /// apart after the step, so that they end where a bounce at the moment of impact would put them.
 /// Repeats over all contacts until no pair still approaches, so an impact travels along a chain
 /// of touching bodies one pair at a time, as in Newton's cradle (the propagation model; Smith et
@@ -24,9 +25,11 @@ namespace engine::detail {
 /// the integrator. The bounce is the reflection of that flight at its time of impact, or for
 /// semi-implicit Euler e²·H at the mirrored position −e·s (impact.cpp says why).
 /// `accelerations` holds each body's acceleration (zero for static and sleeping ones). The
-/// contacts are visited in contact order, contact i's constraint at `slot[i]`.
-void ResolveImpacts(std::span<SubstepConstraint> constraints, std::span<const std::uint32_t> slot,
-                    std::span<BodyState> states,
-                    std::span<const Vec2> accelerations, const WorldDef& def);
+/// contacts are visited in contact order, contact i's constraint at `slot[i]` and its lag at
+/// `lags[i]` (one per contact, zero unless it bounces).
+template <typename C>
+void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slot,
+                    std::span<const Contact> contacts, std::span<BodyState> states,
+                    std::span<const Vec2> accelerations, const WorldDef& def, std::vector<double>* lags);
 
 }  // namespace engine::detail

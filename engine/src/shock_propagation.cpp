@@ -13,17 +13,18 @@ constexpr std::uint32_t kUnreached = std::numeric_limits<std::uint32_t>::max();
 
 // Breadth-first levels from the static bodies through the contacts; returns how many bodies
 // were reached.
-std::size_t BuildLevels(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+template <typename C>
+std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo> infos,
                         ShockScratch* s) {
   const std::size_t n = infos.size();
   s->level.assign(n, kUnreached);
   // Adjacency as a compressed list, built in constraint order.
   s->start.assign(n + 1, 0);
   s->neighbours.resize(2 * constraints.size());
-  for (const SubstepConstraint& c : constraints) ++s->start[c.a + 1], ++s->start[c.b + 1];
+  for (const C& c : constraints) ++s->start[c.a + 1], ++s->start[c.b + 1];
   for (std::size_t i = 0; i < n; ++i) s->start[i + 1] += s->start[i];
   s->fill.assign(s->start.begin(), s->start.end() - 1);
-  for (const SubstepConstraint& c : constraints) {
+  for (const C& c : constraints) {
     s->neighbours[s->fill[c.a]++] = c.b;
     s->neighbours[s->fill[c.b]++] = c.a;
   }
@@ -45,37 +46,43 @@ std::size_t BuildLevels(std::span<const SubstepConstraint> constraints, std::spa
 
 }  // namespace
 
-void BuildShockRows(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+template <typename C>
+void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows) {
   const std::size_t reached = BuildLevels(constraints, infos, scratch);
   const std::span<const std::uint32_t> level = scratch->level;
   // Which constraints support: the lower body (by level) below the upper one.
-  auto supports = [&](const SubstepConstraint& c) {
-    if (c.angular) return false;
+  auto supports = [&](const C& c) {
+    if (Turns(c)) return false;
     const double support = Dot(c.normal, up) * (level[c.a] <= level[c.b] ? 1.0 : -1.0);
     return support >= 0.70710678118654752;
   };
   // Counting sort by the lower level of each pair: linear, and stable, so ties stay in
   // constraint order. Pairs touching nothing static come last.
-  auto lower = [&](const SubstepConstraint& c) {
+  auto lower = [&](const C& c) {
     const std::uint32_t l = std::min(level[c.a], level[c.b]);
     return l == kUnreached ? static_cast<std::uint32_t>(reached) : l;
   };
   std::vector<std::uint32_t>& first = scratch->first;
   first.assign(reached + 2, 0);
-  for (const SubstepConstraint& c : constraints) {
+  for (const C& c : constraints) {
     if (supports(c)) ++first[lower(c) + 1];
   }
   for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
   rows->resize(first.back());
-  for (const SubstepConstraint& c : constraints) {
+  for (const C& c : constraints) {
     if (!supports(c)) continue;
     // Which body gives: the upper one alone, or both by mass on one level.
     const std::uint32_t level_a = level[c.a], level_b = level[c.b];
     (*rows)[first[lower(c)]++] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
-                                  level_b < level_a ? 0.0 : c.inv_mass_b, c.points[0].base_separation};
+                                  level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
   }
 }
+
+template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const BodyInfo>, Vec2,
+                             ShockScratch*, std::vector<ShockRow>*);
+template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
+                             ShockScratch*, std::vector<ShockRow>*);
 
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop) {

@@ -40,7 +40,8 @@ struct ShockScratch {
 /// Between turning bodies the pass stays out: holding a centre up would stop a box balanced on a
 /// corner from toppling, and one-sided pushes rectify rocking into a pumping jitter. Their
 /// contacts are solved by more passes instead (World's automatic settings).
-void BuildShockRows(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+template <typename C>
+void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
 
 /// One pass over the rows: no contact within the slop may approach faster than its gap allows

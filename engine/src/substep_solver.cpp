@@ -26,6 +26,12 @@ void ApplyImpulse(const SubstepConstraint& sc, const SubstepPoint& p, Vec2 impul
   b.angular_velocity += sc.inv_inertia_b * Cross(p.anchor_b, impulse);
 }
 
+void ApplyImpulse(const LinearConstraint& lc, const LinearConstraint&, Vec2 impulse, BodyState& a,
+                  BodyState& b) {
+  a.velocity -= lc.inv_mass_a * impulse;
+  b.velocity += lc.inv_mass_b * impulse;
+}
+
 // 1 / (m_a⁻¹ + m_b⁻¹ + I_a⁻¹·(r_a × d)² + I_b⁻¹·(r_b × d)²): the effective mass along d.
 double EffectiveMass(const SubstepConstraint& sc, Vec2 anchor_a, Vec2 anchor_b, Vec2 d) {
   const double ra = Cross(anchor_a, d), rb = Cross(anchor_b, d);
@@ -45,6 +51,30 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
           m + inv_inertia_a * r2a * r2a + inv_inertia_b * r2b * r2b};
 }
 
+template <>
+void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
+                               std::span<const BodyInfo> infos, std::span<const BodyState>,
+                               std::vector<LinearConstraint>* constraints) {
+  constraints->resize(contacts.size());
+  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    LinearConstraint& lc = (*constraints)[slot[i]];
+    lc.a = c.a;
+    lc.b = c.b;
+    lc.normal = c.manifold.normal;
+    lc.inv_mass_a = infos[c.a].inv_mass;
+    lc.inv_mass_b = infos[c.b].inv_mass;
+    lc.normal_mass = 1.0 / (lc.inv_mass_a + lc.inv_mass_b);
+    double depth = c.manifold.points[0].depth;
+    for (int k = 1; k < c.manifold.point_count; ++k) depth = std::max(depth, c.manifold.points[k].depth);
+    lc.base_separation = -depth;
+    lc.normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
+    lc.tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
+    lc.friction = c.friction;
+  }
+}
+
+template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
                                std::vector<SubstepConstraint>* constraints) {
@@ -56,17 +86,15 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
     SubstepConstraint& sc = (*constraints)[slot[i]];
     sc.a = c.a;
     sc.b = c.b;
-    sc.contact = i;
     sc.normal = c.manifold.normal;
     sc.inv_mass_a = infos[c.a].inv_mass;
     sc.inv_mass_b = infos[c.b].inv_mass;
     sc.inv_inertia_a = infos[c.a].inv_inertia;
     sc.inv_inertia_b = infos[c.b].inv_inertia;
     sc.friction = c.friction;
-    sc.restitution = c.restitution;
-    sc.impact_lag = 0.0;
     sc.angular = sc.inv_inertia_a != 0.0 || sc.inv_inertia_b != 0.0;
     if (!sc.angular) {
+      // As LinearConstraint: one row at the centres.
       SubstepPoint& p = sc.points[0];
       p.anchor_a = p.anchor_b = Vec2{};
       p.normal_mass = p.tangent_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b);
@@ -100,7 +128,8 @@ namespace {
 
 // The least relative normal velocity the contact solve allows point `p` of `sc` now: rigid, no
 // approach at all when touching; across a gap, no more than closes it this substep.
-[[gnu::always_inline]] inline double TargetVelocity(const SubstepConstraint& sc, const SubstepPoint& p,
+template <typename C, typename P>
+[[gnu::always_inline]] inline double TargetVelocity(const C& sc, const P& p,
                                                     std::span<const BodyState> states,
                                                     const StepStart& start, double inv_h) {
   return -std::max(CurrentSeparation(sc, p, states, start), 0.0) * inv_h;
@@ -109,12 +138,16 @@ namespace {
 // For WarmStart: drops point `p`'s tangent impulse if that was sliding friction and the pair now
 // slides along it (judged as the impulses go on, as the pass would see it), and returns the
 // impulse to apply again. Inlined: it runs for every contact in every substep.
-[[gnu::always_inline]] inline Vec2 WarmImpulse(const SubstepConstraint& sc, SubstepPoint& p, Vec2 t,
-                                               const BodyState& a, const BodyState& b) {
+template <typename C, typename P>
+[[gnu::always_inline]] inline Vec2 WarmImpulse(const C& sc, P& p, Vec2 t, const BodyState& a,
+                                               const BodyState& b) {
   // A stored tangent impulse at least this close to the cone's edge was sliding friction (the
   // clamp puts it exactly there; the margin covers the force-free scale's rounding).
   constexpr double kSliding = 1.0 - 1e-9;
-  const Vec2 relative = sc.angular ? RelativeVelocity(p, a, b) : b.velocity - a.velocity;
+  Vec2 relative = b.velocity - a.velocity;
+  if constexpr (kCanTurn<C>) {
+    if (sc.angular) relative = RelativeVelocity(p, a, b);
+  }
   if (p.tangent_impulse * Dot(relative, t) > 0.0 &&
       std::abs(p.tangent_impulse) >= kSliding * sc.friction * p.normal_impulse) {
     p.tangent_impulse = 0.0;
@@ -162,24 +195,27 @@ namespace {
 // when every warm start loses 1 %, measured). Where nothing pushes the bodies together, no
 // contact carries a load, and the scale costs no support.
 
-double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+template <typename C>
+double WarmStart(std::span<C> constraints, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
                  const StepStart& start, double inv_h, WarmStartImpulses scratch) {
   // Every contact loaded (gravity): the impulses go straight on.
   if (loaded.empty()) {
-    for (SubstepConstraint& sc : constraints) {
+    for (C& sc : constraints) {
       BodyState& a = states[sc.a];
       BodyState& b = states[sc.b];
       const Vec2 t = LeftPerp(sc.normal);
-      if (!sc.angular) {
-        const Vec2 impulse = WarmImpulse(sc, sc.points[0], t, a, b);
+      if (!Turns(sc)) {
+        const Vec2 impulse = WarmImpulse(sc, Point(sc, 0), t, a, b);
         a.velocity -= sc.inv_mass_a * impulse;
         b.velocity += sc.inv_mass_b * impulse;
         continue;
       }
-      for (int k = 0; k < sc.point_count; ++k) {
-        SubstepPoint& p = sc.points[k];
-        ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
+      if constexpr (kCanTurn<C>) {
+        for (int k = 0; k < sc.point_count; ++k) {
+          SubstepPoint& p = sc.points[k];
+          ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
+        }
       }
     }
     return 1.0;
@@ -190,14 +226,14 @@ double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> 
   // The force-free part of a = λwᵀ(u₀ − t): its targets' side here, its bodies' side below.
   double a = 0.0;
   bool any_free = false;
-  for (SubstepConstraint& sc : constraints) {
+  for (C& sc : constraints) {
     BodyState& body_a = states[sc.a];
     BodyState& body_b = states[sc.b];
     const Vec2 t = LeftPerp(sc.normal);
     const bool free = !loaded[sc.a] && !loaded[sc.b];
     any_free = any_free || free;
-    for (int k = 0; k < sc.point_count; ++k) {
-      SubstepPoint& p = sc.points[k];
+    for (int k = 0; k < PointCount(sc); ++k) {
+      auto& p = Point(sc, k);
       const Vec2 impulse = WarmImpulse(sc, p, t, body_a, body_b);
       if (!free) {
         ApplyImpulse(sc, p, impulse, body_a, body_b);
@@ -206,9 +242,11 @@ double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> 
       a -= p.normal_impulse * TargetVelocity(sc, p, states, start, inv_h);
       scratch.linear[sc.a] -= impulse;
       scratch.linear[sc.b] += impulse;
-      if (sc.angular) {
-        scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
-        scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
+          scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+        }
       }
     }
   }
@@ -233,11 +271,11 @@ double WarmStart(std::span<SubstepConstraint> constraints, std::span<BodyState> 
     if (rotation) states[i].angular_velocity += (alpha * infos[i].inv_inertia) * scratch.angular[i];
   }
   if (alpha != 1.0) {
-    for (SubstepConstraint& sc : constraints) {
+    for (C& sc : constraints) {
       if (loaded[sc.a] || loaded[sc.b]) continue;
-      for (int k = 0; k < sc.point_count; ++k) {
-        sc.points[k].normal_impulse *= alpha;
-        sc.points[k].tangent_impulse *= alpha;
+      for (int k = 0; k < PointCount(sc); ++k) {
+        Point(sc, k).normal_impulse *= alpha;
+        Point(sc, k).tangent_impulse *= alpha;
       }
     }
   }
@@ -256,7 +294,8 @@ double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo
   return energy;
 }
 
-double LimitContactEnergy(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
+template <typename C>
+double LimitContactEnergy(std::span<C> constraints, std::span<BodyState> states,
                           std::span<const BodyInfo> infos, double energy_before,
                           WarmStartImpulses scratch) {
   // Rises this small are the rounding of the sums themselves.
@@ -270,16 +309,18 @@ double LimitContactEnergy(std::span<SubstepConstraint> constraints, std::span<Bo
   const bool rotation = !scratch.angular.empty();
   for (Vec2& p : scratch.linear) p = {};
   for (double& l : scratch.angular) l = 0.0;
-  for (const SubstepConstraint& sc : constraints) {
+  for (const C& sc : constraints) {
     const Vec2 t = LeftPerp(sc.normal);
-    for (int k = 0; k < sc.point_count; ++k) {
-      const SubstepPoint& p = sc.points[k];
+    for (int k = 0; k < PointCount(sc); ++k) {
+      const auto& p = Point(sc, k);
       const Vec2 impulse = p.normal_impulse * sc.normal + p.tangent_impulse * t;
       scratch.linear[sc.a] -= impulse;
       scratch.linear[sc.b] += impulse;
-      if (sc.angular) {
-        scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
-        scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
+          scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
+        }
       }
     }
   }
@@ -305,24 +346,71 @@ double LimitContactEnergy(std::span<SubstepConstraint> constraints, std::span<Bo
     states[i].velocity -= (d * infos[i].inv_mass) * scratch.linear[i];
     if (rotation) states[i].angular_velocity -= (d * infos[i].inv_inertia) * scratch.angular[i];
   }
-  for (SubstepConstraint& sc : constraints) {
-    for (int k = 0; k < sc.point_count; ++k) {
-      sc.points[k].normal_impulse *= 1.0 - d;
-      sc.points[k].tangent_impulse *= 1.0 - d;
+  for (C& sc : constraints) {
+    for (int k = 0; k < PointCount(sc); ++k) {
+      Point(sc, k).normal_impulse *= 1.0 - d;
+      Point(sc, k).tangent_impulse *= 1.0 - d;
     }
   }
   return d;
 }
 
-void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState> states,
-                   const StepStart& start, double inv_h) {
-  for (SubstepConstraint& sc : constraints) {
+namespace {
+
+// SolveContacts for a pair that can turn: block-solved normals for two points, then friction.
+void SolveTurning(SubstepConstraint& sc, BodyState& a, BodyState& b, const StepStart& start,
+                  std::span<const BodyState> states, double inv_h) {
+  const Vec2 n = sc.normal;
+  const Vec2 t = LeftPerp(n);
+  double min_vn[2], vn[2];
+  for (int k = 0; k < sc.point_count; ++k) {
+    min_vn[k] = TargetVelocity(sc, sc.points[k], states, start, inv_h);
+    vn[k] = Dot(RelativeVelocity(sc.points[k], a, b), n);
+  }
+  double x[2];
+  if (sc.point_count == 2 &&
+      SolveTwoPoints(NormalMass(sc, sc.points[0], sc.points[1], sc.inv_mass_a, sc.inv_mass_b,
+                                sc.inv_inertia_a, sc.inv_inertia_b),
+                     sc.points[0].normal_impulse, sc.points[1].normal_impulse, vn[0], vn[1],
+                     min_vn[0], min_vn[1], &x[0], &x[1])) {
+    for (int k = 0; k < 2; ++k) {
+      SubstepPoint& p = sc.points[k];
+      ApplyImpulse(sc, p, (x[k] - p.normal_impulse) * n, a, b);
+      p.normal_impulse = x[k];
+    }
+  } else {
+    for (int k = 0; k < sc.point_count; ++k) {
+      SubstepPoint& p = sc.points[k];
+      const double v = Dot(RelativeVelocity(p, a, b), n);
+      const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn[k] - v), 0.0);
+      const double dn = new_normal - p.normal_impulse;
+      p.normal_impulse = new_normal;
+      ApplyImpulse(sc, p, dn * n, a, b);
+    }
+  }
+  for (int k = 0; k < sc.point_count; ++k) {
+    SubstepPoint& p = sc.points[k];
+    const double vt = Dot(RelativeVelocity(p, a, b), t);
+    const double max_friction = sc.friction * p.normal_impulse;
+    const double new_tangent = Clamp(p.tangent_impulse - p.tangent_mass * vt, -max_friction, max_friction);
+    const double dt_impulse = new_tangent - p.tangent_impulse;
+    p.tangent_impulse = new_tangent;
+    ApplyImpulse(sc, p, dt_impulse * t, a, b);
+  }
+}
+
+}  // namespace
+
+template <typename C>
+void SolveContacts(std::span<C> constraints, std::span<BodyState> states, const StepStart& start,
+                   double inv_h) {
+  for (C& sc : constraints) {
     BodyState& a = states[sc.a];
     BodyState& b = states[sc.b];
     const Vec2 n = sc.normal;
     const Vec2 t = LeftPerp(n);
-    if (!sc.angular) {
-      SubstepPoint& p = sc.points[0];
+    if (!Turns(sc)) {
+      auto& p = Point(sc, 0);
       const double min_vn = TargetVelocity(sc, p, states, start, inv_h);
       const double vn = Dot(b.velocity - a.velocity, n);
       const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn - vn), 0.0);
@@ -334,79 +422,51 @@ void SolveContacts(std::span<SubstepConstraint> constraints, std::span<BodyState
       // Coulomb friction: the tangent impulse stays inside the cone of the normal impulse.
       const double vt = Dot(b.velocity - a.velocity, t);
       const double max_friction = sc.friction * p.normal_impulse;
-      const double new_tangent = Clamp(p.tangent_impulse - p.tangent_mass * vt, -max_friction, max_friction);
+      // Without turning the effective mass is the same in every direction.
+      const double new_tangent = Clamp(p.tangent_impulse - p.normal_mass * vt, -max_friction, max_friction);
       const double dt_impulse = new_tangent - p.tangent_impulse;
       p.tangent_impulse = new_tangent;
       a.velocity -= (sc.inv_mass_a * dt_impulse) * t;
       b.velocity += (sc.inv_mass_b * dt_impulse) * t;
       continue;
     }
-    double min_vn[2], vn[2];
-    for (int k = 0; k < sc.point_count; ++k) {
-      min_vn[k] = TargetVelocity(sc, sc.points[k], states, start, inv_h);
-      vn[k] = Dot(RelativeVelocity(sc.points[k], a, b), n);
-    }
-    double x[2];
-    if (sc.point_count == 2 &&
-        SolveTwoPoints(NormalMass(sc, sc.points[0], sc.points[1], sc.inv_mass_a, sc.inv_mass_b,
-                                  sc.inv_inertia_a, sc.inv_inertia_b),
-                       sc.points[0].normal_impulse, sc.points[1].normal_impulse, vn[0], vn[1],
-                       min_vn[0], min_vn[1], &x[0], &x[1])) {
-      for (int k = 0; k < 2; ++k) {
-        SubstepPoint& p = sc.points[k];
-        ApplyImpulse(sc, p, (x[k] - p.normal_impulse) * n, a, b);
-        p.normal_impulse = x[k];
-      }
-    } else {
-      for (int k = 0; k < sc.point_count; ++k) {
-        SubstepPoint& p = sc.points[k];
-        const double v = Dot(RelativeVelocity(p, a, b), n);
-        const double new_normal = std::max(p.normal_impulse + p.normal_mass * (min_vn[k] - v), 0.0);
-        const double dn = new_normal - p.normal_impulse;
-        p.normal_impulse = new_normal;
-        ApplyImpulse(sc, p, dn * n, a, b);
-      }
-    }
-    for (int k = 0; k < sc.point_count; ++k) {
-      SubstepPoint& p = sc.points[k];
-      const double vt = Dot(RelativeVelocity(p, a, b), t);
-      const double max_friction = sc.friction * p.normal_impulse;
-      const double new_tangent = Clamp(p.tangent_impulse - p.tangent_mass * vt, -max_friction, max_friction);
-      const double dt_impulse = new_tangent - p.tangent_impulse;
-      p.tangent_impulse = new_tangent;
-      ApplyImpulse(sc, p, dt_impulse * t, a, b);
-    }
+    if constexpr (kCanTurn<C>) SolveTurning(sc, a, b, start, states, inv_h);
   }
 }
 
-void PushOut(std::span<SubstepConstraint> constraints, std::span<const BodyState> states,
-             const StepStart& start, PushVelocities push, double push_out_rate,
-             double max_push_out_speed, double linear_slop) {
-  // Gauss-Seidel on the push velocities alone, from zero every substep.
+template <typename C>
+void PushOut(std::span<C> constraints, std::span<const BodyState> states, const StepStart& start,
+             PushVelocities push, double push_out_rate, double max_push_out_speed,
+             double linear_slop) {
+  // Gauss-Seidel on the push velocities alone, from zero every substep: each point's push
+  // impulse starts at 0 (kept where the direct solver takes Gauss-Seidel's pushes back).
   for (Vec2& v : push.linear) v = {};
   for (double& w : push.angular) w = 0.0;
-  for (SubstepConstraint& sc : constraints) {
+  for (C& sc : constraints) {
     const Vec2 n = sc.normal;
-    for (int k = 0; k < sc.point_count; ++k) {
-      SubstepPoint& p = sc.points[k];
-      p.push_impulse = 0.0;
+    for (int k = 0; k < PointCount(sc); ++k) {
+      auto& p = Point(sc, k);
+      if constexpr (kCanTurn<C>) p.push_impulse = 0.0;
       const double s = CurrentSeparation(sc, p, states, start);
       if (s >= -linear_slop) continue;  // overlap within the slop is left alone: rest stays quiet
       const double target = std::min(push_out_rate * -(s + linear_slop), max_push_out_speed);
       Vec2& va = push.linear[sc.a];
       Vec2& vb = push.linear[sc.b];
       double vn = Dot(vb - va, n);
-      if (sc.angular) {
-        vn += Dot(Cross(push.angular[sc.b], p.anchor_b) - Cross(push.angular[sc.a], p.anchor_a), n);
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          vn += Dot(Cross(push.angular[sc.b], p.anchor_b) - Cross(push.angular[sc.a], p.anchor_a), n);
+        }
       }
-      const double new_push = std::max(p.push_impulse + p.normal_mass * (target - vn), 0.0);
-      const double dp = new_push - p.push_impulse;
-      p.push_impulse = new_push;
+      const double dp = std::max(p.normal_mass * (target - vn), 0.0);  // from zero: all of it is new
+      if constexpr (kCanTurn<C>) p.push_impulse = dp;
       va -= (sc.inv_mass_a * dp) * n;
       vb += (sc.inv_mass_b * dp) * n;
-      if (sc.angular) {
-        push.angular[sc.a] -= sc.inv_inertia_a * Cross(p.anchor_a, dp * n);
-        push.angular[sc.b] += sc.inv_inertia_b * Cross(p.anchor_b, dp * n);
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {
+          push.angular[sc.a] -= sc.inv_inertia_a * Cross(p.anchor_a, dp * n);
+          push.angular[sc.b] += sc.inv_inertia_b * Cross(p.anchor_b, dp * n);
+        }
       }
     }
   }
@@ -419,23 +479,46 @@ void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation,
   }
 }
 
-void ApplyImpactLags(std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {
-  for (const SubstepConstraint& sc : constraints) {
-    if (sc.impact_lag == 0.0) continue;
-    const double share = sc.impact_lag * (1.0 / (sc.inv_mass_a + sc.inv_mass_b));
+template <typename C>
+void ApplyImpactLags(std::span<const C> constraints, std::span<const std::uint32_t> slot,
+                     std::span<const double> lags, std::span<BodyState> states) {
+  for (std::size_t i = 0; i < lags.size(); ++i) {
+    if (lags[i] == 0.0) continue;
+    const C& sc = constraints[slot[i]];
+    const double share = lags[i] * (1.0 / (sc.inv_mass_a + sc.inv_mass_b));
     states[sc.a].position -= (share * sc.inv_mass_a) * sc.normal;
     states[sc.b].position += (share * sc.inv_mass_b) * sc.normal;
   }
 }
 
-void StoreImpulses(std::span<const SubstepConstraint> constraints, std::span<Contact> contacts) {
-  for (const SubstepConstraint& sc : constraints) {
-    Contact& c = contacts[sc.contact];
+template <typename C>
+void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t> slot,
+                   std::span<Contact> contacts) {
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const C& sc = constraints[slot[i]];
+    Contact& c = contacts[i];
     for (int k = 0; k < 2; ++k) {
-      c.normal_impulse[k] = k < sc.point_count ? sc.points[k].normal_impulse : 0.0;
-      c.tangent_impulse[k] = k < sc.point_count ? sc.points[k].tangent_impulse : 0.0;
+      c.normal_impulse[k] = k < PointCount(sc) ? Point(sc, k).normal_impulse : 0.0;
+      c.tangent_impulse[k] = k < PointCount(sc) ? Point(sc, k).tangent_impulse : 0.0;
     }
   }
 }
+
+// The passes for either kind of constraint.
+#define ENGINE_SUBSTEP_PASSES(C)                                                                  \
+  template double WarmStart(std::span<C>, std::span<BodyState>, std::span<const BodyInfo>,        \
+                            std::span<const std::uint8_t>, const StepStart&, double,              \
+                            WarmStartImpulses);                                                   \
+  template double LimitContactEnergy(std::span<C>, std::span<BodyState>, std::span<const BodyInfo>, \
+                                     double, WarmStartImpulses);                                   \
+  template void SolveContacts(std::span<C>, std::span<BodyState>, const StepStart&, double);      \
+  template void PushOut(std::span<C>, std::span<const BodyState>, const StepStart&, PushVelocities, \
+                        double, double, double);                                                  \
+  template void ApplyImpactLags(std::span<const C>, std::span<const std::uint32_t>,              \
+                                std::span<const double>, std::span<BodyState>);                   \
+  template void StoreImpulses(std::span<const C>, std::span<const std::uint32_t>, std::span<Contact>);
+ENGINE_SUBSTEP_PASSES(SubstepConstraint)
+ENGINE_SUBSTEP_PASSES(LinearConstraint)
+#undef ENGINE_SUBSTEP_PASSES
 
 }  // namespace engine::detail

@@ -193,6 +193,8 @@ class World {
   void BuildContacts();
   void StepSeed();
   void StepSubstep();
+  template <typename C>
+  void StepSubstep(std::vector<C>* constraints);
   void UpdateSleep();
   /// Records a fault for the first body (in id order) with a non-finite state; true if any.
   bool CheckFinite();
@@ -249,7 +251,9 @@ class World {
   std::vector<ContactConstraint> seed_constraints_;
   std::vector<std::uint64_t> body_colours_;  ///< the colours each body's contacts have taken
   std::vector<std::uint32_t> contact_slot_;  ///< each contact's place in the solve order
-  std::vector<SubstepConstraint> substep_constraints_;
+  std::vector<SubstepConstraint> substep_constraints_;  ///< where something can turn
+  std::vector<LinearConstraint> linear_constraints_;    ///< where nothing can
+  std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
   std::unique_ptr<detail::DirectSolver> direct_solver_;  ///< islands with a large mass ratio
   std::unique_ptr<detail::ShockScratch> shock_scratch_;
   std::vector<detail::ShockRow> shock_rows_;
