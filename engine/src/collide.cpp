@@ -7,24 +7,6 @@
 
 namespace engine {
 
-bool CollideCircles(Vec2 center_a, double radius_a, Vec2 center_b, double radius_b, Manifold* out,
-                    double margin) {
-  const Vec2 d = center_b - center_a;
-  const double distance_squared = LengthSquared(d);
-  const double radii = radius_a + radius_b;
-  const double reach = radii + margin;
-  if (distance_squared > reach * reach) return false;
-  const double distance = std::sqrt(distance_squared);
-  // Concentric circles have no direction between them; push B straight up, deterministically.
-  const Vec2 normal = distance > 0.0 ? d / distance : Vec2{0.0, 1.0};
-  const Vec2 surface_a = center_a + radius_a * normal;
-  const Vec2 surface_b = center_b - radius_b * normal;
-  out->normal = normal;
-  out->points[0] = {0.5 * (surface_a + surface_b), radii - distance};
-  out->point_count = 1;
-  return true;
-}
-
 namespace {
 
 // The face of a box (centre c, half extents h) nearest to an interior point p, as the outward
