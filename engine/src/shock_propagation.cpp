@@ -28,20 +28,28 @@ std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo
     s->neighbours[s->fill[c.a]++] = c.b;
     s->neighbours[s->fill[c.b]++] = c.a;
   }
-  s->queue.clear();
+  // Whether a neighbour was reached already is as good as random, and mispredicted branches
+  // cost most of the search: a neighbour is visited without one (every body enters the queue
+  // at most once; one slot more takes the write past the last).
+  s->queue.resize(n + 1);
+  std::uint32_t* level = s->level.data();
+  std::uint32_t* queue = s->queue.data();
+  std::size_t tail = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (infos[i].is_static) s->level[i] = 0, s->queue.push_back(i);
+    if (infos[i].is_static) level[i] = 0, queue[tail++] = i;
   }
-  for (std::size_t head = 0; head < s->queue.size(); ++head) {
-    const std::uint32_t body = s->queue[head];
+  for (std::size_t head = 0; head < tail; ++head) {
+    const std::uint32_t body = queue[head];
+    const std::uint32_t next = level[body] + 1;
     for (std::uint32_t k = s->start[body]; k < s->start[body + 1]; ++k) {
       const std::uint32_t other = s->neighbours[k];
-      if (s->level[other] != kUnreached) continue;
-      s->level[other] = s->level[body] + 1;
-      s->queue.push_back(other);
+      const bool unreached = level[other] == kUnreached;
+      level[other] = unreached ? next : level[other];
+      queue[tail] = other;
+      tail += unreached;
     }
   }
-  return s->queue.size();
+  return tail;
 }
 
 }  // namespace
@@ -51,32 +59,39 @@ void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> in
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows) {
   const std::size_t reached = BuildLevels(constraints, infos, scratch);
   const std::span<const std::uint32_t> level = scratch->level;
-  // Which constraints support: the lower body (by level) below the upper one.
-  auto supports = [&](const C& c) {
-    if (Turns(c)) return false;
-    const double support = Dot(c.normal, up) * (level[c.a] <= level[c.b] ? 1.0 : -1.0);
-    return support >= 0.70710678118654752;
-  };
-  // Counting sort by the lower level of each pair: linear, and stable, so ties stay in
-  // constraint order. Pairs touching nothing static come last.
-  auto lower = [&](const C& c) {
-    const std::uint32_t l = std::min(level[c.a], level[c.b]);
-    return l == kUnreached ? static_cast<std::uint32_t>(reached) : l;
-  };
+  // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
+  // static after all levels), or one past that for the rest. A counting sort by bucket is
+  // linear and stable, so ties stay in constraint order, and the supporting rows come first.
+  // Every constraint is sorted, without a branch on whether it supports: which ones do is as
+  // good as random, and mispredicted branches cost more than writing the rows.
+  const std::uint32_t unreached_bucket = static_cast<std::uint32_t>(reached);
+  const std::uint32_t other_bucket = unreached_bucket + 1;
+  std::vector<std::uint32_t>& bucket = scratch->bucket;
+  bucket.resize(constraints.size());
   std::vector<std::uint32_t>& first = scratch->first;
-  first.assign(reached + 2, 0);
-  for (const C& c : constraints) {
-    if (supports(c)) ++first[lower(c) + 1];
+  first.assign(other_bucket + 2, 0);
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const C& c = constraints[i];
+    const std::uint32_t level_a = level[c.a], level_b = level[c.b];
+    // Support (the header says why only this): the normal within 45° of up, from the lower
+    // body (by level) to the upper one, between bodies that cannot turn.
+    const double support = Dot(c.normal, up) * (level_a <= level_b ? 1.0 : -1.0);
+    const bool supports = !Turns(c) && support >= 0.70710678118654752;
+    const std::uint32_t lower = std::min(level_a, level_b);
+    bucket[i] = !supports ? other_bucket : lower == kUnreached ? unreached_bucket : lower;
+    ++first[bucket[i] + 1];
   }
   for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
-  rows->resize(first.back());
-  for (const C& c : constraints) {
-    if (!supports(c)) continue;
+  const std::size_t supporting = first[other_bucket];
+  rows->resize(constraints.size());
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const C& c = constraints[i];
     // Which body gives: the upper one alone, or both by mass on one level.
     const std::uint32_t level_a = level[c.a], level_b = level[c.b];
-    (*rows)[first[lower(c)]++] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
-                                  level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
+    (*rows)[first[bucket[i]]++] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
+                                   level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
   }
+  rows->resize(supporting);
 }
 
 template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const BodyInfo>, Vec2,

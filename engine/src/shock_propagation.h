@@ -28,6 +28,7 @@ struct ShockRow {
 struct ShockScratch {
   std::vector<std::uint32_t> level;  ///< per body: graph distance from a static body
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
+  std::vector<std::uint32_t> bucket;  ///< per constraint: its place in the order's counting sort
 };
 
 /// Each body's level (graph distance through contacts from a static body: static bodies 0,
