@@ -51,6 +51,33 @@ TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, con
           m + inv_inertia_a * r2a * r2a + inv_inertia_b * r2b * r2b};
 }
 
+namespace {
+
+// What either kind of constraint takes from its contact and bodies alike.
+template <typename C>
+void FillPair(const Contact& c, std::span<const BodyInfo> infos, C* constraint) {
+  constraint->a = c.a;
+  constraint->b = c.b;
+  constraint->normal = c.manifold.normal;
+  constraint->inv_mass_a = infos[c.a].inv_mass;
+  constraint->inv_mass_b = infos[c.b].inv_mass;
+  constraint->friction = c.friction;
+}
+
+// The one row of a pair that cannot turn, at the centres: the deepest point's separation and the
+// sum of the points' impulses (every point has the same Jacobian, so they act as one).
+template <typename Row>
+void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* row) {
+  row->normal_mass = 1.0 / (inv_mass_a + inv_mass_b);
+  double depth = c.manifold.points[0].depth;
+  for (int k = 1; k < c.manifold.point_count; ++k) depth = std::max(depth, c.manifold.points[k].depth);
+  row->base_separation = -depth;
+  row->normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
+  row->tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
+}
+
+}  // namespace
+
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState>,
@@ -59,18 +86,8 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     LinearConstraint& lc = (*constraints)[slot[i]];
-    lc.a = c.a;
-    lc.b = c.b;
-    lc.normal = c.manifold.normal;
-    lc.inv_mass_a = infos[c.a].inv_mass;
-    lc.inv_mass_b = infos[c.b].inv_mass;
-    lc.normal_mass = 1.0 / (lc.inv_mass_a + lc.inv_mass_b);
-    double depth = c.manifold.points[0].depth;
-    for (int k = 1; k < c.manifold.point_count; ++k) depth = std::max(depth, c.manifold.points[k].depth);
-    lc.base_separation = -depth;
-    lc.normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
-    lc.tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
-    lc.friction = c.friction;
+    FillPair(c, infos, &lc);
+    FillCentreRow(c, lc.inv_mass_a, lc.inv_mass_b, &lc);
   }
 }
 
@@ -84,25 +101,16 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     SubstepConstraint& sc = (*constraints)[slot[i]];
-    sc.a = c.a;
-    sc.b = c.b;
-    sc.normal = c.manifold.normal;
-    sc.inv_mass_a = infos[c.a].inv_mass;
-    sc.inv_mass_b = infos[c.b].inv_mass;
+    FillPair(c, infos, &sc);
     sc.inv_inertia_a = infos[c.a].inv_inertia;
     sc.inv_inertia_b = infos[c.b].inv_inertia;
-    sc.friction = c.friction;
     sc.angular = sc.inv_inertia_a != 0.0 || sc.inv_inertia_b != 0.0;
     if (!sc.angular) {
       // As LinearConstraint: one row at the centres.
       SubstepPoint& p = sc.points[0];
       p.anchor_a = p.anchor_b = Vec2{};
-      p.normal_mass = p.tangent_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b);
-      double depth = c.manifold.points[0].depth;
-      for (int k = 1; k < c.manifold.point_count; ++k) depth = std::max(depth, c.manifold.points[k].depth);
-      p.base_separation = -depth;
-      p.normal_impulse = c.normal_impulse[0] + c.normal_impulse[1];
-      p.tangent_impulse = c.tangent_impulse[0] + c.tangent_impulse[1];
+      FillCentreRow(c, sc.inv_mass_a, sc.inv_mass_b, &p);
+      p.tangent_mass = p.normal_mass;
       p.push_impulse = 0.0;
       sc.point_count = 1;
     } else {
