@@ -21,7 +21,7 @@
 
 #include "bench/bench_common.h"
 #include "bench/stress_scenes.h"
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 #include "engine/world.h"
 
 #ifndef BALLBOX_BUILD_TYPE

@@ -43,7 +43,7 @@ struct Row {
 std::vector<peers::EngineEntry> EnginesFor(const peers::Scene& scene) {
   std::vector<peers::EngineEntry> out = peers::Engines();
   if (!scene.sweep) return out;
-  const peers::BallboxSetting settings[] = {{engine::ContactSolver::kSeed, 0},
+  const peers::BallboxSetting settings[] = {{engine::ContactSolver::kSequentialImpulse, 0},
                                             {engine::ContactSolver::kSubstep, 1},
                                             {engine::ContactSolver::kSubstep, 2},
                                             {engine::ContactSolver::kSubstep, 4},

@@ -67,11 +67,11 @@ double ThreadSeconds() {
 }
 
 std::string SolverName(solver_bench::Setting s) {
-  return s.solver == engine::ContactSolver::kSeed ? "seed" : "substep";
+  return s.solver == engine::ContactSolver::kSequentialImpulse ? "seed" : "substep";
 }
 
 std::string SubstepsText(solver_bench::Setting s) {
-  return s.solver == engine::ContactSolver::kSeed ? "-" : std::to_string(s.substeps);
+  return s.solver == engine::ContactSolver::kSequentialImpulse ? "-" : std::to_string(s.substeps);
 }
 
 std::string FiguresText(const std::vector<solver_bench::Figure>& figures) {
@@ -94,7 +94,7 @@ std::string Verdict(const std::vector<solver_bench::Figure>& figures) {
 
 bool Selected(const Options& options, solver_bench::Setting s) {
   if (!options.solver_filter.empty() && options.solver_filter != SolverName(s)) return false;
-  return s.solver == engine::ContactSolver::kSeed || options.substeps_filter == 0 ||
+  return s.solver == engine::ContactSolver::kSequentialImpulse || options.substeps_filter == 0 ||
          options.substeps_filter == s.substeps;
 }
 
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
   PrintTable(results, options.quick);
   // The settings left at 0 ("automatic") as the engine resolves them for these scenes.
   engine::WorldDef seed_def;
-  seed_def.solver = engine::ContactSolver::kSeed;
+  seed_def.solver = engine::ContactSolver::kSequentialImpulse;
   seed_def.rotation = options.rotation;
   const engine::World seed_world(seed_def);
   engine::WorldDef substep_def;

@@ -25,7 +25,7 @@ struct Setting {
 /// The seed, then the substep solver at 1, 2, 4 (the default) and 8 substeps: stability
 /// against cost.
 inline std::vector<Setting> Settings() {
-  return {{engine::ContactSolver::kSeed, 1},
+  return {{engine::ContactSolver::kSequentialImpulse, 1},
           {engine::ContactSolver::kSubstep, 1},
           {engine::ContactSolver::kSubstep, 2},
           {engine::ContactSolver::kSubstep, 4},

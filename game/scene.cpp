@@ -159,7 +159,9 @@ void ReadSolver(const Json& solver, const std::string& path, engine::WorldDef* w
   if (const Json* v = Find(solver, "method")) {
     world->solver = ReadChoice<engine::ContactSolver>(
         *v, Join(path, "method"),
-        {{"substep", engine::ContactSolver::kSubstep}, {"seed", engine::ContactSolver::kSeed}});
+        {{"substep", engine::ContactSolver::kSubstep},
+         {"sequential_impulse", engine::ContactSolver::kSequentialImpulse},
+         {"seed", engine::ContactSolver::kSequentialImpulse}});
   }
   read_count("substeps", &world->substeps);
   read_count("iterations", &world->velocity_iterations);

@@ -10,7 +10,7 @@
 TEST_CASE("every solver benchmark scene builds and steps 10 times to finite figures", "[bench]") {
   for (const solver_bench::Scene& scene : solver_bench::Scenes()) {
     for (solver_bench::Setting setting : solver_bench::Settings()) {
-      INFO(scene.name << ", " << (setting.solver == engine::ContactSolver::kSeed ? "seed" : "substep")
+      INFO(scene.name << ", " << (setting.solver == engine::ContactSolver::kSequentialImpulse ? "seed" : "substep")
                       << " " << setting.substeps << " substeps");
       engine::World world = solver_bench::MakeWorld(scene, setting);
       REQUIRE(world.BodyCount() > 1);

@@ -13,7 +13,7 @@
 #include <type_traits>
 
 #include "bench/stress_scenes.h"
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 #include "engine/world.h"
 #include "game/scene.h"
 

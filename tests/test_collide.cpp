@@ -1,7 +1,7 @@
 // Narrow phase against hand-computed manifolds, including the exact edge cases.
 #include <catch2/catch.hpp>
 
-#include "engine/collide.h"
+#include "narrow_phase/collide.h"
 #include "engine/world.h"
 
 using engine::Manifold;

@@ -106,7 +106,7 @@ engine::WorldDef Seed(Integrator integrator, double dt) {
   engine::WorldDef def;
   def.integrator = integrator;
   def.dt = dt;
-  def.solver = engine::ContactSolver::kSeed;
+  def.solver = engine::ContactSolver::kSequentialImpulse;
   return def;
 }
 
@@ -114,9 +114,9 @@ engine::WorldDef Seed(Integrator integrator, double dt) {
 
 TEST_CASE("a spring attached at the centre makes no rotation", "[forces]") {
   for (Integrator integrator : kIntegrators) {
-    for (engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSeed}) {
+    for (engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
       for (bool centred : {true, false}) {
-        INFO(Name(integrator) << (solver == engine::ContactSolver::kSeed ? ", seed" : ", substep")
+        INFO(Name(integrator) << (solver == engine::ContactSolver::kSequentialImpulse ? ", seed" : ", substep")
                               << (centred ? ", centred" : ", off-centre (control)"));
         engine::WorldDef def;
         def.integrator = integrator;

@@ -21,8 +21,8 @@ TEST_CASE("free fall matches each integrator's discrete closed form", "[integrat
   const engine::Vec2 p0{1.0, 2.0}, v0{10.0, 10.0};
   using engine::ContactSolver;
   using engine::Integrator;
-  for (FallCase c : {FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSeed, 1},
-                     FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSeed, 1},
+  for (FallCase c : {FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSequentialImpulse, 1},
+                     FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSequentialImpulse, 1},
                      FallCase{Integrator::kSemiImplicitEuler, +1, ContactSolver::kSubstep, 4},
                      FallCase{Integrator::kExplicitEuler, -1, ContactSolver::kSubstep, 4}}) {
     engine::WorldDef def;

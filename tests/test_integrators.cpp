@@ -63,7 +63,7 @@ engine::WorldDef FreeWorld(Integrator integrator, double dt, Vec2 gravity) {
   def.integrator = integrator;
   def.dt = dt;
   def.gravity = gravity;
-  def.solver = engine::ContactSolver::kSeed;
+  def.solver = engine::ContactSolver::kSequentialImpulse;
   def.sleeping = false;
   return def;
 }

@@ -141,7 +141,7 @@ std::vector<double> FlightEnergies(double dt, int bounces) {
   engine::WorldDef def;
   def.gravity = {0, -g};
   def.dt = dt;
-  def.solver = engine::ContactSolver::kSeed;
+  def.solver = engine::ContactSolver::kSequentialImpulse;
   engine::World world(def);
   world.CreateBody(Static(Box({0, -0.5}, {4, 1})));
   world.CreateBody(WithMaterial(Circle({0, 10.0 + r}, r), 0.8, 0.3));

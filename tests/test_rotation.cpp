@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "bench/stress_scenes.h"
-#include "engine/collide.h"
+#include "narrow_phase/collide.h"
 #include "engine/world.h"
 #include "world_builders.h"
 

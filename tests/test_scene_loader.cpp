@@ -205,7 +205,7 @@ TEST_CASE("scene solver iterations above 1000", "[scene]") {
 
 TEST_CASE("scene solver method that does not exist", "[scene]") {
   RequireSceneError("scene_unknown_solver_method.json",
-                    "solver.method: unknown value \"soft\" (expected one of \"substep\", \"seed\")");
+                    "solver.method: unknown value \"soft\" (expected one of \"substep\", \"sequential_impulse\", \"seed\")");
 }
 
 TEST_CASE("scene solver substeps of 0", "[scene]") {
@@ -468,7 +468,7 @@ TEST_CASE("scene with every documented and extra key reads each value", "[scene]
   CHECK(scene.world.restitution_threshold == 0.5);
   CHECK(scene.world.linear_slop == 0.01);
   CHECK(scene.world.position_correction == 0.3);
-  CHECK(scene.world.solver == engine::ContactSolver::kSeed);
+  CHECK(scene.world.solver == engine::ContactSolver::kSequentialImpulse);
   CHECK(scene.world.substeps == 3);
   CHECK(scene.world.max_push_out_speed == 2.5);
   CHECK_FALSE(scene.world.sleeping);
@@ -558,4 +558,16 @@ TEST_CASE("every scene in assets/ loads, and so does the embedded default", "[sc
   REQUIRE(embedded.HasValue());
   CHECK(embedded.Value().name == "default");
   CHECK_FALSE(embedded.Value().bodies.empty());
+}
+
+TEST_CASE("scene solver method names the sequential-impulse solver, and \"seed\" as its old name",
+          "[scene]") {
+  for (const char* name : {"sequential_impulse", "seed"}) {
+    const std::string json = std::string(R"({"solver": {"method": ")") + name +
+                             R"("}, "bodies": [{"shape": "circle", "radius": 1, "position": [0, 0]}]})";
+    const game::Expected<game::Scene> scene = game::ParseScene(json, "<test>", "test");
+    INFO(name);
+    REQUIRE(scene.HasValue());
+    CHECK(scene.Value().world.solver == engine::ContactSolver::kSequentialImpulse);
+  }
 }

@@ -190,7 +190,7 @@ TEST_CASE("soft step: head-on collision of masses 1 and 3 follows the collision 
 }
 
 TEST_CASE("a sliding box stops after v²/(2μg) within v·dt, then stays put", "[solver][friction]") {
-  for (auto solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSeed}) {
+  for (auto solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
     engine::WorldDef def;
     def.gravity = {0, -9.81};
     def.solver = solver;
@@ -216,7 +216,7 @@ TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][
   engine::WorldDef def;
   def.gravity = {0.9 * mu * g, -g};
   for (const engine::Integrator integrator : kIntegrators) {
-    for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSeed}) {
+    for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
       engine::WorldDef held = def;
       held.integrator = integrator;
       held.solver = solver;

@@ -5,8 +5,11 @@
 #include <span>
 #include <vector>
 
-#include "engine/world.h"
-#include "force_model.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+#include "engine/spring.h"
+#include "engine/world_def.h"
+#include "forces/force_model.h"
 
 namespace engine::detail {
 

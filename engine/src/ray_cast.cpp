@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/world.h"
+#include "world_impl.h"
 
 namespace engine {
 
@@ -56,9 +56,9 @@ std::optional<RayHit> World::RayCast(Vec2 from, Vec2 to) const {
   std::optional<RayHit> best;
   double best_t = std::numeric_limits<double>::infinity();
   const Vec2 d = to - from;
-  for (BodyId id = 0; id < states_.size(); ++id) {
-    const Shape& shape = infos_[id].shape;
-    const BodyState& s = states_[id];
+  for (BodyId id = 0; id < impl_->states_.size(); ++id) {
+    const Shape& shape = impl_->infos_[id].shape;
+    const BodyState& s = impl_->states_[id];
     double t;
     Vec2 normal;
     bool hit;

@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <span>
 
-#include "engine/world.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+#include "engine/spring.h"
+#include "engine/world_def.h"
 
 namespace engine::detail {
 

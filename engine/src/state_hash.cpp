@@ -3,7 +3,7 @@
 #include <bit>
 #include <cstdint>
 
-#include "engine/world.h"
+#include "world_impl.h"
 
 namespace engine {
 
@@ -24,7 +24,7 @@ void HashDouble(double value, std::uint64_t* hash) {
 
 std::uint64_t World::StateHash() const {
   std::uint64_t hash = kFnvOffset;
-  for (const BodyState& s : states_) {
+  for (const BodyState& s : impl_->states_) {
     HashDouble(s.position.x, &hash);
     HashDouble(s.position.y, &hash);
     HashDouble(s.velocity.x, &hash);

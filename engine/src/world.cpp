@@ -1,5 +1,6 @@
 // World: body creation and Step(), which reads as the list of phases it runs.
 #include "engine/world.h"
+#include "world_impl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,15 +9,16 @@
 #include <limits>
 #include <numeric>
 
-#include "contact_colouring.h"
-#include "direct_solver.h"
-#include "force_model.h"
-#include "impact.h"
+#include "solver/contact_colouring.h"
+#include "solver/direct_solver.h"
+#include "forces/force_model.h"
+#include "narrow_phase/collide.h"
+#include "solver/impact.h"
 #include "integrate.h"
-#include "seed_solver.h"
-#include "shock_propagation.h"
+#include "solver/seed_solver.h"
+#include "solver/shock_propagation.h"
 #include "sleep.h"
-#include "substep_solver.h"
+#include "solver/substep_solver.h"
 
 namespace engine {
 
@@ -34,19 +36,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool IsPositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
 bool IsNonNegativeFinite(double v) { return std::isfinite(v) && v >= 0.0; }
-
-double Area(const Shape& shape) {
-  constexpr double kPi = 3.14159265358979323846;
-  return shape.type == ShapeType::kCircle ? kPi * shape.radius * shape.radius
-                                          : 4.0 * shape.half_extents.x * shape.half_extents.y;
-}
-
-// Moment of inertia about the centre: a disc ½·m·r², a box m·(w² + h²)/12.
-double Inertia(const Shape& shape, double mass) {
-  if (shape.type == ShapeType::kCircle) return 0.5 * mass * shape.radius * shape.radius;
-  const double w = 2.0 * shape.half_extents.x, h = 2.0 * shape.half_extents.y;
-  return mass * (w * w + h * h) / 12.0;
-}
 
 // Drag coefficients of a long cylinder and a square bar across a flow (textbook values).
 constexpr double kCircleDrag = 0.47;
@@ -90,18 +79,14 @@ PairQuota QuotaOf(const Shape& shape, bool is_static) {
 WorldDef Resolve(WorldDef def) {
   if (def.substeps == 0) def.substeps = def.rotation ? 8 : 4;
   if (def.velocity_iterations == 0) {
-    def.velocity_iterations = def.solver == ContactSolver::kSeed ? 10 : def.rotation ? 4 : 1;
+    def.velocity_iterations = def.solver == ContactSolver::kSequentialImpulse ? 10 : def.rotation ? 4 : 1;
   }
   return def;
 }
 
 }  // namespace
 
-World::World(World&&) noexcept = default;
-World& World::operator=(World&&) noexcept = default;
-World::~World() = default;
-
-World::World(const WorldDef& def)
+World::Impl::Impl(const WorldDef& def)
     : def_(Resolve(def)),
       free_motion_(std::make_unique<detail::FreeMotion>()),
       direct_solver_(std::make_unique<detail::DirectSolver>()),
@@ -120,7 +105,28 @@ World::World(const WorldDef& def)
           "WorldDef sleep settings must be finite and >= 0");
 }
 
-BodyId World::CreateBody(const BodyDef& def) {
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+BodyId World::CreateBody(const BodyDef& def) { return impl_->CreateBody(def); }
+void World::Step() { impl_->Step(); }
+const std::optional<NumericFault>& World::Fault() const { return impl_->fault_; }
+const std::vector<SpringDef>& World::Springs() const { return impl_->springs_; }
+std::size_t World::BodyCount() const { return impl_->states_.size(); }
+const BodyState& World::State(BodyId id) const { return impl_->states_[id]; }
+const BodyInfo& World::Info(BodyId id) const { return impl_->infos_[id]; }
+AABB World::BodyBounds(BodyId id) const { return impl_->BodyBounds(id); }
+const WorldDef& World::Def() const { return impl_->def_; }
+std::int64_t World::StepCount() const { return impl_->step_count_; }
+const std::vector<Contact>& World::Contacts() const { return impl_->contacts_; }
+std::size_t World::CrowdedBodyCount() const { return impl_->crowded_bodies_; }
+std::uint64_t World::DroppedPairCount() const { return impl_->dropped_pairs_; }
+std::uint32_t World::MostChargedPairs() const { return impl_->most_charged_; }
+bool World::IsAwake(BodyId id) const { return impl_->awake_[id] != 0; }
+
+BodyId World::Impl::CreateBody(const BodyDef& def) {
   const Shape& shape = def.shape;
   Require(shape.type == ShapeType::kCircle ? IsPositiveFinite(shape.radius)
                                            : IsPositiveFinite(shape.half_extents.x) &&
@@ -152,11 +158,11 @@ BodyId World::CreateBody(const BodyDef& def) {
   state.position = def.position;
   state.angle = def.angle;
   if (!def.is_static) {
-    const double mass = def.mass > 0.0 ? def.mass : def.density * Area(shape);
+    const double mass = def.mass > 0.0 ? def.mass : def.density * ShapeArea(shape);
     Require(IsPositiveFinite(mass), "BodyDef mass (or density) must be positive and finite");
     info.mass = mass;
     info.inv_mass = 1.0 / mass;
-    info.inertia = Inertia(shape, mass);
+    info.inertia = ShapeInertia(shape, mass);
     // Without rotation (world or body) nothing can turn the body: infinite inertia.
     info.inv_inertia = def_.rotation && !def.fixed_rotation ? 1.0 / info.inertia : 0.0;
     if (info.inv_inertia != 0.0) ++turnable_bodies_;
@@ -173,26 +179,26 @@ BodyId World::CreateBody(const BodyDef& def) {
 }
 
 void World::ApplyLinearImpulse(BodyId id, Vec2 impulse) {
-  Require(id < states_.size(), "ApplyLinearImpulse: no such body");
+  Require(id < impl_->states_.size(), "ApplyLinearImpulse: no such body");
   Require(IsFinite(impulse), "ApplyLinearImpulse: impulse must be finite");
-  const BodyInfo& info = infos_[id];
+  const BodyInfo& info = impl_->infos_[id];
   if (info.is_static) return;
-  detail::WakeIsland(id, infos_, {rest_time_, awake_, island_});
-  states_[id].velocity += impulse / info.mass;
+  detail::WakeIsland(id, impl_->infos_, {impl_->rest_time_, impl_->awake_, impl_->island_});
+  impl_->states_[id].velocity += impulse / info.mass;
 }
 
 void World::AddSpring(const SpringDef& def) {
-  Require(def.body_a < states_.size() && (!def.body_b || *def.body_b < states_.size()),
+  Require(def.body_a < impl_->states_.size() && (!def.body_b || *def.body_b < impl_->states_.size()),
           "AddSpring: no such body");
   Require(IsFinite(def.local_a) && IsFinite(def.local_b), "AddSpring: attachment points must be finite");
   Require(IsNonNegativeFinite(def.rest_length) && IsNonNegativeFinite(def.stiffness) &&
               IsNonNegativeFinite(def.damping),
           "AddSpring: rest length, stiffness and damping must be finite and >= 0");
-  springs_.push_back(def);
-  if (def.stiffness != 0.0 || def.damping != 0.0) acting_springs_.push_back(def);
+  impl_->springs_.push_back(def);
+  if (def.stiffness != 0.0 || def.damping != 0.0) impl_->acting_springs_.push_back(def);
 }
 
-AABB World::BodyBounds(BodyId id) const {
+AABB World::Impl::BodyBounds(BodyId id) const {
   const Vec2 c = states_[id].position;
   const Shape& shape = infos_[id].shape;
   Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
@@ -204,8 +210,8 @@ AABB World::BodyBounds(BodyId id) const {
   return {c - half, c + half};
 }
 
-double World::Reach(BodyId id) const {
-  if (def_.solver == ContactSolver::kSeed) return 0.0;  // the seed only sees real overlap
+double World::Impl::Reach(BodyId id) const {
+  if (def_.solver == ContactSolver::kSequentialImpulse) return 0.0;  // the seed only sees real overlap
   const double speculative = 0.5 * kSpeculativeSlops * def_.linear_slop;
   if (!awake_[id]) return speculative;
   // The farthest a body can travel in this step under gravity, and then some; a turning body's
@@ -230,7 +236,7 @@ double World::Reach(BodyId id) const {
   return reach;
 }
 
-void World::Step() {
+void World::Impl::Step() {
   if (fault_) return;
   const std::size_t n = states_.size();
   positions_before_.resize(n);
@@ -238,7 +244,7 @@ void World::Step() {
 
   FindCandidatePairs();  // broad phase: pairs whose grown bounds overlap; wakes touched sleepers
   BuildContacts();       // narrow phase: manifolds, with last step's impulses to warm-start
-  if (def_.solver == ContactSolver::kSeed) {
+  if (def_.solver == ContactSolver::kSequentialImpulse) {
     StepSeed();
   } else {
     StepSubstep();
@@ -249,7 +255,7 @@ void World::Step() {
   ++step_count_;
 }
 
-void World::FindCandidatePairs() {
+void World::Impl::FindCandidatePairs() {
   const std::size_t n = states_.size();
   bounds_.resize(n);
   reach_.resize(n);
@@ -283,7 +289,7 @@ void World::FindCandidatePairs() {
   std::erase_if(pairs_, [this](BodyPair p) { return !awake_[p.a] && !awake_[p.b]; });
 }
 
-void World::BuildContacts() {
+void World::Impl::BuildContacts() {
   previous_contacts_.swap(contacts_);
   contacts_.clear();
   // At most one contact a pair: reserving that much at once avoids growth by doubling, which
@@ -347,11 +353,11 @@ void World::BuildContacts() {
   }
 }
 
-detail::ForceModel World::Forces() const {
+detail::ForceModel World::Impl::Forces() const {
   return {def_, infos_, acting_springs_, awake_, def_.rotation, damped_bodies_ > 0};
 }
 
-void World::StepSeed() {
+void World::Impl::StepSeed() {
   const double dt = def_.dt;
   detail::FreeStep(def_.integrator, Forces(), states_, dt, free_motion_.get());
   if (CheckFinite()) return;  // the forces overflowed: name the body before contacts spread it
@@ -363,7 +369,7 @@ void World::StepSeed() {
                            def_.position_correction);
 }
 
-void World::StepSubstep() {
+void World::Impl::StepSubstep() {
   // Where nothing can turn, the compact constraints in colour order: shock propagation makes
   // the solve indifferent to order there, and the colour order runs faster. Turning stacks need
   // their passes to converge, which contact order does better where a scene is built bottom-up:
@@ -379,7 +385,7 @@ void World::StepSubstep() {
 }
 
 template <typename C>
-void World::StepSubstep(std::vector<C>* constraints_vector) {
+void World::Impl::StepSubstep(std::vector<C>* constraints_vector) {
   constexpr bool kCanTurn = detail::kCanTurn<C>;
   const double h = def_.dt / def_.substeps;
   const double inv_h = 1.0 / h;
@@ -467,7 +473,7 @@ void World::StepSubstep(std::vector<C>* constraints_vector) {
   detail::StoreImpulses<C>(constraints, contact_slot_, contacts_);
 }
 
-bool World::CheckFinite() {
+bool World::Impl::CheckFinite() {
   for (BodyId id = 0; id < states_.size(); ++id) {
     const BodyState& s = states_[id];
     const char* what = !IsFinite(s.position)              ? "position"
@@ -484,7 +490,7 @@ bool World::CheckFinite() {
 }
 
 template <typename Constraint>
-void World::MarkPushed(const std::vector<Constraint>& constraints) {
+void World::Impl::MarkPushed(const std::vector<Constraint>& constraints) {
   pushed_.clear();
   if (def_.integrator == Integrator::kSemiImplicitEuler) return;  // it moves every body by h·v
   pushed_.assign(states_.size(), 0);
@@ -499,18 +505,18 @@ void World::MarkPushed(const std::vector<Constraint>& constraints) {
   }
 }
 
-bool World::ForcesBeyondGravity() const {
+bool World::Impl::ForcesBeyondGravity() const {
   return damped_bodies_ > 0 || !acting_springs_.empty() || def_.fluid_density != 0.0 ||
          def_.gravitational_constant != 0.0;
 }
 
-void World::UpdateTurned() {
+void World::Impl::UpdateTurned() {
   for (std::size_t i = 0; i < states_.size(); ++i) {
     turned_[i] = infos_[i].inv_inertia != 0.0 ? MakeRot(states_[i].angle - angles_before_[i]) : Rot{};
   }
 }
 
-void World::UpdateSleep() {
+void World::Impl::UpdateSleep() {
   // A body in a crowd is being pushed out of a pile, not resting, even when nothing else moves
   // it (no gravity): it stays awake, and so does its island, until the pile has spread.
   for (const std::uint32_t body : broad_phase_.LastCollector().CrowdedBodies()) {

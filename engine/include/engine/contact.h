@@ -1,14 +1,28 @@
-// Contacts between bodies: what the narrow phase found and what the solver accumulates on them.
+// Contacts between bodies: what the narrow phase found, and the impulses the solver left on them.
 #pragma once
 
 #include <cstdint>
 
-#include "engine/collide.h"
+#include "engine/ids.h"
+#include "engine/math.h"
 
 namespace engine {
 
-/// A body's index in creation (scene) order.
-using BodyId = std::uint32_t;
+struct ContactPoint {
+  Vec2 point;    ///< world point midway between the two surfaces
+  double depth;  ///< penetration along the normal, m: 0 when touching, negative for a gap
+  /// Which features meet here (a box face's end, say), so the same point can be recognised
+  /// next step and warm-started with its impulse.
+  std::uint8_t id = 0;
+};
+
+/// Up to two contact points sharing one normal. `normal` is a unit vector pointing from shape A
+/// to shape B: moving B along it (or A against it) separates them.
+struct Manifold {
+  Vec2 normal;
+  ContactPoint points[2];
+  int point_count = 0;
+};
 
 struct Contact {
   BodyId a;  ///< a < b
@@ -19,74 +33,6 @@ struct Contact {
   /// Impulses accumulated on each point last step (N·s), carried over to warm-start the next.
   double normal_impulse[2] = {0.0, 0.0};
   double tangent_impulse[2] = {0.0, 0.0};
-};
-
-/// Seed solver: one point of a contact.
-struct PointConstraint {
-  double target_normal_velocity;  ///< after the solve: the restitution bounce, or 0 (rest)
-  double normal_impulse;          ///< accumulated this step, N·s, never negative
-  double tangent_impulse;         ///< accumulated this step, |.| ≤ friction · normal_impulse
-};
-
-/// Seed solver: its working state for one contact.
-struct ContactConstraint {
-  BodyId a;
-  BodyId b;
-  Vec2 normal;
-  double inv_mass_sum;
-  double friction;
-  int point_count;
-  PointConstraint points[2];
-};
-
-/// Substep solver: one point of a contact. Pairs that cannot turn use a single point at the
-/// centres (anchors zero): every point of their manifold has the same Jacobian.
-struct SubstepPoint {
-  /// Separation at the step's start less Dot(anchor_b − anchor_a, normal), so that adding the
-  /// anchors' current offset gives the separation now.
-  double base_separation;
-  double normal_mass;      ///< 1 / effective mass along the normal
-  double tangent_mass;
-  double normal_impulse;   ///< accumulated per substep, warm-started from the last step
-  double tangent_impulse;
-  double push_impulse;     ///< accumulated this substep by the push-out (split impulse)
-  Vec2 anchor_a;           ///< from A's centre at the step's start, m (zero without turning)
-  Vec2 anchor_b;
-};
-
-/// Substep solver: its working state for one contact in a world where something can turn.
-/// Laid out for the passes over the pairs in it that cannot: all they read lies in the first
-/// two cache lines (the header and the first point's scalars); the angular fields come last.
-struct alignas(64) SubstepConstraint {
-  BodyId a;
-  BodyId b;
-  int point_count;
-  bool angular;           ///< either body can turn: points carry anchors and angular terms
-  Vec2 normal;
-  double inv_mass_a;
-  double inv_mass_b;
-  double friction;
-  SubstepPoint points[2];
-  double inv_inertia_a;
-  double inv_inertia_b;
-};
-
-/// Substep solver: its working state for one contact in a world where nothing can turn (the
-/// axis-aligned game): one row at the centres, as every point of such a pair's manifold has the
-/// same Jacobian. 80 bytes against SubstepConstraint's 256: the passes stream all the
-/// constraints of a pile several times a substep, and the bytes they read are most of their
-/// time. The field names are SubstepPoint's, so the passes read either alike.
-struct LinearConstraint {
-  BodyId a;
-  BodyId b;
-  Vec2 normal;
-  double inv_mass_a;
-  double inv_mass_b;
-  double normal_mass;      ///< 1 / (inv_mass_a + inv_mass_b): the effective mass in any direction
-  double base_separation;  ///< the separation at the step's start
-  double normal_impulse;   ///< accumulated per substep, warm-started from the last step
-  double tangent_impulse;
-  double friction;
 };
 
 }  // namespace engine

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 
 namespace engine {
 

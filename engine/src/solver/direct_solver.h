@@ -8,8 +8,12 @@
 #include <span>
 #include <vector>
 
-#include "engine/world.h"
-#include "substep_solver.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+#include "engine/spring.h"
+#include "engine/world_def.h"
+#include "body_pair.h"
+#include "solver/substep_solver.h"
 
 namespace engine::detail {
 

@@ -1,7 +1,7 @@
 // Islands by union-find over the contacts of turning pairs; per island K = J·M⁻¹·Jᵀ built once
 // per step (dense, and row by row as its non-zeros), and per substep a few box-constrained QPs
 // solved by block principal pivoting on a Cholesky factor that is kept and updated row by row.
-#include "direct_solver.h"
+#include "solver/direct_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,8 +31,6 @@ constexpr int kMaxSolves = 4;
 constexpr double kLimitTolerance = 1e-6;
 
 enum : std::uint8_t { kFree, kAtLower, kAtUpper };
-
-bool PairLess(BodyPair x, BodyPair y) { return x.a < y.a || (x.a == y.a && x.b < y.b); }
 
 std::uint32_t Root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -551,7 +549,7 @@ void HandOff(std::span<SubstepConstraint> constraints, DirectSolver* s) {
   for (std::uint32_t c = 0; c < constraints.size() && j < s->previous_pairs.size(); ++c) {
     SubstepConstraint& sc = constraints[c];
     const BodyPair pair{sc.a, sc.b};
-    while (j < s->previous_pairs.size() && PairLess(s->previous_pairs[j], pair)) ++j;
+    while (j < s->previous_pairs.size() && s->previous_pairs[j] < pair) ++j;
     if (j == s->previous_pairs.size() || !(s->previous_pairs[j] == pair)) continue;
     if (!s->direct_contact.empty() && s->direct_contact[c]) continue;
     for (int k = 0; k < sc.point_count; ++k) sc.points[k].normal_impulse = sc.points[k].tangent_impulse = 0.0;

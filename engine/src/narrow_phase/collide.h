@@ -1,28 +1,13 @@
-// Narrow phase: exact contact manifolds between circles and axis-aligned boxes.
+// Narrow phase: exact contact manifolds between circles and boxes, axis-aligned or turned.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
+#include "engine/contact.h"
 #include "engine/math.h"
 
 namespace engine {
-
-struct ContactPoint {
-  Vec2 point;    ///< world point midway between the two surfaces
-  double depth;  ///< penetration along the normal, m: 0 when touching, negative for a gap
-  /// Which features meet here (a box face's end, say), so the same point can be recognised
-  /// next step and warm-started with its impulse.
-  std::uint8_t id = 0;
-};
-
-/// Up to two contact points sharing one normal. `normal` is a unit vector pointing from shape A
-/// to shape B: moving B along it (or A against it) separates them.
-struct Manifold {
-  Vec2 normal;
-  ContactPoint points[2];
-  int point_count = 0;
-};
 
 /// Each function returns false (and leaves `out` alone) when the shapes are farther apart than
 /// `margin`; touching shapes collide with depth 0, and shapes up to `margin` apart give a

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/broadphase.h"
-#include "pair_sort.h"
+#include "broad_phase/broad_phase.h"
+#include "broad_phase/pair_sort.h"
 
 namespace engine {
 
@@ -306,7 +306,7 @@ void AabbTree::FindAllCandidates(std::span<const AABB> boxes) {
         if (Overlaps(boxes[na.body], boxes[nb.body])) collector_.Add(na.body, nb.body);
         continue;
       }
-      candidates_.push_back(detail::MakePair(na.body, nb.body));
+      candidates_.push_back(MakePair(na.body, nb.body));
       if (candidates_.size() > limit) {
         crowded_ = true;
         for (const BodyPair& p : candidates_) {
@@ -349,7 +349,7 @@ bool AabbTree::UpdateCandidates() {
         continue;
       }
       const std::uint32_t j = node.body;
-      if (j != i && (!moved_[j] || i < j)) fresh_.push_back(detail::MakePair(i, j));
+      if (j != i && (!moved_[j] || i < j)) fresh_.push_back(MakePair(i, j));
     }
     if (candidates_.size() + fresh_.size() > limit) return false;
   }

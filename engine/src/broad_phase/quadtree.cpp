@@ -10,7 +10,7 @@
 #include <limits>
 #include <numeric>
 
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 
 namespace engine {
 

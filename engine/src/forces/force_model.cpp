@@ -1,5 +1,5 @@
 // Force generators, each a short loop; the ones a scene does not use cost nothing.
-#include "force_model.h"
+#include "forces/force_model.h"
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
 // Substepped contact constraints: rigid and warm-started for velocities, with overlap pushed out
 // through separate push velocities (a split impulse). Pairs that cannot turn take a linear-only
 // path: no angular arithmetic at all, one constraint per contact.
-#include "substep_solver.h"
+#include "solver/substep_solver.h"
 
-#include "block_solver.h"
+#include "solver/block_solver.h"
 
 #include <algorithm>
 #include <cmath>

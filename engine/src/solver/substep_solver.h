@@ -7,8 +7,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "block_solver.h"
-#include "engine/world.h"
+#include "solver/block_solver.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+#include "solver/substep_constraint.h"
 
 namespace engine::detail {
 

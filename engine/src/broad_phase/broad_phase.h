@@ -7,26 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include "body_pair.h"
 #include "engine/math.h"
+#include "engine/world_def.h"
 
 namespace engine {
-
-enum class BroadPhaseType : std::uint8_t {
-  /// All pairs for a handful of bodies; beyond, the AABB tree while bodies mostly stay inside
-  /// their fat boxes (resting, settling) and the uniform grid while many move (see BroadPhase)
-  kAuto,
-  kAllPairs,
-  kSweepAndPrune,
-  kUniformGrid,
-  kQuadtree,
-  kAabbTree,
-};
-
-struct BodyPair {
-  std::uint32_t a;  ///< the smaller index
-  std::uint32_t b;
-  friend constexpr bool operator==(BodyPair, BodyPair) = default;
-};
 
 /// Every overlapping pair by testing all of them: the reference, and the fastest for a handful
 /// of boxes. Pairs come out sorted by (a, b).
@@ -67,7 +52,7 @@ class PairCollector {
   /// Starts a call: `pairs` is cleared and filled by Add; `quotas` is empty or one per box.
   void Begin(std::span<const AABB> boxes, std::span<const PairQuota> quotas, std::vector<BodyPair>* pairs);
   void Add(std::uint32_t i, std::uint32_t j) {
-    const BodyPair p = i < j ? BodyPair{i, j} : BodyPair{j, i};
+    const BodyPair p = MakePair(i, j);
     if (quotas_.empty()) {
       pairs_->push_back(p);
       return;

@@ -6,7 +6,10 @@
 #include <span>
 #include <vector>
 
-#include "engine/world.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+#include "engine/spring.h"
+#include "engine/world_def.h"
 
 namespace engine::detail {
 

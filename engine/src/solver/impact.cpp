@@ -1,7 +1,7 @@
 // Impacts with restitution, pair by pair, with the bounce placed at the moment of impact.
-#include "impact.h"
+#include "solver/impact.h"
 
-#include "substep_solver.h"
+#include "solver/substep_solver.h"
 
 #include <algorithm>
 #include <cmath>

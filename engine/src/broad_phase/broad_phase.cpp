@@ -1,13 +1,13 @@
 // All-pairs and sweep-and-prune broad phases, the pair collector every broad phase ends with (the
 // pair budget, then pairs sorted by (a, b), so what the solver sees never depends on how they were
 // found), and BroadPhase, which dispatches to the chosen structure and makes the automatic choice.
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "pair_sort.h"
+#include "broad_phase/pair_sort.h"
 
 namespace engine {
 
@@ -72,7 +72,7 @@ void PairCollector::AddPastQuota(std::uint32_t body, std::uint32_t other) {
     // Only bodies past their own quota get here, few outside a pile: the grown quota is worked
     // out for them alone, each time (it only depends on the box).
     if (charged_[body] <= GrownQuota(body)) {
-      pairs_->push_back(other < body ? BodyPair{other, body} : BodyPair{body, other});
+      pairs_->push_back(MakePair(body, other));
       return;
     }
     crowd_of_[body] = static_cast<std::uint32_t>(crowd_body_.size());
@@ -108,7 +108,7 @@ void PairCollector::Finish() {
         for (std::uint32_t k = 0; k < kCrowdPairs; ++k) {
           const std::uint32_t other = kept_[list * kCrowdPairs + k].other;
           if (other == kNone) break;
-          pairs.push_back(other < body ? BodyPair{other, body} : BodyPair{body, other});
+          pairs.push_back(MakePair(body, other));
         }
       }
     }

@@ -1,6 +1,6 @@
 // Levels by breadth-first search from the static bodies; a counting sort keeps ties in
 // constraint order, so the pass is deterministic.
-#include "shock_propagation.h"
+#include "solver/shock_propagation.h"
 
 #include <algorithm>
 #include <limits>

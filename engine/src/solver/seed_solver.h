@@ -5,7 +5,30 @@
 #include <span>
 #include <vector>
 
-#include "engine/world.h"
+#include "engine/body.h"
+#include "engine/contact.h"
+
+namespace engine {
+
+/// Seed solver: one point of a contact.
+struct PointConstraint {
+  double target_normal_velocity;  ///< after the solve: the restitution bounce, or 0 (rest)
+  double normal_impulse;          ///< accumulated this step, N·s, never negative
+  double tangent_impulse;         ///< accumulated this step, |.| ≤ friction · normal_impulse
+};
+
+/// Seed solver: its working state for one contact.
+struct ContactConstraint {
+  BodyId a;
+  BodyId b;
+  Vec2 normal;
+  double inv_mass_sum;
+  double friction;
+  int point_count;
+  PointConstraint points[2];
+};
+
+}  // namespace engine
 
 namespace engine::detail {
 

@@ -1,5 +1,5 @@
 // Greedy colouring with a 64-bit mask of taken colours per body, then a stable counting sort.
-#include "contact_colouring.h"
+#include "solver/contact_colouring.h"
 
 #include <algorithm>
 #include <array>

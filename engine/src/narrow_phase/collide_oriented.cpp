@@ -2,7 +2,7 @@
 // Box2D's polygon collider (Catto, "Contact Manifolds", GDC 2007), written for two boxes.
 #include <cmath>
 
-#include "engine/collide.h"
+#include "narrow_phase/collide.h"
 
 namespace engine {
 

@@ -1,11 +1,10 @@
-// Forces beyond gravity: springs between bodies or to fixed points (the other force generators,
-// damping, air drag and gravitation, are settings of bodies and the world).
+// Springs between bodies or to fixed points (the other force generators, damping, air drag and
+// gravitation, are settings of bodies and the world).
 #pragma once
 
-#include <cstdint>
 #include <optional>
 
-#include "engine/contact.h"
+#include "engine/ids.h"
 #include "engine/math.h"
 
 namespace engine {

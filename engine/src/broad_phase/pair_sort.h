@@ -6,13 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/broadphase.h"
+#include "broad_phase/broad_phase.h"
 
 namespace engine::detail {
-
-inline BodyPair MakePair(std::uint32_t i, std::uint32_t j) {
-  return i < j ? BodyPair{i, j} : BodyPair{j, i};
-}
 
 /// Sorts pairs by (a, b) in linear time: a counting sort by b, then a stable counting sort by a.
 /// Both keys are body indices below `body_count`; `scratch` and `counts` are reused buffers.

@@ -1,7 +1,7 @@
 // The seed contact solver. Rotation-free: impulses act at the centres (angular terms come with
 // rotation). Accumulated impulses are clamped per step, which is what makes Coulomb's cone and
 // "push, never pull" hold across passes.
-#include "seed_solver.h"
+#include "solver/seed_solver.h"
 
 #include <algorithm>
 #include <cmath>

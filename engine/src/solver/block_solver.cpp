@@ -1,6 +1,6 @@
 // The four cases of the 2×2 complementarity problem, tried in order: both points pushing, only
 // the first, only the second, neither.
-#include "block_solver.h"
+#include "solver/block_solver.h"
 
 namespace engine::detail {
 

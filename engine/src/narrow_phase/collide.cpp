@@ -1,7 +1,7 @@
 // Narrow phase for circles and axis-aligned boxes. Touching counts as contact (depth 0), so a
 // body resting exactly on another is held from its first step; within the margin, a gap gives a
 // speculative contact (negative depth) that lets the solver stop bodies exactly at contact.
-#include "engine/collide.h"
+#include "narrow_phase/collide.h"
 
 #include <cmath>
 

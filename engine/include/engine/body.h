@@ -1,0 +1,55 @@
+// Bodies: what a body is made from (BodyDef), what every step writes (BodyState) and what it only
+// reads (BodyInfo).
+#pragma once
+
+#include "engine/math.h"
+#include "engine/shape.h"
+
+namespace engine {
+
+struct BodyDef {
+  Shape shape;
+  Vec2 position;                  ///< centre, m
+  Vec2 velocity;                  ///< m/s
+  double angle = 0.0;             ///< rad (kept, not integrated, while rotation is off)
+  double angular_velocity = 0.0;  ///< rad/s
+  double mass = 0.0;              ///< kg; 0 means density × area
+  double density = 1.0;           ///< kg/m², used when mass is 0
+  bool is_static = false;         ///< infinite mass: never moves
+  double restitution = 0.2;
+  double friction = 0.3;
+  bool fixed_rotation = false;
+  bool bullet = false;
+  double linear_damping = 0.0;    ///< 1/s: a force −c·m·v
+  double angular_damping = 0.0;   ///< 1/s: a torque −c·I·ω
+  /// Quadratic drag coefficient C_d in a fluid; negative means the shape's usual value
+  /// (0.47 for a circle, 1.05 for a box).
+  double drag_coefficient = -1.0;
+};
+
+/// What every step writes.
+struct BodyState {
+  Vec2 position;
+  Vec2 velocity;
+  double angle = 0.0;
+  double angular_velocity = 0.0;
+};
+
+/// What a step only reads.
+struct BodyInfo {
+  Shape shape;
+  double mass = 0.0;      ///< kg; 0 for static bodies
+  double inv_mass = 0.0;  ///< 1/kg; 0 for static bodies, so impulses never move them
+  double inertia = 0.0;      ///< kg·m² about the centre; 0 for static bodies
+  double inv_inertia = 0.0;  ///< 0 for static bodies, fixed rotation, or a world without rotation
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
+  double drag_coefficient = 0.0;
+  double restitution = 0.0;
+  double friction = 0.0;
+  bool is_static = false;
+  bool fixed_rotation = false;
+  bool bullet = false;
+};
+
+}  // namespace engine

@@ -1,0 +1,67 @@
+// The world's settings: gravity, the step, and the methods that run it.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/math.h"
+
+namespace engine {
+
+enum class Integrator : std::uint8_t {
+  kSemiImplicitEuler,  ///< velocity first, then position with the new velocity (symplectic)
+  kExplicitEuler,      ///< position with the old velocity, then velocity (the seed's)
+  kVelocityVerlet,     ///< position by the old acceleration, velocity by the mean of old and new
+  kMidpoint,           ///< explicit second-order Runge-Kutta through the midpoint
+  kRungeKutta4,        ///< the classic fourth-order Runge-Kutta
+};
+
+enum class ContactSolver : std::uint8_t {
+  /// An impact pass for bounces, then substeps of warm-started rigid contacts with shock
+  /// propagation and a split-impulse push-out (after Catto's "soft step")
+  kSubstep,
+  /// Rounds of sequential impulses per step, then a projection of the overlap: the baseline
+  /// (the course's seed method; scene files call it "sequential_impulse" or "seed")
+  kSequentialImpulse,
+};
+
+enum class BroadPhaseType : std::uint8_t {
+  /// All pairs for a handful of bodies; beyond, the AABB tree while bodies mostly stay inside
+  /// their fat boxes (resting, settling) and the uniform grid while many move (docs/broadphase.md)
+  kAuto,
+  kAllPairs,
+  kSweepAndPrune,
+  kUniformGrid,
+  kQuadtree,
+  kAabbTree,
+};
+
+struct WorldDef {
+  Vec2 gravity{0.0, -9.8};              ///< m/s²
+  double fluid_density = 0.0;           ///< kg/m³ of the air or water around; 0: vacuum, no drag
+  double gravitational_constant = 0.0;  ///< N·m²/kg² between bodies; 0: no mutual gravitation
+  double dt = 1.0 / 60.0;               ///< the fixed step, s
+  bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
+  Integrator integrator = Integrator::kSemiImplicitEuler;
+  BroadPhaseType broad_phase = BroadPhaseType::kAuto;
+  ContactSolver solver = ContactSolver::kSubstep;
+  int substeps = 0;                     ///< substep solver: substeps per step; 0: 4, or 8 with rotation
+  double max_push_out_speed = 3.0;      ///< substep solver: m/s; overlap goes no faster than this
+  /// Contact solver passes: per step for the sequential-impulse solver (0: 10), per substep for
+  /// the substep solver (0: 1, or 4 with rotation).
+  int velocity_iterations = 0;
+  double restitution_threshold = 1.0;   ///< m/s; slower impacts do not bounce, so rest is quiet
+  double linear_slop = 0.005;           ///< m of overlap left alone, so resting contacts don't jitter
+  double position_correction = 0.8;     ///< fraction of the overlap beyond the slop removed per step
+  bool sleeping = true;                 ///< bodies at rest for a while stop costing work
+  /// Fast bodies (moving over half their size per step) are caught wherever they pass; false:
+  /// only where they land each step, so they may tunnel (bullets are always caught).
+  bool continuous = true;
+  double sleep_speed = 0.05;            ///< m/s below which a body counts as resting
+  double time_to_sleep = 0.5;           ///< s an island must rest before it sleeps
+  /// Bodies piled up keep a bounded number of contacts (the pair budget, docs/limits.md), so
+  /// memory stays linear in the body count; false: every overlapping pair is a contact, at a cost
+  /// quadratic in a pile's size (for tests that compare the two).
+  bool pair_budget = true;
+};
+
+}  // namespace engine

@@ -1,0 +1,21 @@
+// Two bodies, lower id first: what the broad phase reports and the order every list of pairs or
+// contacts is kept in. Internal to the engine.
+#pragma once
+
+#include <cstdint>
+
+namespace engine {
+
+struct BodyPair {
+  std::uint32_t a;  ///< the smaller index
+  std::uint32_t b;
+  friend constexpr bool operator==(BodyPair, BodyPair) = default;
+  /// By a, then b: the one order of pairs, contacts and constraints in the engine.
+  friend constexpr bool operator<(BodyPair x, BodyPair y) { return x.a < y.a || (x.a == y.a && x.b < y.b); }
+};
+
+constexpr BodyPair MakePair(std::uint32_t i, std::uint32_t j) {
+  return i < j ? BodyPair{i, j} : BodyPair{j, i};
+}
+
+}  // namespace engine
