@@ -246,10 +246,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (density) def.density = ReadPositive(*density, key("density"));
   if (!def.is_static) {
     // The engine divides by the mass: one that underflows would make its inverse infinite.
-    const double area = def.shape.type == engine::ShapeType::kCircle
-                            ? 3.14159265358979323846 * def.shape.radius * def.shape.radius
-                            : 4.0 * def.shape.half_extents.x * def.shape.half_extents.y;
-    const double body_mass = mass ? def.mass : def.density * area;
+    const double body_mass = mass ? def.mass : def.density * engine::ShapeArea(def.shape);
     if (!(body_mass >= kMinBodyMass)) {
       throw SceneError{mass ? key("mass") : path,
                        std::string(mass ? "" : "its mass, density * area, ") +
