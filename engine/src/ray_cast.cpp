@@ -56,9 +56,9 @@ std::optional<RayHit> World::RayCast(Vec2 from, Vec2 to) const {
   std::optional<RayHit> best;
   double best_t = std::numeric_limits<double>::infinity();
   const Vec2 d = to - from;
-  for (BodyId id = 0; id < impl_->states_.size(); ++id) {
-    const Shape& shape = impl_->infos_[id].shape;
-    const BodyState& s = impl_->states_[id];
+  for (BodyId id = 0; id < impl_->bodies.states.size(); ++id) {
+    const Shape& shape = impl_->bodies.infos[id].shape;
+    const BodyState& s = impl_->bodies.states[id];
     double t;
     Vec2 normal;
     bool hit;

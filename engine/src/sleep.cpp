@@ -1,23 +1,14 @@
-// Islands by union-find over touching contacts, in body-id order, so sleep is deterministic.
+// Islands by union-find over touching contacts, in body-id order, so sleep is deterministic;
+// waking, by island.
 #include "sleep.h"
+
+#include "union_find.h"
 
 #include <algorithm>
 #include <numeric>
 #include <vector>
 
 namespace engine::detail {
-
-namespace {
-
-std::uint32_t Find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-}  // namespace
 
 void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
@@ -46,30 +37,26 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> s
 
   // The root of each island is its smallest body id: union always keeps the smaller root.
   // Touching contacts and acting springs between dynamic bodies join islands.
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto join = [&](std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t ra = Find(parent, a), rb = Find(parent, b);
-    if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-  };
+  UnionFind islands;
+  islands.Reset(n);
   for (const Contact& c : contacts) {
     if (infos[c.a].is_static || infos[c.b].is_static || !touching(c)) continue;
-    join(c.a, c.b);
+    islands.Join(c.a, c.b);
   }
   for (const SpringDef& spring : springs) {
     if (spring.body_b && !infos[spring.body_a].is_static && !infos[*spring.body_b].is_static) {
-      join(spring.body_a, *spring.body_b);
+      islands.Join(spring.body_a, *spring.body_b);
     }
   }
   std::vector<double> island_rest(n, def.time_to_sleep);
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!sleep.awake[i]) continue;
-    const std::uint32_t root = Find(parent, i);
+    const std::uint32_t root = islands.Find(i);
     island_rest[root] = std::min(island_rest[root], sleep.rest_time[i]);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!sleep.awake[i]) continue;
-    const std::uint32_t root = Find(parent, i);
+    const std::uint32_t root = islands.Find(i);
     // Half a step of tolerance: thirty sixtieths add up to a hair under 0.5.
     if (island_rest[root] < def.time_to_sleep - 0.5 * def.dt) continue;
     sleep.awake[i] = 0;
@@ -88,6 +75,22 @@ void WakeIsland(BodyId body, std::span<const BodyInfo> infos, SleepState sleep) 
       sleep.rest_time[i] = 0.0;
     }
   }
+}
+
+void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const SpringDef> springs,
+                        std::span<const BodyInfo> infos, SleepState sleep) {
+  for (const BodyPair& p : *pairs) {
+    if (sleep.awake[p.a] != sleep.awake[p.b]) {
+      const BodyId sleeper = sleep.awake[p.a] ? p.b : p.a;
+      if (!infos[sleeper].is_static) WakeIsland(sleeper, infos, sleep);
+    }
+  }
+  for (const SpringDef& spring : springs) {
+    if (!spring.body_b || sleep.awake[spring.body_a] == sleep.awake[*spring.body_b]) continue;
+    const BodyId sleeper = sleep.awake[spring.body_a] ? *spring.body_b : spring.body_a;
+    if (!infos[sleeper].is_static) WakeIsland(sleeper, infos, sleep);
+  }
+  std::erase_if(*pairs, [&](BodyPair p) { return !sleep.awake[p.a] && !sleep.awake[p.b]; });
 }
 
 }  // namespace engine::detail

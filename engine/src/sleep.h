@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
+#include "body_pair.h"
 
 namespace engine::detail {
 
@@ -19,6 +21,28 @@ struct SleepState {
   std::span<std::uint8_t> awake;
   std::span<std::uint32_t> island;
 };
+
+/// The sleep state's storage, one entry per body, and the scratch its update uses.
+struct SleepTable {
+  std::vector<double> rest_time;
+  std::vector<std::uint8_t> awake;  ///< also the integrators' mask of moving bodies
+  std::vector<std::uint32_t> island;
+  std::vector<Vec2> accelerations;  ///< scratch: the free accelerations the rest test reads
+  std::vector<double> angular_accelerations;
+
+  void AddBody(bool is_static) {
+    rest_time.push_back(0.0);
+    awake.push_back(is_static ? 0 : 1);
+    island.push_back(0);
+  }
+  SleepState View() { return {rest_time, awake, island}; }
+};
+
+/// Before the narrow phase: a moving body that reaches a sleeping one, through a candidate pair
+/// or an acting spring, wakes the sleeper's whole island; then the pairs where nothing moves
+/// (static with static, or with a sleeping body) are dropped: they need no contact.
+void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const SpringDef> springs,
+                        std::span<const BodyInfo> infos, SleepState sleep);
 
 /// After a step: counts resting time (slow, and held by a contact or pushed by no force:
 /// `accelerations` are each body's free accelerations) and puts to sleep every island (bodies

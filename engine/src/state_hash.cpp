@@ -24,7 +24,7 @@ void HashDouble(double value, std::uint64_t* hash) {
 
 std::uint64_t World::StateHash() const {
   std::uint64_t hash = kFnvOffset;
-  for (const BodyState& s : impl_->states_) {
+  for (const BodyState& s : impl_->bodies.states) {
     HashDouble(s.position.x, &hash);
     HashDouble(s.position.y, &hash);
     HashDouble(s.velocity.x, &hash);

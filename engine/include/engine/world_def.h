@@ -35,6 +35,20 @@ enum class BroadPhaseType : std::uint8_t {
   kAabbTree,
 };
 
+/// The substep solver's optional mechanisms. Each runs only where a step needs it (the solver
+/// decides once per step, docs/architecture.md); these switches turn one off everywhere, for
+/// benchmarks and tests that measure what it buys.
+struct SubstepFeatures {
+  bool impact_pass = true;        ///< bounces: restitution resolved as impacts before the solve
+  bool shock_propagation = true;  ///< stacks held from the ground up (needs gravity: an up)
+  bool direct_solve = true;       ///< turning islands with a 10:1 mass ratio solved exactly
+  /// where no applied force acts, the contacts never add kinetic energy (warm start scaled, and a
+  /// last check per substep)
+  bool energy_limit = true;
+  bool block_solver = true;       ///< both points of a turning pair's contact solved together
+  bool colour_order = true;       ///< where nothing can turn, contacts visited by colour
+};
+
 struct WorldDef {
   Vec2 gravity{0.0, -9.8};              ///< m/s²
   double fluid_density = 0.0;           ///< kg/m³ of the air or water around; 0: vacuum, no drag
@@ -62,6 +76,7 @@ struct WorldDef {
   /// memory stays linear in the body count; false: every overlapping pair is a contact, at a cost
   /// quadratic in a pile's size (for tests that compare the two).
   bool pair_budget = true;
+  SubstepFeatures substep_features;     ///< all on; off only to measure what one buys
 };
 
 }  // namespace engine

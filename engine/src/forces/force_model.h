@@ -25,6 +25,11 @@ struct ForceModel {
   void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
                 std::span<double> angular) const;
 
+  /// Whether any force besides gravity acts (damping, drag, springs, gravitation).
+  bool BeyondGravity() const {
+    return damping || !springs.empty() || def.fluid_density != 0.0 || def.gravitational_constant != 0.0;
+  }
+
   /// How fast damping and drag take a body's velocity away, 1/s: its linear acceleration from
   /// them is −rate·v.
   double DragRate(const BodyState& state, std::size_t body) const;

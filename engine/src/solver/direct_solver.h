@@ -13,7 +13,7 @@
 #include "engine/spring.h"
 #include "engine/world_def.h"
 #include "body_pair.h"
-#include "solver/substep_solver.h"
+#include "solver/substep_passes.h"
 
 namespace engine::detail {
 

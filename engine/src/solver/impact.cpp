@@ -1,7 +1,7 @@
 // Impacts with restitution, pair by pair, with the bounce placed at the moment of impact.
 #include "solver/impact.h"
 
-#include "solver/substep_solver.h"
+#include "solver/substep_passes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,7 @@
 #include "engine/contact.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
-#include "solver/substep_solver.h"
+#include "solver/substep_passes.h"
 
 namespace engine::detail {
 

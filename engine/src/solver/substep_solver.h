@@ -1,134 +1,73 @@
-// The substepping contact solver, after Erin Catto's "soft step" (Solver2D, 2024): per substep
-// integrate velocities, warm start, solve, integrate positions, push out. Internal.
+// The substep contact solver, after Erin Catto's "soft step" (Solver2D, 2024): an impact pass for
+// bounces, then per substep integrate, warm start, solve, support stacks, move, push out.
+// It owns its scratch; World calls Step once a step. Internal to the engine.
 #pragma once
 
 #include <cstdint>
-#include <span>
-#include <type_traits>
 #include <vector>
 
-#include "solver/block_solver.h"
-#include "engine/body.h"
-#include "engine/contact.h"
+#include "forces/force_model.h"
+#include "solver/contact_order.h"
+#include "solver/direct_solver.h"
+#include "solver/shock_propagation.h"
 #include "solver/substep_constraint.h"
+#include "solver/substep_passes.h"
+#include "step_context.h"
 
 namespace engine::detail {
 
-/// Where the bodies were at the step's start and how far each has turned since: the separation
-/// of a contact now follows from these and the contact's anchors.
-struct StepStart {
-  std::span<const Vec2> positions;
-  std::span<const Rot> turned;  ///< rotation since the step's start; empty without rotation
+/// Which of the solver's optional mechanisms run this step, and why: decided once at the step's
+/// start from the scene and the switches in WorldDef::substep_features.
+struct SubstepPlan {
+  bool impact_pass;        ///< restitution as impacts before the solve (switch)
+  bool shock_propagation;  ///< gravity gives an up to support stacks along
+  bool direct_solve;       ///< an island of turning bodies holds a large mass ratio
+  bool energy_limit;       ///< no applied force acts: the contacts may only take energy out
+  bool block_solver;       ///< two-point turning contacts solved together (switch)
+  bool check_forces;       ///< forces beyond gravity act: they may overflow, checked each substep
+  bool track_turning;      ///< rotation is on: contacts follow how far bodies have turned
 };
 
-// The passes take either kind of constraint: SubstepConstraint where something can turn,
-// LinearConstraint where nothing can. These say what a pass may ask of each; the angular terms
-// are compiled only for the first.
-template <typename C>
-inline constexpr bool kCanTurn = std::is_same_v<C, SubstepConstraint>;
-inline bool Turns(const SubstepConstraint& c) { return c.angular; }
-constexpr bool Turns(const LinearConstraint&) { return false; }
-inline int PointCount(const SubstepConstraint& c) { return c.point_count; }
-constexpr int PointCount(const LinearConstraint&) { return 1; }
-inline SubstepPoint& Point(SubstepConstraint& c, int k) { return c.points[k]; }
-inline const SubstepPoint& Point(const SubstepConstraint& c, int k) { return c.points[k]; }
-inline LinearConstraint& Point(LinearConstraint& c, int) { return c; }
-inline const LinearConstraint& Point(const LinearConstraint& c, int) { return c; }
+class SubstepSolver {
+ public:
+  /// Contacts start a margin apart, so fast bodies are caught before they touch.
+  static constexpr bool kSpeculative = true;
+  /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
+  /// with rotation (turning stacks couple their contacts, docs/solver.md).
+  static void FillAutomaticSettings(WorldDef* def);
 
-/// One constraint per contact, with the impulses carried over from the last step; contact i's
-/// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
-/// turn contact points into anchors.
-template <typename C>
-void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
-                               std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<C>* constraints);
+  void Step(StepContext& context);
 
-/// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.
-TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,
-                        double inv_mass_a, double inv_mass_b, double inv_inertia_a,
-                        double inv_inertia_b);
+ private:
+  template <typename C>
+  void Step(StepContext& context, std::vector<C>* constraints);
+  SubstepPlan Plan(const StepContext& context);
+  /// Which bodies an applied force pushes (their contacts may carry a load); empty when every
+  /// moving body is loaded (gravity, uniform or mutual).
+  void FindLoadedBodies(const StepContext& context);
+  /// How far each body has turned since the step's start, for the contacts' separations.
+  void UpdateTurned(const StepContext& context);
+  template <typename C>
+  void Substep(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+               const StepStart& start);
 
-/// The separation of point `p` of `sc` now, m (negative when overlapping): the separation at the
-/// step's start plus how far the anchors have moved apart along the normal since. Inline: every
-/// pass over the contacts asks it for every point.
-template <typename C, typename P>
-inline double CurrentSeparation(const C& sc, const P& p, std::span<const BodyState> states,
-                                const StepStart& start) {
-  Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
-               (states[sc.a].position - start.positions[sc.a]);
-  if constexpr (kCanTurn<C>) {
-    if (sc.angular) {
-      moved = moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
-    }
-  }
-  return p.base_separation + Dot(moved, sc.normal);
-}
-
-/// Scratch for `WarmStart`, one entry per body: the sums of the force-free contacts' warm-start
-/// impulses on each body (`angular` empty when nothing turns).
-struct WarmStartImpulses {
-  std::span<Vec2> linear;
-  std::span<double> angular;
+  std::vector<Vec2> accelerations_;
+  std::vector<double> angular_accelerations_;
+  ContactOrder order_;                                  ///< the solve order: by colour or as found
+  std::vector<SubstepConstraint> substep_constraints_;  ///< where something can turn
+  std::vector<LinearConstraint> linear_constraints_;    ///< where nothing can
+  std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
+  std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts
+  std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage
+  std::vector<double> warm_free_angular_;
+  std::vector<double> angles_before_;
+  std::vector<Rot> turned_;
+  std::vector<Vec2> push_velocities_;                   ///< PushVelocities' storage
+  std::vector<double> push_angular_velocities_;
+  std::vector<std::uint8_t> pushed_;
+  DirectSolver direct_solver_;                          ///< islands with a large mass ratio
+  ShockScratch shock_scratch_;
+  std::vector<ShockRow> shock_rows_;
 };
-
-/// Applies the impulses accumulated so far again, so the solve starts from the last answer
-/// (docs/solver.md, "Warm start"), except
-/// - sliding friction that would now push the pair the way it slides: a tangent impulse stored
-///   at the edge of Coulomb's cone is dropped when the relative sliding is along it;
-/// - the impulses of force-free contacts, those whose bodies carry no applied force (`loaded` is
-///   0 for both; an empty `loaded` means every body is loaded), are scaled by the factor in
-///   [0, 1] that leaves the least kinetic energy, so that there the contacts only take energy
-///   out. Returns that factor (1 when nothing is force-free).
-template <typename C>
-double WarmStart(std::span<C> constraints, std::span<BodyState> states,
-                 std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
-                 const StepStart& start, double inv_h, WarmStartImpulses scratch);
-
-/// Kinetic energy of all bodies, J (rotation counted only where the body can turn).
-double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo> infos);
-
-/// For a world where no applied force acts: if the substep's contact impulses left more kinetic
-/// energy than `energy_before` (the warm start's bound has one exception: a friction impulse cut
-/// back to a cone that shrank with its normal impulse), takes back the least fraction of every
-/// contact's impulse that brings it down to `energy_before`. Returns that fraction (0: none).
-template <typename C>
-double LimitContactEnergy(std::span<C> constraints, std::span<BodyState> states,
-                          std::span<const BodyInfo> infos, double energy_before,
-                          WarmStartImpulses scratch);
-
-/// One Gauss-Seidel pass over all contacts: touching bodies may not approach, bodies with a gap
-/// may close no more than it this substep (speculative contact), friction within Coulomb's cone.
-template <typename C>
-void SolveContacts(std::span<C> constraints, std::span<BodyState> states,
-                   const StepStart& start, double inv_h);
-
-/// Push velocities of the split impulse, linear and angular.
-struct PushVelocities {
-  std::span<Vec2> linear;
-  std::span<double> angular;
-};
-
-/// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
-/// out through separate push velocities at `push_out_rate` per second of overlap, at most
-/// `max_push_out_speed`. They move positions this substep and are then dropped, so resolving an
-/// overlap never launches a body.
-template <typename C>
-void PushOut(std::span<C> constraints, std::span<const BodyState> states,
-             const StepStart& start, PushVelocities push, double push_out_rate,
-             double max_push_out_speed, double linear_slop);
-
-/// Moves every body by its push velocity for one substep.
-void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h);
-
-/// Moves each pair of bodies apart by what the impact pass asked for: `lags[i]` for contact i,
-/// whose constraint is at `slot[i]`.
-template <typename C>
-void ApplyImpactLags(std::span<const C> constraints, std::span<const std::uint32_t> slot,
-                     std::span<const double> lags, std::span<BodyState> states);
-
-/// Stores the accumulated impulses back on the contacts for the next step's warm start.
-template <typename C>
-void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t> slot,
-                   std::span<Contact> contacts);
 
 }  // namespace engine::detail

@@ -1,5 +1,5 @@
 // Greedy colouring with a 64-bit mask of taken colours per body, then a stable counting sort.
-#include "solver/contact_colouring.h"
+#include "solver/contact_order.h"
 
 #include <algorithm>
 #include <array>

@@ -3,13 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <numeric>
 #include <span>
 #include <vector>
 
 #include "engine/body.h"
 #include "engine/contact.h"
-#include "engine/spring.h"
-#include "engine/world_def.h"
 
 namespace engine::detail {
 
@@ -26,5 +25,20 @@ namespace engine::detail {
 /// `body_colours` is scratch, one entry per body.
 void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                     std::vector<std::uint64_t>* body_colours, std::vector<std::uint32_t>* slot);
+
+/// The order the substep solver visits contacts in: contact i's constraint sits at `slot[i]`.
+struct ContactOrder {
+  std::vector<std::uint32_t> slot;
+  std::vector<std::uint64_t> body_colours;  ///< ColourContacts' scratch
+
+  void ByColour(std::span<const Contact> contacts, std::span<const BodyInfo> infos) {
+    ColourContacts(contacts, infos, &body_colours, &slot);
+  }
+  /// Contact order: where a scene is built bottom-up, turning stacks converge better in it.
+  void AsFound(std::size_t contact_count) {
+    slot.resize(contact_count);
+    std::iota(slot.begin(), slot.end(), 0u);
+  }
+};
 
 }  // namespace engine::detail

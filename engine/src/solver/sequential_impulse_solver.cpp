@@ -1,7 +1,9 @@
-// The seed contact solver. Rotation-free: impulses act at the centres (angular terms come with
+// The sequential-impulse contact solver. Rotation-free: impulses act at the centres (angular terms come with
 // rotation). Accumulated impulses are clamped per step, which is what makes Coulomb's cone and
 // "push, never pull" hold across passes.
-#include "solver/seed_solver.h"
+#include "solver/sequential_impulse_solver.h"
+
+#include "solver/pushed_bodies.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,11 +12,11 @@ namespace engine::detail {
 
 void PrepareContacts(std::span<const Contact> contacts, std::span<const BodyState> states,
                      std::span<const BodyInfo> infos, double restitution_threshold,
-                     std::vector<ContactConstraint>* constraints) {
+                     std::vector<ImpulseConstraint>* constraints) {
   constraints->clear();
   constraints->reserve(contacts.size());
   for (const Contact& c : contacts) {
-    ContactConstraint cc;
+    ImpulseConstraint cc;
     cc.a = c.a;
     cc.b = c.b;
     cc.normal = c.manifold.normal;
@@ -29,10 +31,10 @@ void PrepareContacts(std::span<const Contact> contacts, std::span<const BodyStat
   }
 }
 
-void SolveVelocities(std::span<ContactConstraint> constraints, std::span<BodyState> states,
+void SolveVelocities(std::span<ImpulseConstraint> constraints, std::span<BodyState> states,
                      std::span<const BodyInfo> infos, int iterations) {
   for (int pass = 0; pass < iterations; ++pass) {
-    for (ContactConstraint& cc : constraints) {
+    for (ImpulseConstraint& cc : constraints) {
       BodyState& a = states[cc.a];
       BodyState& b = states[cc.b];
       const double inv_a = infos[cc.a].inv_mass;
@@ -40,7 +42,7 @@ void SolveVelocities(std::span<ContactConstraint> constraints, std::span<BodySta
       const Vec2 n = cc.normal;
       const Vec2 t = LeftPerp(n);
       for (int i = 0; i < cc.point_count; ++i) {
-        PointConstraint& p = cc.points[i];
+        ImpulsePoint& p = cc.points[i];
 
         const double tangent_speed = Dot(b.velocity - a.velocity, t);
         const double max_friction = cc.friction * p.normal_impulse;
@@ -84,6 +86,24 @@ void CorrectPositions(std::span<const Contact> contacts, std::span<const Vec2> p
     a.position -= (push * inv_a) * n;
     b.position += (push * inv_b) * n;
   }
+}
+
+void SequentialImpulseSolver::FillAutomaticSettings(WorldDef* def) {
+  if (def->velocity_iterations == 0) def->velocity_iterations = 10;
+}
+
+void SequentialImpulseSolver::Step(StepContext& context) {
+  const WorldDef& def = context.def;
+  FreeStep(def.integrator, context.forces, context.states, def.dt, &context.free_motion);
+  if (context.StopIfNonFinite()) return;  // the forces overflowed: name the body now
+  PrepareContacts(context.contacts, context.states, context.infos, def.restitution_threshold,
+                  &constraints_);
+  SolveVelocities(constraints_, context.states, context.infos, def.velocity_iterations);
+  MarkPushed<ImpulseConstraint>(constraints_, def.integrator, context.states.size(), &pushed_);
+  MoveBodies(def.integrator, context.states, context.moving, pushed_, def.rotation,
+             context.free_motion, def.dt);
+  CorrectPositions(context.contacts, context.start_positions, context.states, context.infos,
+                   def.linear_slop, def.position_correction);
 }
 
 }  // namespace engine::detail

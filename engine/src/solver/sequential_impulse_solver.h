@@ -1,5 +1,6 @@
-// The seed contact solver: sequential normal and friction impulses per contact point,
-// then a projection that removes overlap beyond the slop. Internal to the engine.
+// The sequential-impulse contact solver (the course's seed method, the baseline): rounds of normal
+// and friction impulses per contact point, then a projection that removes overlap beyond the
+// slop. Internal to the engine.
 #pragma once
 
 #include <span>
@@ -7,25 +8,26 @@
 
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "step_context.h"
 
 namespace engine {
 
-/// Seed solver: one point of a contact.
-struct PointConstraint {
+/// One point of a contact.
+struct ImpulsePoint {
   double target_normal_velocity;  ///< after the solve: the restitution bounce, or 0 (rest)
   double normal_impulse;          ///< accumulated this step, N·s, never negative
   double tangent_impulse;         ///< accumulated this step, |.| ≤ friction · normal_impulse
 };
 
-/// Seed solver: its working state for one contact.
-struct ContactConstraint {
+/// The solver's working state for one contact.
+struct ImpulseConstraint {
   BodyId a;
   BodyId b;
   Vec2 normal;
   double inv_mass_sum;
   double friction;
   int point_count;
-  PointConstraint points[2];
+  ImpulsePoint points[2];
 };
 
 }  // namespace engine
@@ -35,11 +37,11 @@ namespace engine::detail {
 /// Sets up one constraint per contact from the velocities before the solve.
 void PrepareContacts(std::span<const Contact> contacts, std::span<const BodyState> states,
                      std::span<const BodyInfo> infos, double restitution_threshold,
-                     std::vector<ContactConstraint>* constraints);
+                     std::vector<ImpulseConstraint>* constraints);
 
 /// Gauss-Seidel passes over all contact points, friction before the normal impulse so that
 /// non-penetration has the last word in every pass.
-void SolveVelocities(std::span<ContactConstraint> constraints, std::span<BodyState> states,
+void SolveVelocities(std::span<ImpulseConstraint> constraints, std::span<BodyState> states,
                      std::span<const BodyInfo> infos, int iterations);
 
 /// Moves overlapping bodies apart along the normal, in proportion to inverse mass.
@@ -47,5 +49,20 @@ void SolveVelocities(std::span<ContactConstraint> constraints, std::span<BodySta
 void CorrectPositions(std::span<const Contact> contacts, std::span<const Vec2> positions_before,
                       std::span<BodyState> states, std::span<const BodyInfo> infos,
                       double linear_slop, double correction_fraction);
+
+class SequentialImpulseSolver {
+ public:
+  /// Its contacts are the bodies' real overlap only: no speculative margin.
+  static constexpr bool kSpeculative = false;
+  /// Fills in the automatic settings (0 passes: 10 per step).
+  static void FillAutomaticSettings(WorldDef* def);
+
+  /// One step: free motion, impulses, then the projection of what overlap is left.
+  void Step(StepContext& context);
+
+ private:
+  std::vector<ImpulseConstraint> constraints_;
+  std::vector<std::uint8_t> pushed_;
+};
 
 }  // namespace engine::detail

@@ -1,0 +1,100 @@
+// Speculative margins, the pair budget's quotas, and the broad phase over the grown bounds.
+#include "candidate_pairs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace engine::detail {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Moving farther than this fraction of its size in one step makes a body fast (Box2D's default
+// safety factor is the same half).
+constexpr double kFastFraction = 0.5;
+
+// Speculative contacts start this far apart (Box2D's 4 × linear slop), so a body coming to
+// rest is caught a little before it touches.
+constexpr double kSpeculativeSlops = 4.0;
+
+// The pair budget (PairCollector, docs/limits.md): a body keeps every pair charged to it, that
+// is every pair with a body at least as wide as itself, up to its quota. Solid circles or
+// squares of one size can give a body at most 8 such pairs (a 3 by 3 block: the diagonal ones
+// through the bounding boxes), so 16 is twice what they need; squares turned 45° meet 12, but
+// their bounding boxes have twice their area, which doubles the quota (below). A box also
+// carries up to two bodies at least as wide per unit of its aspect along each long side: 4 more
+// per unit of aspect, up to PairQuota::kMaxQuota. The collector grows the quota with the box the
+// broad phase is given, grown by the speculative margin or turned (PairQuota::area).
+constexpr double kPairQuota = 16;
+constexpr double kPairQuotaPerAspect = 4;
+
+// How far a body may reach within a step, m: contacts within it are speculative.
+double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info, bool awake) {
+  const double speculative = 0.5 * kSpeculativeSlops * def.linear_slop;
+  if (!awake) return speculative;
+  // The farthest a body can travel in this step under gravity, and then some; a turning body's
+  // outline also sweeps |ω|·r. Contacts within that reach are speculative: the solver lets the
+  // bodies close the gap and no more, at any speed (continuous collision, Catto's speculative
+  // contacts), and the impact pass places the bounce at the moment of impact.
+  const double dt = def.dt;
+  const Shape& shape = info.shape;
+  const double motion = Length(state.velocity) * dt + Length(def.gravity) * dt * dt;
+  const double outer = shape.type == ShapeType::kCircle ? shape.radius : Length(shape.half_extents);
+  const double turning = info.inv_inertia != 0.0 ? std::abs(state.angular_velocity) * outer * dt : 0.0;
+  // A body moving farther in a step than half its size is fast. With continuous collision off
+  // (and the body no bullet) a fast body is tested only where it is, as a discrete engine does:
+  // it may tunnel. Slow bodies are the same either way, so a scene without fast bodies does
+  // not change at all.
+  const double size = shape.type == ShapeType::kCircle ? 2.0 * shape.radius
+                                                       : 2.0 * std::min(shape.half_extents.x, shape.half_extents.y);
+  const bool fast = motion + turning > kFastFraction * size;
+  if (fast && !def.continuous && !info.bullet) return speculative;
+  double margin = motion + speculative;
+  if (info.inv_inertia != 0.0) margin += turning;
+  return margin;
+}
+
+}  // namespace
+
+AABB BodyBounds(const Shape& shape, const BodyState& state) {
+  const Vec2 c = state.position;
+  Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
+  if (shape.type == ShapeType::kBox && state.angle != 0.0) {
+    const Rot q = MakeRot(state.angle);
+    const Vec2 h = shape.half_extents;
+    half = {std::abs(q.c) * h.x + std::abs(q.s) * h.y, std::abs(q.s) * h.x + std::abs(q.c) * h.y};
+  }
+  return {c - half, c + half};
+}
+
+PairQuota QuotaOf(const Shape& shape, bool is_static) {
+  constexpr double kMax = PairQuota::kMaxQuota;
+  if (shape.type == ShapeType::kCircle) {
+    const double d = 2.0 * shape.radius;
+    return {is_static ? kInfinity : d, static_cast<std::uint32_t>(kPairQuota), d * d};
+  }
+  const Vec2 h = shape.half_extents;
+  const double aspect = std::max(h.x, h.y) / std::min(h.x, h.y);
+  const double quota = std::min(kMax, kPairQuota + kPairQuotaPerAspect * std::ceil(aspect - 1.0));
+  return {is_static ? kInfinity : 2.0 * std::min(h.x, h.y), static_cast<std::uint32_t>(quota), 4.0 * h.x * h.y};
+}
+
+void CandidatePairs::Find(const WorldDef& def, bool speculative, std::span<const BodyState> states,
+                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> awake) {
+  const std::size_t n = states.size();
+  bounds_.resize(n);
+  margins_.resize(n);
+  for (BodyId id = 0; id < n; ++id) {
+    margins_[id] = speculative ? SpeculativeMargin(def, states[id], infos[id], awake[id] != 0) : 0.0;
+    const Vec2 grow{margins_[id], margins_[id]};
+    const AABB b = BodyBounds(infos[id].shape, states[id]);
+    bounds_[id] = {b.lower - grow, b.upper + grow};
+  }
+  // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.
+  broad_phase_.FindPairs(def.broad_phase, bounds_, &pairs_,
+                         def.pair_budget ? std::span<const PairQuota>(quotas_) : std::span<const PairQuota>());
+}
+
+}  // namespace engine::detail

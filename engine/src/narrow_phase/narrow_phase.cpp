@@ -1,0 +1,77 @@
+// Contacts from candidate pairs: the shape pair picks the collide function; last step's contact
+// of the same pair hands its impulses on.
+#include "narrow_phase/narrow_phase.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "narrow_phase/collide.h"
+
+namespace engine::detail {
+
+bool CollideBodies(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b,
+                   double margin, Manifold* m) {
+  const Vec2 pa = a.position, pb = b.position;
+  const bool circle_a = ia.shape.type == ShapeType::kCircle;
+  const bool circle_b = ib.shape.type == ShapeType::kCircle;
+  auto box_a = [&] { return OrientedBox{pa, ia.shape.half_extents, MakeRot(a.angle)}; };
+  auto box_b = [&] { return OrientedBox{pb, ib.shape.half_extents, MakeRot(b.angle)}; };
+  if (circle_a && circle_b) return CollideCircles(pa, ia.shape.radius, pb, ib.shape.radius, m, margin);
+  if (circle_a) {
+    return b.angle == 0.0 ? CollideCircleBox(pa, ia.shape.radius, pb, ib.shape.half_extents, m, margin)
+                          : CollideCircleOrientedBox(pa, ia.shape.radius, box_b(), m, margin);
+  }
+  if (circle_b) {
+    // The collide functions take the circle first; flip its normal back to point from a to b.
+    const bool touching =
+        a.angle == 0.0 ? CollideCircleBox(pb, ib.shape.radius, pa, ia.shape.half_extents, m, margin)
+                       : CollideCircleOrientedBox(pb, ib.shape.radius, box_a(), m, margin);
+    m->normal = -m->normal;
+    return touching;
+  }
+  if (a.angle == 0.0 && b.angle == 0.0) {
+    return CollideBoxes(pa, ia.shape.half_extents, pb, ib.shape.half_extents, m, margin);
+  }
+  return CollideOrientedBoxes(box_a(), box_b(), m, margin);
+}
+
+void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
+                         std::span<const BodyInfo> infos, std::span<const double> margins) {
+  previous_contacts_.swap(contacts_);
+  contacts_.clear();
+  // At most one contact a pair: reserving that much at once avoids growth by doubling, which
+  // could hold twice what a large pile needs.
+  contacts_.reserve(pairs.size());
+  std::size_t previous = 0;
+  for (const BodyPair& pair : pairs) {
+    const BodyInfo& ia = infos[pair.a];
+    const BodyInfo& ib = infos[pair.b];
+    Manifold m;
+    if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margins[pair.a] + margins[pair.b], &m)) continue;
+    Contact contact{pair.a, pair.b, m, std::max(ia.restitution, ib.restitution),
+                    std::sqrt(ia.friction * ib.friction)};
+    WarmStart(&contact, &previous);
+    contacts_.push_back(contact);
+  }
+}
+
+void NarrowPhase::WarmStart(Contact* contact, std::size_t* previous) const {
+  const BodyPair pair{contact->a, contact->b};
+  while (*previous < previous_contacts_.size() &&
+         BodyPair{previous_contacts_[*previous].a, previous_contacts_[*previous].b} < pair) {
+    ++*previous;
+  }
+  if (*previous == previous_contacts_.size()) return;
+  const Contact& old = previous_contacts_[*previous];
+  if (old.a != pair.a || old.b != pair.b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) return;
+  const Manifold& m = contact->manifold;
+  for (int i = 0; i < m.point_count; ++i) {
+    for (int j = 0; j < old.manifold.point_count; ++j) {
+      if (old.manifold.points[j].id != m.points[i].id) continue;
+      contact->normal_impulse[i] = old.normal_impulse[j];
+      contact->tangent_impulse[i] = old.tangent_impulse[j];
+    }
+  }
+}
+
+}  // namespace engine::detail
