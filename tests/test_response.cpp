@@ -161,7 +161,7 @@ std::vector<double> FlightEnergies(double dt, int bounces) {
 
 }  // namespace
 
-TEST_CASE("seed: a ball dropped on the floor keeps e² of its energy per bounce", "[response][seed]") {
+TEST_CASE("sequential impulse: a ball dropped on the floor keeps e² of its energy per bounce", "[response][sequential_impulse]") {
   // The seed method meets the floor up to one step late: at a depth p ≤ v·dt below the surface,
   // with the speed gained on the way down, and position correction lifts it back for free. So
   // per bounce E'/E − e² ∈ [0, (1 + e²)·p/H] with p/H ≤ √(2g/H)·dt (H = height before bounce);
@@ -179,7 +179,7 @@ TEST_CASE("seed: a ball dropped on the floor keeps e² of its energy per bounce"
   }
 }
 
-TEST_CASE("seed: the bounce energy error shrinks in proportion to the step (first order)", "[response][seed]") {
+TEST_CASE("sequential impulse: the bounce energy error shrinks in proportion to the step (first order)", "[response][sequential_impulse]") {
   const double e2 = 0.64;
   const double coarse = FlightEnergies(1.0 / 60.0, 1)[1] / (9.81 * 10.0) - e2;
   const double fine = FlightEnergies(1.0 / 240.0, 1)[1] / (9.81 * 10.0) - e2;
