@@ -1,12 +1,12 @@
-// Helpers the broad phases share so that every one of them emits the same sorted pair list.
-// Internal to the engine.
+// The linear sort that puts a list of pairs in the one pair order, (a, b), shared by the pair
+// collector and the AABB tree's candidate list. Internal to the engine.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "broad_phase/broad_phase.h"
+#include "body_pair.h"
 
 namespace engine::detail {
 
