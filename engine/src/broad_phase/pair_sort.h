@@ -10,7 +10,8 @@
 
 namespace engine::detail {
 
-/// Sorts pairs by (a, b) in linear time: a counting sort by b, then a stable counting sort by a.
+/// Sorts pairs into BodyPair's order (by a, then b) in linear time: a counting sort by b, then a
+/// stable counting sort by a.
 /// Both keys are body indices below `body_count`; `scratch` and `counts` are reused buffers.
 void SortPairs(std::size_t body_count, std::vector<BodyPair>* pairs, std::vector<BodyPair>* scratch,
                std::vector<std::uint32_t>* counts);

@@ -8,7 +8,6 @@
 #include "broad_phase/quadtree.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace engine {

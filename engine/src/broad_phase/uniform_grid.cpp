@@ -77,6 +77,27 @@ std::uint32_t UniformGrid::Bucket(std::int32_t x, std::int32_t y) const {
   return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> hash_shift_);
 }
 
+void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                            std::span<const PairQuota> quotas) {
+  collector_.Begin(boxes, quotas, pairs);
+  large_.clear();
+  small_.clear();
+  entries_.clear();
+  if (boxes.size() < 2) {
+    collector_.Finish();
+    return;
+  }
+  if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
+  const std::int64_t entry_count = FindCellRanges(boxes);
+  if (!small_.empty()) {
+    const std::size_t bucket_count = ChooseBuckets(entry_count);
+    FillBuckets(boxes, entry_count, bucket_count);
+    FindBinnedPairs(bucket_count);
+  }
+  FindLargePairs(boxes);
+  collector_.Finish();
+}
+
 std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes) {
   const std::size_t n = boxes.size();
   ranges_.resize(n);
@@ -110,8 +131,8 @@ std::size_t UniformGrid::ChooseBuckets(std::int64_t entry_count) {
   return bucket_count;
 }
 
-// A counting sort of the (cell, box) entries into buckets, boxes in id order: within a bucket the
-// entries are in id order too, so each pair comes out as (smaller, larger).
+// A counting sort of the (cell, box) entries into buckets: linear, and into buffers kept from call
+// to call rather than a map of cells.
 void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count) {
   bucket_start_.assign(bucket_count + 1, 0);
   for (std::uint32_t i : small_) {
@@ -152,27 +173,6 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count) {
     }
     begin = end;
   }
-}
-
-void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                            std::span<const PairQuota> quotas) {
-  collector_.Begin(boxes, quotas, pairs);
-  large_.clear();
-  small_.clear();
-  entries_.clear();
-  if (boxes.size() < 2) {
-    collector_.Finish();
-    return;
-  }
-  if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
-  const std::int64_t entry_count = FindCellRanges(boxes);
-  if (!small_.empty()) {
-    const std::size_t bucket_count = ChooseBuckets(entry_count);
-    FillBuckets(boxes, entry_count, bucket_count);
-    FindBinnedPairs(bucket_count);
-  }
-  FindLargePairs(boxes);
-  collector_.Finish();
 }
 
 void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {
