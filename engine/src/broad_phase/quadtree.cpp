@@ -68,13 +68,16 @@ void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   collector_.Finish();
 }
 
-void Quadtree::TestPair(const Region& region, const Item& a, const Item& b) {
-  if (Overlaps(a.box, b.box) && region.Holds(OverlapCorner(a.box, b.box))) collector_.Add(a.body, b.body);
+bool Quadtree::Region::OwnsOverlap(const AABB& a, const AABB& b) const {
+  return Overlaps(a, b) && Holds(OverlapCorner(a, b));
 }
 
 void Quadtree::TestAllPairs(const Region& region, const Item* items, std::size_t count) {
   for (std::size_t i = 0; i + 1 < count; ++i) {
-    for (std::size_t j = i + 1; j < count; ++j) TestPair(region, items[i], items[j]);
+    const AABB& a = items[i].box;
+    for (std::size_t j = i + 1; j < count; ++j) {
+      if (region.OwnsOverlap(a, items[j].box)) collector_.Add(items[i].body, items[j].body);
+    }
   }
 }
 
@@ -116,7 +119,9 @@ Quadtree::ChildCounts Quadtree::AssignQuadrants(const Item* items, std::size_t c
   const double half_height = 0.5 * (bounds.upper.y - bounds.lower.y);
   quadrants_.resize(count);
   residents_.clear();
-  ChildCounts child_counts = {0, 0, 0, 0};
+  // Counted in a local array, not in the returned one: that lives in memory the byte stores to
+  // quadrants_ may alias, and every box would load and store the four counts (seen in the code).
+  std::size_t child_counts[4] = {0, 0, 0, 0};
   for (std::size_t k = 0; k < count; ++k) {
     const AABB& b = items[k].box;
     const auto q = static_cast<std::uint8_t>((b.lower.x < mid.x ? kLeft : 0) | (b.upper.x >= mid.x ? kRight : 0) |
@@ -129,7 +134,7 @@ Quadtree::ChildCounts Quadtree::AssignQuadrants(const Item* items, std::size_t c
     quadrants_[k] = q;
     for (int c = 0; c < 4; ++c) child_counts[c] += (q & kChildNeeds[c]) == kChildNeeds[c];
   }
-  return child_counts;
+  return {child_counts[0], child_counts[1], child_counts[2], child_counts[3]};
 }
 
 // Residents against each other and against every other box of the node.
@@ -137,7 +142,7 @@ void Quadtree::TestResidents(const Region& region, const Item* items, std::size_
   TestAllPairs(region, residents_.data(), residents_.size());
   for (const Item& r : residents_) {
     for (std::size_t k = 0; k < count; ++k) {
-      if (quadrants_[k] != 0) TestPair(region, r, items[k]);
+      if (quadrants_[k] != 0 && region.OwnsOverlap(r.box, items[k].box)) collector_.Add(r.body, items[k].body);
     }
   }
 }

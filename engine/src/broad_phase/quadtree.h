@@ -36,6 +36,9 @@ class Quadtree {
     Vec2 lower;  ///< inclusive; -inf at the outer edge
     Vec2 upper;  ///< exclusive; +inf at the outer edge
     bool Holds(Vec2 p) const { return p.x >= lower.x && p.x < upper.x && p.y >= lower.y && p.y < upper.y; }
+    /// Whether the node with this region reports the pair: the boxes overlap, and the lower corner
+    /// of the overlap lies in the region.
+    bool OwnsOverlap(const AABB& a, const AABB& b) const;
   };
   struct Item {
     AABB box;
@@ -59,7 +62,6 @@ class Quadtree {
   void BuildChildren(int depth, const Region& region, Vec2 mid, std::size_t begin, std::size_t count,
                      const ChildCounts& child_counts);
   void TestAllPairs(const Region& region, const Item* items, std::size_t count);
-  void TestPair(const Region& region, const Item& a, const Item& b);
 
   /// levels_[d] holds the items of the nodes at depth d being worked on: the four children of one
   /// node, side by side.
