@@ -4,10 +4,11 @@
 // The ideas follow Erin Catto's b2DynamicTree (Box2D 2.x; "Dynamic Bounding Volume Hierarchies",
 // GDC 2019): insertion descends by a surface-area (here perimeter) cost with branch and bound,
 // ancestors are refitted on the way up and rotated where a swap shrinks a box.
+#include "broad_phase/aabb_tree.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "broad_phase/broad_phase.h"
 #include "broad_phase/pair_sort.h"
 
 namespace engine {
@@ -85,16 +86,9 @@ void AabbTree::Clear() {
   reinserts_since_relayout_ = 0;
 }
 
-void AabbTree::InsertLeaf(std::int32_t leaf) {
-  if (root_ == kNull) {
-    root_ = leaf;
-    nodes_[leaf].parent = kNull;
-    return;
-  }
-  // Find the sibling whose pairing with the leaf adds the least perimeter over the whole tree:
-  // stop at a node when making it the sibling is cheaper than the best each child could offer
-  // (every ancestor on the way grows by `inheritance` either way).
-  const AABB box = nodes_[leaf].box;
+// Branch and bound down from the root: stop at a node when making it the sibling is cheaper than
+// the best each child could offer (every ancestor on the way grows by `inheritance` either way).
+std::int32_t AabbTree::FindBestSibling(const AABB& box) const {
   std::int32_t index = root_;
   while (!nodes_[index].IsLeaf()) {
     const Node& node = nodes_[index];
@@ -112,8 +106,17 @@ void AabbTree::InsertLeaf(std::int32_t leaf) {
     if (here < cost1 && here < cost2) break;
     index = cost1 <= cost2 ? node.child1 : node.child2;
   }
+  return index;
+}
 
-  const std::int32_t sibling = index;
+void AabbTree::InsertLeaf(std::int32_t leaf) {
+  if (root_ == kNull) {
+    root_ = leaf;
+    nodes_[leaf].parent = kNull;
+    return;
+  }
+  const AABB box = nodes_[leaf].box;
+  const std::int32_t sibling = FindBestSibling(box);
   const std::int32_t old_parent = nodes_[sibling].parent;
   const std::int32_t parent = Allocate();
   Node& p = nodes_[parent];
@@ -215,12 +218,21 @@ void AabbTree::Rotate(std::int32_t a) {
 void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                          std::span<const PairQuota> quotas) {
   collector_.Begin(boxes, quotas, pairs);
-  const std::size_t n = boxes.size();
-  if (n < leaf_of_.size()) Clear();  // bodies went away: start over
-
-  // Bodies that left their fat box, then new bodies, each in id order.
-  moved_.assign(n, 0);
+  if (boxes.size() < leaf_of_.size()) Clear();  // bodies went away: start over
+  moved_.assign(boxes.size(), 0);
   moved_list_.clear();
+  ReinsertMovedLeaves(boxes);
+  InsertNewLeaves(boxes);
+  last_reinserts_ = moved_list_.size();
+  previous_.assign(boxes.begin(), boxes.end());
+  forget_motion_ = false;
+
+  RefreshCandidates(boxes);
+  if (!crowded_) AddOverlappingCandidates(boxes);  // a crowded tree handed its pairs over already
+  collector_.Finish();
+}
+
+void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes) {
   const std::size_t known = leaf_of_.size();
   for (std::uint32_t i = 0; i < known; ++i) {
     const std::int32_t leaf = leaf_of_[i];
@@ -240,7 +252,11 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     moved_[i] = 1;
     moved_list_.push_back(i);
   }
-  for (std::uint32_t i = static_cast<std::uint32_t>(known); i < n; ++i) {
+}
+
+void AabbTree::InsertNewLeaves(std::span<const AABB> boxes) {
+  const std::size_t n = boxes.size();
+  for (auto i = static_cast<std::uint32_t>(leaf_of_.size()); i < n; ++i) {
     const std::int32_t leaf = Allocate();
     nodes_[leaf].body = i;
     bool stretched = false;
@@ -250,12 +266,12 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
     moved_[i] = 1;
     moved_list_.push_back(i);
   }
-  last_reinserts_ = moved_list_.size();
-  previous_.assign(boxes.begin(), boxes.end());
-  forget_motion_ = false;
+}
 
-  // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
-  // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
+// The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
+// only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
+void AabbTree::RefreshCandidates(std::span<const AABB> boxes) {
+  const std::size_t n = boxes.size();
   reinserts_since_relayout_ += moved_list_.size();
   if (2 * reinserts_since_relayout_ > n) {
     Relayout();
@@ -266,12 +282,12 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates())) {
     FindAllCandidates(boxes);
   }
-  if (!crowded_) {
-    for (const BodyPair& p : candidates_) {
-      if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
-    }
+}
+
+void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes) {
+  for (const BodyPair& p : candidates_) {
+    if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
   }
-  collector_.Finish();
 }
 
 std::size_t AabbTree::CandidateLimit() const { return kCandidatesPerBody * leaf_of_.size() + 1024; }
@@ -302,19 +318,7 @@ void AabbTree::FindAllCandidates(std::span<const AABB> boxes) {
     }
     const Node& nb = nodes_[b];
     if (na.IsLeaf() && nb.IsLeaf()) {
-      if (crowded_) {
-        if (Overlaps(boxes[na.body], boxes[nb.body])) collector_.Add(na.body, nb.body);
-        continue;
-      }
-      candidates_.push_back(MakePair(na.body, nb.body));
-      if (candidates_.size() > limit) {
-        crowded_ = true;
-        for (const BodyPair& p : candidates_) {
-          if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
-        }
-        candidates_.clear();
-        candidates_.shrink_to_fit();
-      }
+      AddCandidate(na.body, nb.body, boxes, limit);
       continue;
     }
     // Split the bigger side, so the two stay of similar size as they descend.
@@ -329,6 +333,21 @@ void AabbTree::FindAllCandidates(std::span<const AABB> boxes) {
   if (!crowded_) detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
 }
 
+// Past the limit the tree is crowded: the pairs kept so far and all that follow go straight to the
+// collector, which bounds them.
+void AabbTree::AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AABB> boxes, std::size_t limit) {
+  if (crowded_) {
+    if (Overlaps(boxes[a], boxes[b])) collector_.Add(a, b);
+    return;
+  }
+  candidates_.push_back(MakePair(a, b));
+  if (candidates_.size() <= limit) return;
+  crowded_ = true;
+  AddOverlappingCandidates(boxes);
+  candidates_.clear();
+  candidates_.shrink_to_fit();
+}
+
 bool AabbTree::UpdateCandidates() {
   // Drop the moved bodies' pairs, query the tree for each moved body's new ones (a pair of two
   // moved bodies is taken from the smaller id only), then merge the two sorted lists.
@@ -336,30 +355,32 @@ bool AabbTree::UpdateCandidates() {
   fresh_.clear();
   const std::size_t limit = CandidateLimit();
   for (std::uint32_t i : moved_list_) {
-    const AABB& box = nodes_[leaf_of_[i]].box;
-    query_stack_.clear();
-    query_stack_.push_back(root_);
-    while (!query_stack_.empty()) {
-      const Node& node = nodes_[query_stack_.back()];
-      query_stack_.pop_back();
-      if (!Overlaps(node.box, box)) continue;
-      if (!node.IsLeaf()) {
-        query_stack_.push_back(node.child1);
-        query_stack_.push_back(node.child2);
-        continue;
-      }
-      const std::uint32_t j = node.body;
-      if (j != i && (!moved_[j] || i < j)) fresh_.push_back(MakePair(i, j));
-    }
+    QueryFreshPairs(i);
     if (candidates_.size() + fresh_.size() > limit) return false;
   }
-  std::sort(fresh_.begin(), fresh_.end(),
-            [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
+  std::sort(fresh_.begin(), fresh_.end());
   sorted_scratch_.resize(candidates_.size() + fresh_.size());
-  std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin(),
-             [](BodyPair p, BodyPair q) { return p.a < q.a || (p.a == q.a && p.b < q.b); });
+  std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin());
   candidates_.swap(sorted_scratch_);
   return true;
+}
+
+void AabbTree::QueryFreshPairs(std::uint32_t body) {
+  const AABB& box = nodes_[leaf_of_[body]].box;
+  query_stack_.clear();
+  query_stack_.push_back(root_);
+  while (!query_stack_.empty()) {
+    const Node& node = nodes_[query_stack_.back()];
+    query_stack_.pop_back();
+    if (!Overlaps(node.box, box)) continue;
+    if (!node.IsLeaf()) {
+      query_stack_.push_back(node.child1);
+      query_stack_.push_back(node.child2);
+      continue;
+    }
+    const std::uint32_t other = node.body;
+    if (other != body && (!moved_[other] || body < other)) fresh_.push_back(MakePair(body, other));
+  }
 }
 
 // Insertions scatter new nodes over the array, and the traversal below jumps between them; in

@@ -5,18 +5,17 @@
 // where it stays as a resident), whose half-open regions are disjoint and cover the box. The
 // overlap's lower corner p lies in both boxes, so in exactly one kept node of each; those two nodes
 // are nested, and the pair is reported only while testing in the deeper one's region.
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <numeric>
+#include "broad_phase/quadtree.h"
 
-#include "broad_phase/broad_phase.h"
+#include <algorithm>
+#include <limits>
 
 namespace engine {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr Vec2 kFar{kInf, kInf};
 
 // The quadrant bits: whether a box reaches the left (x below the split), right, bottom and top
 // quadrants. A box at the split line itself belongs to the upper side, as the regions are
@@ -25,6 +24,9 @@ constexpr std::uint8_t kLeft = 1;
 constexpr std::uint8_t kRight = 2;
 constexpr std::uint8_t kBottom = 4;
 constexpr std::uint8_t kTop = 8;
+constexpr std::uint8_t kAllQuadrants = kLeft | kRight | kBottom | kTop;
+// The bits a box needs to go into each child, in ChildCounts order.
+constexpr std::uint8_t kChildNeeds[4] = {kLeft | kBottom, kRight | kBottom, kLeft | kTop, kRight | kTop};
 
 Vec2 OverlapCorner(const AABB& a, const AABB& b) {
   return {std::max(a.lower.x, b.lower.x), std::max(a.lower.y, b.lower.y)};
@@ -43,12 +45,6 @@ void Quadtree::Bounds::Add(const AABB& box, const Region& region) {
   lower = {std::min(lower.x, low.x), std::min(lower.y, low.y)};
   upper = {std::max(upper.x, high.x), std::max(upper.y, high.y)};
 }
-
-namespace {
-
-constexpr Vec2 kFar{kInf, kInf};
-
-}  // namespace
 
 void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                          std::span<const PairQuota> quotas) {
@@ -72,92 +68,101 @@ void Quadtree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   collector_.Finish();
 }
 
+bool Quadtree::Region::OwnsOverlap(const AABB& a, const AABB& b) const {
+  return Overlaps(a, b) && Holds(OverlapCorner(a, b));
+}
+
 void Quadtree::TestAllPairs(const Region& region, const Item* items, std::size_t count) {
   for (std::size_t i = 0; i + 1 < count; ++i) {
     const AABB& a = items[i].box;
     for (std::size_t j = i + 1; j < count; ++j) {
-      const AABB& b = items[j].box;
-      if (!Overlaps(a, b)) continue;
-      const Vec2 p = OverlapCorner(a, b);
-      if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-        collector_.Add(items[i].body, items[j].body);
-      }
+      if (region.OwnsOverlap(a, items[j].box)) collector_.Add(items[i].body, items[j].body);
     }
   }
 }
 
 void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::size_t end, const Bounds& bounds) {
   last_depth_ = std::max(last_depth_, depth);
-  // Item lists keep ascending ids at every level, so leaf pairs come out as (smaller, larger).
   const Item* items = levels_[depth].data() + begin;
   const std::size_t count = end - begin;
   if (count <= kLeafCapacity || depth == kMaxDepth) {
     TestAllPairs(region, items, count);
     return;
   }
+  const Vec2 mid = SplitPoint(region, bounds);
+  const ChildCounts child_counts = AssignQuadrants(items, count, mid, bounds);
+  if (!residents_.empty()) TestResidents(region, items, count);
 
-  // Split at the centre of the boxes' centres rather than of the region: the tree then follows
-  // clusters, and a body flung far away costs one level instead of many.
-  const Vec2 mid{Clamp(0.5 * bounds.centre_lower.x + 0.5 * bounds.centre_upper.x, region.lower.x, region.upper.x),
-                 Clamp(0.5 * bounds.centre_lower.y + 0.5 * bounds.centre_upper.y, region.lower.y, region.upper.y)};
+  // When a split would not shrink the work (a clump of mutually overlapping boxes, or one side
+  // receiving everything), this node is a leaf for the boxes that remain.
+  const std::size_t rest = count - residents_.size();
+  const std::size_t largest = *std::max_element(child_counts.begin(), child_counts.end());
+  if (rest <= kLeafCapacity || largest == rest) {
+    TestRestAsLeaf(region, items, count);
+    return;
+  }
+  BuildChildren(depth, region, mid, begin, count, child_counts);
+}
+
+// At the centre of the boxes' centres rather than of the region: the tree then follows clusters,
+// and a body flung far away costs one level instead of many.
+Vec2 Quadtree::SplitPoint(const Region& region, const Bounds& bounds) {
+  return {Clamp(0.5 * bounds.centre_lower.x + 0.5 * bounds.centre_upper.x, region.lower.x, region.upper.x),
+          Clamp(0.5 * bounds.centre_lower.y + 0.5 * bounds.centre_upper.y, region.lower.y, region.upper.y)};
+}
+
+// A box reaching all four quadrants that is big for this node would be copied into every
+// descendant; it stays here as a resident instead and meets the whole subtree at once.
+Quadtree::ChildCounts Quadtree::AssignQuadrants(const Item* items, std::size_t count, Vec2 mid,
+                                                const Bounds& bounds) {
   const double half_width = 0.5 * (bounds.upper.x - bounds.lower.x);
   const double half_height = 0.5 * (bounds.upper.y - bounds.lower.y);
-
-  // A box reaching all four quadrants that is big for this node would be copied into every
-  // descendant; it stays here as a resident instead and meets the whole subtree at once.
-  constexpr std::uint8_t kAll = kLeft | kRight | kBottom | kTop;
-  constexpr std::uint8_t kNeed[4] = {kLeft | kBottom, kRight | kBottom, kLeft | kTop, kRight | kTop};
   quadrants_.resize(count);
   residents_.clear();
+  // Counted in a local array, not in the returned one: that lives in memory the byte stores to
+  // quadrants_ may alias, and every box would load and store the four counts (seen in the code).
   std::size_t child_counts[4] = {0, 0, 0, 0};
   for (std::size_t k = 0; k < count; ++k) {
     const AABB& b = items[k].box;
     const auto q = static_cast<std::uint8_t>((b.lower.x < mid.x ? kLeft : 0) | (b.upper.x >= mid.x ? kRight : 0) |
                                              (b.lower.y < mid.y ? kBottom : 0) | (b.upper.y >= mid.y ? kTop : 0));
-    if (q == kAll && (b.upper.x - b.lower.x >= half_width || b.upper.y - b.lower.y >= half_height)) {
+    if (q == kAllQuadrants && (b.upper.x - b.lower.x >= half_width || b.upper.y - b.lower.y >= half_height)) {
       quadrants_[k] = 0;
       residents_.push_back(items[k]);
       continue;
     }
     quadrants_[k] = q;
-    for (int c = 0; c < 4; ++c) child_counts[c] += (q & kNeed[c]) == kNeed[c];
+    for (int c = 0; c < 4; ++c) child_counts[c] += (q & kChildNeeds[c]) == kChildNeeds[c];
   }
+  return {child_counts[0], child_counts[1], child_counts[2], child_counts[3]};
+}
 
-  // Residents against each other and against every other box of the node.
-  const std::size_t resident_count = residents_.size();
-  if (resident_count > 0) {
-    TestAllPairs(region, residents_.data(), resident_count);
-    for (const Item& r : residents_) {
-      for (std::size_t k = 0; k < count; ++k) {
-        if (quadrants_[k] == 0) continue;
-        const AABB& b = items[k].box;
-        if (!Overlaps(r.box, b)) continue;
-        const Vec2 p = OverlapCorner(r.box, b);
-        if (p.x >= region.lower.x && p.x < region.upper.x && p.y >= region.lower.y && p.y < region.upper.y) {
-          collector_.Add(r.body, items[k].body);
-        }
-      }
-    }
-  }
-
-  // When a split would not shrink the work (a clump of mutually overlapping boxes, or one side
-  // receiving everything), this node is a leaf for the boxes that remain.
-  const std::size_t rest = count - resident_count;
-  const std::size_t largest = *std::max_element(child_counts, child_counts + 4);
-  if (rest <= kLeafCapacity || largest == rest) {
-    if (resident_count == 0) {
-      TestAllPairs(region, items, count);
-      return;
-    }
-    residents_.clear();
+// Residents against each other and against every other box of the node.
+void Quadtree::TestResidents(const Region& region, const Item* items, std::size_t count) {
+  TestAllPairs(region, residents_.data(), residents_.size());
+  for (const Item& r : residents_) {
     for (std::size_t k = 0; k < count; ++k) {
-      if (quadrants_[k] != 0) residents_.push_back(items[k]);
+      if (quadrants_[k] != 0 && region.OwnsOverlap(r.box, items[k].box)) collector_.Add(r.body, items[k].body);
     }
-    TestAllPairs(region, residents_.data(), residents_.size());
+  }
+}
+
+// The residents have met everything already; the other boxes meet each other here.
+void Quadtree::TestRestAsLeaf(const Region& region, const Item* items, std::size_t count) {
+  if (residents_.empty()) {
+    TestAllPairs(region, items, count);
     return;
   }
+  residents_.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    if (quadrants_[k] != 0) residents_.push_back(items[k]);
+  }
+  TestAllPairs(region, residents_.data(), residents_.size());
+}
 
-  // The four children's items, side by side in the next level's buffer, with their bounds.
+// The four children's items, side by side in the next level's buffer, with their bounds.
+void Quadtree::BuildChildren(int depth, const Region& region, Vec2 mid, std::size_t begin, std::size_t count,
+                             const ChildCounts& child_counts) {
   std::vector<Item>& next = levels_[depth + 1];
   next.resize(child_counts[0] + child_counts[1] + child_counts[2] + child_counts[3]);
   std::size_t child_begin[5] = {0, 0, 0, 0, 0};
@@ -171,11 +176,11 @@ void Quadtree::Build(int depth, const Region& region, std::size_t begin, std::si
   };
   Bounds child_bounds[4];
   for (Bounds& b : child_bounds) b = {kFar, -kFar, kFar, -kFar};
-  items = levels_[depth].data() + begin;
+  const Item* items = levels_[depth].data() + begin;
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint8_t q = quadrants_[k];
     for (int c = 0; c < 4; ++c) {
-      if ((q & kNeed[c]) != kNeed[c]) continue;
+      if ((q & kChildNeeds[c]) != kChildNeeds[c]) continue;
       next[cursor[c]++] = items[k];
       child_bounds[c].Add(items[k].box, children[c]);
     }

@@ -1,11 +1,11 @@
 // The uniform-grid broad phase: boxes binned into square cells sized from the boxes, a pair
 // reported once by the cell that holds the lower corner of its overlap.
+#include "broad_phase/uniform_grid.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
-
-#include "broad_phase/broad_phase.h"
 
 namespace engine {
 
@@ -80,17 +80,26 @@ std::uint32_t UniformGrid::Bucket(std::int32_t x, std::int32_t y) const {
 void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                             std::span<const PairQuota> quotas) {
   collector_.Begin(boxes, quotas, pairs);
-  const std::size_t n = boxes.size();
   large_.clear();
   small_.clear();
   entries_.clear();
-  if (n < 2) {
+  if (boxes.size() < 2) {
     collector_.Finish();
     return;
   }
   if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
+  const std::int64_t entry_count = FindCellRanges(boxes);
+  if (!small_.empty()) {
+    const std::size_t bucket_count = ChooseBuckets(entry_count);
+    FillBuckets(boxes, entry_count, bucket_count);
+    FindBinnedPairs(bucket_count);
+  }
+  FindLargePairs(boxes);
+  collector_.Finish();
+}
 
-  // Which cells each box touches; large boxes set aside.
+std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes) {
+  const std::size_t n = boxes.size();
   ranges_.resize(n);
   std::int64_t entry_count = 0;
   occupied_ = {std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
@@ -98,7 +107,7 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
   for (std::uint32_t i = 0; i < n; ++i) {
     const CellRange r = Cells(boxes[i]);
     ranges_[i] = r;
-    const std::int64_t cells = (std::int64_t{r.x1} - r.x0 + 1) * (std::int64_t{r.y1} - r.y0 + 1);
+    const std::int64_t cells = r.Count();
     if (cells > kMaxCellsPerBox) {
       large_.push_back(i);
       continue;
@@ -108,64 +117,62 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
     occupied_ = {std::min(occupied_.x0, r.x0), std::min(occupied_.y0, r.y0), std::max(occupied_.x1, r.x1),
                  std::max(occupied_.y1, r.y1)};
   }
+  return entry_count;
+}
 
-  if (!small_.empty()) {
-    // Buckets: the cells themselves when the occupied area is compact, else a hash table at
-    // load one or less, so that bodies spread thin or flung far cost no memory for empty space.
-    const std::int64_t occupied_cells =
-        (std::int64_t{occupied_.x1} - occupied_.x0 + 1) * (std::int64_t{occupied_.y1} - occupied_.y0 + 1);
-    dense_ = occupied_cells <= 2 * entry_count + 64;
-    std::size_t bucket_count;
-    if (dense_) {
-      bucket_count = static_cast<std::size_t>(occupied_cells);
-    } else {
-      bucket_count = std::bit_ceil(static_cast<std::size_t>(std::max<std::int64_t>(entry_count, 2)));
-      hash_shift_ = 64 - static_cast<std::uint32_t>(std::countr_zero(bucket_count));
-    }
+// The cells themselves when the occupied area is compact, else a hash table at load one or less,
+// so that bodies spread thin or flung far cost no memory for empty space.
+std::size_t UniformGrid::ChooseBuckets(std::int64_t entry_count) {
+  const std::int64_t occupied_cells = occupied_.Count();
+  dense_ = occupied_cells <= 2 * entry_count + 64;
+  if (dense_) return static_cast<std::size_t>(occupied_cells);
+  const std::size_t bucket_count = std::bit_ceil(static_cast<std::size_t>(std::max<std::int64_t>(entry_count, 2)));
+  hash_shift_ = 64 - static_cast<std::uint32_t>(std::countr_zero(bucket_count));
+  return bucket_count;
+}
 
-    // Counting sort of (box, cell) entries into buckets, boxes in id order: within a bucket the
-    // entries are in id order too, so each pair comes out as (smaller, larger).
-    bucket_start_.assign(bucket_count + 1, 0);
-    for (std::uint32_t i : small_) {
-      const CellRange& r = ranges_[i];
-      for (std::int32_t y = r.y0; y <= r.y1; ++y) {
-        for (std::int32_t x = r.x0; x <= r.x1; ++x) ++bucket_start_[Bucket(x, y) + 1];
-      }
-    }
-    for (std::size_t b = 1; b <= bucket_count; ++b) bucket_start_[b] += bucket_start_[b - 1];
-    entries_.resize(static_cast<std::size_t>(entry_count));
-    for (std::uint32_t i : small_) {
-      const CellRange& r = ranges_[i];
-      for (std::int32_t y = r.y0; y <= r.y1; ++y) {
-        for (std::int32_t x = r.x0; x <= r.x1; ++x) {
-          const auto first = static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0));
-          entries_[bucket_start_[Bucket(x, y)]++] = {boxes[i], x, y, i, first};
-        }
-      }
-    }
-    // Now bucket b spans [start[b - 1], start[b]) (the scatter advanced each start to the next).
-
-    // Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower
-    // corner: the corner's column is the larger of the two first columns, so one of the boxes
-    // must start in this column, and likewise for the row.
-    std::uint32_t begin = 0;
-    for (std::size_t b = 0; b < bucket_count; ++b) {
-      const std::uint32_t end = bucket_start_[b];
-      for (std::uint32_t i = begin; i + 1 < end; ++i) {
-        const Entry& p = entries_[i];
-        for (std::uint32_t j = i + 1; j < end; ++j) {
-          const Entry& q = entries_[j];
-          if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) {
-            collector_.Add(p.body, q.body);
-          }
-        }
-      }
-      begin = end;
+// A counting sort of the (cell, box) entries into buckets: linear, and into buffers kept from call
+// to call rather than a map of cells.
+void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count) {
+  bucket_start_.assign(bucket_count + 1, 0);
+  for (std::uint32_t i : small_) {
+    const CellRange& r = ranges_[i];
+    for (std::int32_t y = r.y0; y <= r.y1; ++y) {
+      for (std::int32_t x = r.x0; x <= r.x1; ++x) ++bucket_start_[Bucket(x, y) + 1];
     }
   }
+  for (std::size_t b = 1; b <= bucket_count; ++b) bucket_start_[b] += bucket_start_[b - 1];
+  entries_.resize(static_cast<std::size_t>(entry_count));
+  for (std::uint32_t i : small_) {
+    const CellRange& r = ranges_[i];
+    for (std::int32_t y = r.y0; y <= r.y1; ++y) {
+      for (std::int32_t x = r.x0; x <= r.x1; ++x) {
+        const auto first = static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0));
+        entries_[bucket_start_[Bucket(x, y)]++] = {boxes[i], x, y, i, first};
+      }
+    }
+  }
+  // The scatter advanced each start to the next bucket's, which is where bucket b now ends.
+}
 
-  FindLargePairs(boxes);
-  collector_.Finish();
+// Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower
+// corner: the corner's column is the larger of the two first columns, so one of the boxes must
+// start in this column, and likewise for the row.
+void UniformGrid::FindBinnedPairs(std::size_t bucket_count) {
+  std::uint32_t begin = 0;
+  for (std::size_t b = 0; b < bucket_count; ++b) {
+    const std::uint32_t end = bucket_start_[b];
+    for (std::uint32_t i = begin; i + 1 < end; ++i) {
+      const Entry& p = entries_[i];
+      for (std::uint32_t j = i + 1; j < end; ++j) {
+        const Entry& q = entries_[j];
+        if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) {
+          collector_.Add(p.body, q.body);
+        }
+      }
+    }
+    begin = end;
+  }
 }
 
 void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {
@@ -175,32 +182,34 @@ void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {
     for (std::size_t j = i + 1; j < large_.size(); ++j) {
       if (Overlaps(box, boxes[large_[j]])) collector_.Add(a, large_[j]);
     }
-    if (small_.empty()) continue;
+    if (!small_.empty()) FindLargeBinnedPairs(a, boxes);
+  }
+}
 
-    // Against the binned boxes: walk the occupied cells under the large box when they are fewer
-    // than the binned boxes (a floor covers one row of cells), else test each binned box.
-    const CellRange& r = ranges_[a];
-    const CellRange walk{std::max(r.x0, occupied_.x0), std::max(r.y0, occupied_.y0),
-                         std::min(r.x1, occupied_.x1), std::min(r.y1, occupied_.y1)};
-    if (walk.x0 > walk.x1 || walk.y0 > walk.y1) continue;
-    const std::int64_t cells = (std::int64_t{walk.x1} - walk.x0 + 1) * (std::int64_t{walk.y1} - walk.y0 + 1);
-    if (cells > static_cast<std::int64_t>(small_.size())) {
-      for (std::uint32_t s : small_) {
-        if (Overlaps(box, boxes[s])) collector_.Add(a, s);
-      }
-      continue;
+// Walks the occupied cells under the large box when they are fewer than the binned boxes (a floor
+// covers one row of cells), else tests each binned box.
+void UniformGrid::FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes) {
+  const AABB& box = boxes[large];
+  const CellRange& r = ranges_[large];
+  const CellRange walk{std::max(r.x0, occupied_.x0), std::max(r.y0, occupied_.y0),
+                       std::min(r.x1, occupied_.x1), std::min(r.y1, occupied_.y1)};
+  if (walk.x0 > walk.x1 || walk.y0 > walk.y1) return;
+  if (walk.Count() > static_cast<std::int64_t>(small_.size())) {
+    for (std::uint32_t s : small_) {
+      if (Overlaps(box, boxes[s])) collector_.Add(large, s);
     }
-    for (std::int32_t y = walk.y0; y <= walk.y1; ++y) {
-      for (std::int32_t x = walk.x0; x <= walk.x1; ++x) {
-        const std::uint32_t b = Bucket(x, y);
-        const std::uint32_t end = bucket_start_[b];
-        for (std::uint32_t k = b == 0 ? 0 : bucket_start_[b - 1]; k < end; ++k) {
-          const Entry& e = entries_[k];
-          // The same one-cell rule, with the large box's first column and row.
-          if (e.x == x && e.y == y && (r.x0 == x || (e.first & 1)) && (r.y0 == y || (e.first & 2)) &&
-              Overlaps(box, e.box)) {
-            collector_.Add(a, e.body);
-          }
+    return;
+  }
+  for (std::int32_t y = walk.y0; y <= walk.y1; ++y) {
+    for (std::int32_t x = walk.x0; x <= walk.x1; ++x) {
+      const std::uint32_t b = Bucket(x, y);
+      const std::uint32_t end = bucket_start_[b];
+      for (std::uint32_t k = b == 0 ? 0 : bucket_start_[b - 1]; k < end; ++k) {
+        const Entry& e = entries_[k];
+        // The same one-cell rule, with the large box's first column and row.
+        if (e.x == x && e.y == y && (r.x0 == x || (e.first & 1)) && (r.y0 == y || (e.first & 2)) &&
+            Overlaps(box, e.box)) {
+          collector_.Add(large, e.body);
         }
       }
     }

@@ -1,0 +1,112 @@
+// The dynamic AABB tree: a leaf per body with a fattened box, reinserted only when the body leaves
+// it, and the pairs of overlapping fat boxes kept from call to call.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "body_pair.h"
+#include "broad_phase/pair_collector.h"
+#include "engine/math.h"
+
+namespace engine {
+
+/// A dynamic AABB tree (after Box2D's b2DynamicTree, Erin Catto): one leaf per body holding a
+/// fattened box, internal nodes holding the union of their children, improved by rotations.
+/// A body is removed and reinserted only when its box leaves its fat box, so a step of small
+/// motions touches few nodes. The pairs of overlapping fat boxes are kept from step to step and
+/// found again only for reinserted bodies (by a query each, or one traversal of the tree against
+/// itself when many moved); an exact test of the bodies' own boxes picks the pairs. Deterministic:
+/// node slots come from a free list, new bodies are inserted and moved ones reinserted in id
+/// order. Pairs come out sorted by (a, b).
+class AabbTree {
+ public:
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
+  /// True while the fat boxes overlap in more pairs than the tree keeps (kCandidatesPerBody a
+  /// body): the pairs are then found by a traversal every call, and none are kept.
+  bool Crowded() const { return crowded_; }
+  static constexpr std::size_t kCandidatesPerBody = 16;
+
+  /// Leaves removed and inserted again by the last call (new bodies included).
+  std::size_t LastReinsertCount() const { return last_reinserts_; }
+  /// The longest path from the root to a leaf (a single leaf is 0; -1 when empty).
+  int Height() const;
+  /// Checks parent links, unions and heights; for tests.
+  bool IsValid() const;
+  /// The next call predicts no motion from the boxes of the last one: for a caller that skipped
+  /// calls while the boxes moved.
+  void ForgetMotion() { forget_motion_ = true; }
+
+ private:
+  static constexpr std::int32_t kNull = -1;
+  struct Node {
+    AABB box;                    ///< leaves: the fat box; internal nodes: the union of children
+    std::int32_t parent = kNull;
+    std::int32_t child1 = kNull;  ///< kNull for a leaf
+    std::int32_t child2 = kNull;
+    std::int32_t height = 0;     ///< 0 for a leaf
+    std::uint32_t body = 0;      ///< leaves only
+    bool stretched = false;      ///< leaves only: the fat box reaches ahead of the body's motion
+    bool IsLeaf() const { return child1 == kNull; }
+  };
+  std::int32_t Allocate();
+  void Free(std::int32_t node);
+  void InsertLeaf(std::int32_t leaf);
+  /// The node whose pairing with `box` adds the least perimeter over the whole tree.
+  std::int32_t FindBestSibling(const AABB& box) const;
+  void RemoveLeaf(std::int32_t leaf);
+  /// Refits unions and heights from `node` to the root, rotating where that shrinks a box.
+  void RefitUpward(std::int32_t node);
+  void Rotate(std::int32_t node);
+  AABB FatBox(const AABB& box, const AABB& previous, bool* stretched) const;
+  void Clear();
+  /// Renumbers the nodes in depth-first order, so that a subtree sits together in memory.
+  void Relayout();
+  /// Reinserts the known bodies that left their fat boxes, in id order, into moved_list_.
+  void ReinsertMovedLeaves(std::span<const AABB> boxes);
+  /// Inserts the bodies the tree has not seen yet, in id order, into moved_list_.
+  void InsertNewLeaves(std::span<const AABB> boxes);
+  /// Brings the candidate pairs up to date with the moved leaves.
+  void RefreshCandidates(std::span<const AABB> boxes);
+  /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself;
+  /// past the candidate limit the pairs go straight to the collector and the tree is crowded.
+  void FindAllCandidates(std::span<const AABB> boxes);
+  void AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AABB> boxes, std::size_t limit);
+  /// The same, from last call's list, by querying the tree for the moved leaves only; false when
+  /// the list would outgrow the candidate limit (the caller then traverses the whole tree).
+  bool UpdateCandidates();
+  /// Adds to fresh_ the pairs of moved body `body` with the leaves its fat box overlaps.
+  void QueryFreshPairs(std::uint32_t body);
+  /// The candidates whose bodies' own boxes overlap, to the collector.
+  void AddOverlappingCandidates(std::span<const AABB> boxes);
+  std::size_t CandidateLimit() const;
+
+  std::vector<Node> nodes_;
+  std::vector<Node> relayout_scratch_;
+  std::vector<std::int32_t> new_index_;
+  std::int32_t root_ = kNull;
+  std::int32_t free_list_ = kNull;
+  std::vector<std::int32_t> leaf_of_;  ///< per body
+  std::vector<AABB> previous_;         ///< each body's box at the last call, for its motion
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack_;
+  std::vector<std::int32_t> query_stack_;
+  /// Pairs of bodies whose fat boxes overlap, sorted by (a, b): a superset of the overlapping
+  /// pairs that changes only where leaves moved.
+  std::vector<BodyPair> candidates_;
+  std::vector<BodyPair> fresh_;
+  std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
+  std::vector<std::uint32_t> moved_list_;
+  std::size_t reinserts_since_relayout_ = 0;
+  bool forget_motion_ = false;
+  std::size_t last_reinserts_ = 0;
+  bool crowded_ = false;
+  std::vector<BodyPair> sorted_scratch_;
+  std::vector<std::uint32_t> counts_;
+  PairCollector collector_;
+};
+
+}  // namespace engine

@@ -1,0 +1,74 @@
+// The uniform grid: boxes binned into square cells sized from the boxes, each pair reported by
+// one cell; boxes too big for the cells tested on their own.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "body_pair.h"
+#include "broad_phase/pair_collector.h"
+#include "engine/math.h"
+
+namespace engine {
+
+/// A uniform grid, hashed: each box goes into every cell it touches, and a pair is reported only
+/// by the cell holding the lower corner of the two boxes' overlap, so a pair spanning several
+/// shared cells comes out once. The cell size follows the boxes (twice their median extent) and is
+/// chosen again only when the median drifts by more than a factor of two. Boxes that would touch
+/// many cells (floors, walls) stay out of the cells and are tested on their own. O(n + pairs) for
+/// similar-sized boxes. Pairs come out sorted by (a, b).
+class UniformGrid {
+ public:
+  void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
+                 std::span<const PairQuota> quotas = {});
+  const PairCollector& Collector() const { return collector_; }
+
+  /// m; 0 before the first call.
+  double CellSize() const { return cell_size_; }
+  /// Boxes the last call kept out of the cells because they touch too many.
+  std::size_t LargeCount() const { return large_.size(); }
+
+ private:
+  struct CellRange {
+    std::int32_t x0, y0, x1, y1;
+    std::int64_t Count() const { return (std::int64_t{x1} - x0 + 1) * (std::int64_t{y1} - y0 + 1); }
+  };
+  struct Entry {
+    AABB box;
+    std::int32_t x, y;  ///< the cell
+    std::uint32_t body;
+    std::uint8_t first;  ///< bit 0: the box's leftmost column of cells; bit 1: its bottom row
+  };
+  bool CellSizeFits(std::span<const AABB> boxes) const;
+  void ChooseCellSize(std::span<const AABB> boxes);
+  CellRange Cells(const AABB& box) const;
+  std::uint32_t Bucket(std::int32_t x, std::int32_t y) const;
+  /// Which cells each box touches, the large boxes set apart and the occupied cells' bounds;
+  /// returns how many (cell, box) entries the other boxes make.
+  std::int64_t FindCellRanges(std::span<const AABB> boxes);
+  /// Dense or hashed buckets for the entries; returns how many.
+  std::size_t ChooseBuckets(std::int64_t entry_count);
+  void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count);
+  void FindBinnedPairs(std::size_t bucket_count);
+  void FindLargePairs(std::span<const AABB> boxes);
+  void FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes);
+
+  double cell_size_ = 0.0;
+  double inv_cell_size_ = 0.0;
+  std::vector<CellRange> ranges_;       ///< per body
+  std::vector<std::uint32_t> large_;    ///< bodies tested on their own, in id order
+  std::vector<std::uint32_t> small_;    ///< bodies in the cells, in id order
+  // The occupied cells' bounds; when they hold few cells more than entries, buckets are the cells
+  // themselves (dense), otherwise a hash of the cell picks the bucket.
+  CellRange occupied_{};
+  bool dense_ = false;
+  std::uint32_t hash_shift_ = 0;
+  /// After FillBuckets, bucket b spans [bucket_start_[b - 1], bucket_start_[b]) (0 for b = 0).
+  std::vector<std::uint32_t> bucket_start_;
+  std::vector<Entry> entries_;
+  std::vector<double> extent_scratch_;
+  PairCollector collector_;
+};
+
+}  // namespace engine
