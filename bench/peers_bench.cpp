@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/peers/ballbox_engine.h"
 #include "bench/peers/engines.h"
@@ -22,6 +22,16 @@ struct Options {
   std::string scene_filter;
   std::string out_dir = "bench-out";
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_peers", "ballbox beside the peers built in on the same scenes: ms/step and figures from "
+                                  "body states, a table on stdout and CSV files.");
+  args.Flag("--quick", &options.quick, "smoke run: at most 10 steps a scene, one repeat")
+      .Value("--repeats R", &options.repeats, "timed runs per engine (default 5)", 1)
+      .Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT")
+      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)");
+  return args;
+}
 
 constexpr int kQuickSteps = 10;
 
@@ -130,11 +140,10 @@ void PrintTable(const std::vector<Row>& rows, bool sweep_rows, std::FILE* out) {
   }
 }
 
-bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/peers_bench.csv").c_str(), "w");
-  if (csv == nullptr) return false;
+bool WriteFigures(const std::vector<Row>& rows, const std::string& dir) {
+  const bench::File csv_file = bench::OpenInFolder(dir, "peers_bench.csv");
+  if (!csv_file) return false;
+  std::FILE* csv = csv_file.get();
   // Long form, one row per figure, like bench_solver's CSV, so one plot script reads both.
   std::fprintf(csv, "scene,engine,settings,steps,repeats,ms_per_step_median,ms_per_step_min,figure,value,unit,"
                     "headline,same_state\n");
@@ -147,11 +156,14 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
                    f.unit.c_str(), i == 0 ? 1 : 0, r.same_state ? 1 : 0);
     }
   }
-  std::fclose(csv);
+  return true;
+}
 
-  // Wide form for the ratio plot: one row per scene, one column per peer (time, then figure).
-  std::FILE* wide = std::fopen((dir + "/peers_ratios.csv").c_str(), "w");
-  if (wide == nullptr) return false;
+// Wide form for the ratio plot: one row per scene, one column per peer (time, then figure).
+bool WriteRatios(const std::vector<Row>& rows, const std::string& dir) {
+  const bench::File wide_file = bench::OpenInFolder(dir, "peers_ratios.csv");
+  if (!wide_file) return false;
+  std::FILE* wide = wide_file.get();
   std::vector<std::string> peer_names;
   for (const Row& r : rows) {
     if (!r.is_ballbox && std::find(peer_names.begin(), peer_names.end(), r.engine) == peer_names.end()) {
@@ -185,35 +197,18 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
     for (const std::string& f : figure) std::fprintf(wide, ",%s", f.c_str());
     std::fprintf(wide, ",%s\n", bench::Quoted(base->figures.front().name).c_str());
   }
-  std::fclose(wide);
   return true;
 }
 
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--scene" && has_value) {
-      options.scene_filter = argv[++i];
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_peers [--quick] [--repeats R] [--scene TEXT] [--out DIR]\n");
-      return false;
-    }
-  }
-  return true;
+bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
+  return WriteFigures(rows, dir) && WriteRatios(rows, dir);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
   const std::string load_before = bench::LoadAverage();
 
   std::vector<Row> rows;

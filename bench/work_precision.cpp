@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/work_precision_scenarios.h"
 #include "engine/world.h"
@@ -23,6 +23,16 @@ struct Options {
   std::string scenario_filter;
   std::string out_dir = "bench-out";
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_work_precision", "Run time per simulated second against error for every integrator on the "
+                                           "analytic scenarios S1-S7, tables on stdout and CSV files.");
+  args.Flag("--quick", &options.quick, "smoke run: a few steps of every run, one sample")
+      .Value("--repeats R", &options.repeats, "timed samples per run (default 7)", 1)
+      .Value("--scenario ID", &options.scenario_filter, "only this scenario, S1 to S7")
+      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)");
+  return args;
+}
 
 struct Row {
   const wp::Scenario* scenario = nullptr;
@@ -190,15 +200,11 @@ void PrintTables(const std::vector<Row>& rows, const std::vector<wp::Scenario>& 
 }
 
 bool WriteCsv(const std::vector<Row>& rows, const std::vector<wp::Scenario>& scenarios, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/work_precision.csv").c_str(), "w");
-  std::FILE* orders = std::fopen((dir + "/work_precision_orders.csv").c_str(), "w");
-  if (csv == nullptr || orders == nullptr) {
-    if (csv) std::fclose(csv);
-    if (orders) std::fclose(orders);
-    return false;
-  }
+  const bench::File csv_file = bench::OpenInFolder(dir, "work_precision.csv");
+  const bench::File orders_file = bench::OpenInFolder(dir, "work_precision_orders.csv");
+  if (!csv_file || !orders_file) return false;
+  std::FILE* csv = csv_file.get();
+  std::FILE* orders = orders_file.get();
   // accuracy.md §0 item 8's columns, as far as they apply (l∞ is the position error here).
   std::fprintf(csv, "scenario,integrator,h,rate,steps,evals_per_step,repeats,us_per_sim_s_median,us_per_sim_s_min,"
                     "err_linf_position,max_rel_dE,dE_slope,unstable,reason,blew_up,first_unstable\n");
@@ -228,28 +234,6 @@ bool WriteCsv(const std::vector<Row>& rows, const std::vector<wp::Scenario>& sce
                    energy.note.c_str());
     }
   }
-  std::fclose(csv);
-  std::fclose(orders);
-  return true;
-}
-
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--scenario" && has_value) {
-      options.scenario_filter = argv[++i];
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_work_precision [--quick] [--repeats R] [--scenario S1..S7] [--out DIR]\n");
-      return false;
-    }
-  }
   return true;
 }
 
@@ -257,7 +241,7 @@ bool ParseArgs(int argc, char** argv, Options& options) {
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
   const std::string load_before = bench::LoadAverage();
   std::vector<wp::Scenario> scenarios;
   for (wp::Scenario& s : wp::Scenarios()) {
