@@ -206,4 +206,22 @@ class Args {
   std::vector<Option> positionals_;
 };
 
+/// The options of every program that prints tables and writes CSV files: a smoke run, the
+/// number of timed repeats and the CSV folder. A program's Options derive from it.
+struct RunOptions {
+  explicit RunOptions(int default_repeats) : repeats(default_repeats) {}
+
+  /// Declares --quick, --repeats R (at least 1) and --out DIR; the help lines say what a smoke run
+  /// leaves out and what one repeat is.
+  void AddTo(Args& args, const std::string& quick_help, const std::string& repeats_help) {
+    args.Flag("--quick", &quick, "smoke run: " + quick_help)
+        .Value("--repeats R", &repeats, repeats_help + " (default " + std::to_string(repeats) + ")", 1)
+        .Value("--out DIR", &out_dir, "folder for the CSV files (default " + out_dir + ")");
+  }
+
+  bool quick = false;
+  int repeats;
+  std::string out_dir = "bench-out";
+};
+
 }  // namespace bench

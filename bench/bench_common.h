@@ -131,6 +131,19 @@ inline double ThreadSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+/// A program's last line, where its CSV files went (each "name.csv (what it holds)"); when they
+/// could not be written, the error instead and exit code 1 in place of `status`.
+inline int ReportCsv(bool written, const std::string& dir, const std::vector<std::string>& files, int status) {
+  if (!written) {
+    std::fprintf(stderr, "error: cannot write CSV to %s\n", dir.c_str());
+    return 1;
+  }
+  std::string list;
+  for (const std::string& file : files) list += (list.empty() ? "" : ", ") + dir + "/" + file;
+  std::printf("\nCSV: %s\n", list.c_str());
+  return status;
+}
+
 struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
 };

@@ -512,12 +512,9 @@ int main(int argc, char** argv) {
     }
   }
 
-  if (!WriteCsv(results, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/broadphase_bench.csv (medians), %s/broadphase_bench_runs.csv (every timed run), "
-              "%s/broadphase_slopes.csv\n", options.out_dir.c_str(), options.out_dir.c_str(),
-              options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(results, options.out_dir), options.out_dir,
+                          {"broadphase_bench.csv (medians)",
+                           "broadphase_bench_runs.csv (every timed run)",
+                           "broadphase_slopes.csv"},
+                          status);
 }

@@ -16,20 +16,16 @@
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 5;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(5) {}
   std::string scene_filter;
-  std::string out_dir = "bench-out";
 };
 
 bench::Args Arguments(Options& options) {
   bench::Args args("bench_peers", "ballbox beside the peers built in on the same scenes: ms/step and figures from "
                                   "body states, a table on stdout and CSV files.");
-  args.Flag("--quick", &options.quick, "smoke run: at most 10 steps a scene, one repeat")
-      .Value("--repeats R", &options.repeats, "timed runs per engine (default 5)", 1)
-      .Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT")
-      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)");
+  options.AddTo(args, "at most 10 steps a scene, one repeat", "timed runs per engine");
+  args.Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT");
   return args;
 }
 
@@ -245,11 +241,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s, %s: a timed run ended in a different state\n", r.scene.c_str(), r.engine.c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/peers_bench.csv (one row per figure), %s/peers_ratios.csv (each peer ÷ ballbox)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"peers_bench.csv (one row per figure)", "peers_ratios.csv (each peer ÷ ballbox)"}, status);
 }

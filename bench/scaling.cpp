@@ -15,9 +15,8 @@
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 3;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(3) {}
   int warmup = 30;  // untimed steps: the block of bodies has collapsed into a pile by then
   int steps = 30;   // timed steps
   std::vector<int> counts = {1000, 2000, 4000, 8000, 16000, 32000, 64000};
@@ -25,18 +24,15 @@ struct Options {
   /// takes seconds a step: repeats would add minutes and no information)
   double slow_ms = 200;
   std::string engine_filter;
-  std::string out_dir = "bench-out";
   int max_bodies = INT_MAX;  // sizes above it are left out
 };
 
 bench::Args Arguments(Options& options) {
   bench::Args args("bench_scaling", "Whole-world ms/step against body count (circle pour, box pile) for ballbox and "
                                     "the peers built in, a table on stdout and CSV files.");
-  args.Flag("--quick", &options.quick, "smoke run: 1000 and 2000 bodies, a few steps, one repeat")
-      .Value("--repeats R", &options.repeats, "timed runs per size and engine (default 3)", 1)
-      .Value("--max-bodies N", &options.max_bodies, "leave out the sizes above N (default: none; sizes 1000-64000)")
-      .Value("--engine TEXT", &options.engine_filter, "only the engines whose name contains TEXT")
-      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)");
+  options.AddTo(args, "1000 and 2000 bodies, a few steps, one repeat", "timed runs per size and engine");
+  args.Value("--max-bodies N", &options.max_bodies, "leave out the sizes above N (default: none; sizes 1000-64000)")
+      .Value("--engine TEXT", &options.engine_filter, "only the engines whose name contains TEXT");
   return args;
 }
 
@@ -185,11 +181,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s %d: a timed ballbox run ended in a different state\n", r.scene.c_str(), r.count);
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/scaling.csv (every size and engine), %s/scaling_slopes.csv (fitted slopes)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"scaling.csv (every size and engine)", "scaling_slopes.csv (fitted slopes)"}, status);
 }

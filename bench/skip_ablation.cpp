@@ -16,18 +16,14 @@
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 9;
-  std::string out_dir = "bench-out";
+struct Options : bench::RunOptions {
+  Options() : RunOptions(9) {}
 };
 
 bench::Args Arguments(Options& options) {
   bench::Args args("bench_skip", "Every skippable feature present but with nothing to do, against absent: state "
                                  "hashes and cost, a table on stdout and a CSV file.");
-  args.Flag("--quick", &options.quick, "smoke run: 5 steps, one run per side, no timing verdict")
-      .Value("--repeats R", &options.repeats, "timed runs per side (default 9)", 1)
-      .Value("--out DIR", &options.out_dir, "folder for the CSV file (default bench-out)");
+  options.AddTo(args, "5 steps, one run per side, no timing verdict", "timed runs per side");
   return args;
 }
 
@@ -144,10 +140,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s: a timed run ended in a different state\n", r.ablation->feature.c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/skip_ablation.csv\n", options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"skip_ablation.csv"}, status);
 }

@@ -18,23 +18,20 @@ using bench::Median;
 using bench::Number;
 using bench::Progress;
 
-struct Options {
-  bool quick = false;
-  int repeats = 5;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(5) {}
   int steps = 0;                                      // 0: each scene's own
   std::string scene_filter;                           // run only scenes whose name contains this
   std::optional<engine::ContactSolver> solver_filter;  // empty: both
   int substeps_filter = 0;                            // 0: every substep count
-  std::string out_dir = "bench-out";
   bool rotation = false;                              // the scenes with turning bodies
 };
 
 bench::Args Arguments(Options& options) {
   bench::Args args("bench_solver", "Contact solvers side by side on the stress scenes: ms/step and stability "
                                    "figures, a table on stdout and CSV files.");
-  args.Flag("--quick", &options.quick, "smoke run: at most 10 steps a scene, one repeat, no verdicts")
-      .Value("--repeats R", &options.repeats, "timed runs per setting (default 5)", 1)
-      .Value("--steps N", &options.steps, "steps per run (default: each scene's own)", 2)
+  options.AddTo(args, "at most 10 steps a scene, one repeat, no verdicts", "timed runs per setting");
+  args.Value("--steps N", &options.steps, "steps per run (default: each scene's own)", 2)
       .Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT")
       .Choice("--solver NAME", &options.solver_filter,
               {{"sequential_impulse", engine::ContactSolver::kSequentialImpulse},
@@ -42,7 +39,6 @@ bench::Args Arguments(Options& options) {
                {"substep", engine::ContactSolver::kSubstep}},
               "only this solver; seed is the sequential-impulse solver's old name")
       .Value("--substeps N", &options.substeps_filter, "only this substep count (default 0: every one)", 0)
-      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)")
       .Flag("--rotation", &options.rotation, "the scenes with turning bodies");
   return args;
 }
@@ -218,11 +214,6 @@ int main(int argc, char** argv) {
                  SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str());
     status = 1;
   }
-  if (!WriteCsv(results, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("CSV: %s/solver_bench.csv (one row per figure), %s/solver_bench_runs.csv (every timed run)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(results, options.out_dir), options.out_dir,
+                          {"solver_bench.csv (one row per figure)", "solver_bench_runs.csv (every timed run)"}, status);
 }

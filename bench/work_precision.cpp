@@ -16,21 +16,17 @@ namespace {
 
 namespace wp = work_precision;
 
-struct Options {
-  bool quick = false;
-  int repeats = 7;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(7) {}
   double min_sample_seconds = 0.02;  // a timed sample repeats the run until it lasts this long
   std::string scenario_filter;
-  std::string out_dir = "bench-out";
 };
 
 bench::Args Arguments(Options& options) {
   bench::Args args("bench_work_precision", "Run time per simulated second against error for every integrator on the "
                                            "analytic scenarios S1-S7, tables on stdout and CSV files.");
-  args.Flag("--quick", &options.quick, "smoke run: a few steps of every run, one sample")
-      .Value("--repeats R", &options.repeats, "timed samples per run (default 7)", 1)
-      .Value("--scenario ID", &options.scenario_filter, "only this scenario, S1 to S7")
-      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)");
+  options.AddTo(args, "a few steps of every run, one sample", "timed samples per run");
+  args.Value("--scenario ID", &options.scenario_filter, "only this scenario, S1 to S7");
   return args;
 }
 
@@ -279,11 +275,6 @@ int main(int argc, char** argv) {
                  r.method->name, Rate(r.rate).c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, scenarios, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/work_precision.csv (every run), %s/work_precision_orders.csv (fitted orders)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, scenarios, options.out_dir), options.out_dir,
+                          {"work_precision.csv (every run)", "work_precision_orders.csv (fitted orders)"}, status);
 }
