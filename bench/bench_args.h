@@ -64,11 +64,12 @@ class Args {
   template <class T>
   Args& Value(const std::string& spec, T* target, std::string help, std::type_identity_t<T> at_least) {
     static_assert(std::is_integral_v<T>, "Args: only whole numbers have a least value");
-    return Add(spec, true, Note(std::move(help), "at least " + std::to_string(at_least)), [target, at_least](const std::string& text) {
+    const Setter set = [target, at_least](const std::string& text) {
       std::string error = ParseValue(text, target);
       if (error.empty()) *target = std::max(*target, at_least);
       return error;
-    });
+    };
+    return Add(spec, true, Note(std::move(help), "at least " + std::to_string(at_least)), set);
   }
 
   /// One of a list of words, each naming a value; several words may name one (an old name kept).

@@ -416,7 +416,9 @@ std::string ParseSizes(const std::string& text, std::vector<std::size_t>* sizes)
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
     std::size_t value = 0;
-    if (!bench::ParseValue(item, &value).empty() || value < 2) return "\"" + item + "\" is not a body count of 2 or more";
+    if (!bench::ParseValue(item, &value).empty() || value < 2) {
+      return "\"" + item + "\" is not a body count of 2 or more";
+    }
     parsed.push_back(value);
   }
   if (parsed.empty()) return "no sizes in \"" + text + "\"";

@@ -115,7 +115,9 @@ int main(int argc, char** argv) {
   std::erase_if(options.counts, [&options](int n) { return n > options.max_bodies; });
   // --quick overrides the sizes, --max-bodies included.
   if (options.quick) options.counts = {1000, 2000}, options.repeats = 1, options.warmup = 2, options.steps = 3;
-  if (options.counts.empty()) return args.Error("--max-bodies " + std::to_string(options.max_bodies) + " leaves no size");
+  if (options.counts.empty()) {
+    return args.Error("--max-bodies " + std::to_string(options.max_bodies) + " leaves no size");
+  }
   const std::string load_before = bench::LoadAverage();
   std::vector<peers::EngineEntry> engines;
   for (const peers::EngineEntry& e : peers::Engines()) {

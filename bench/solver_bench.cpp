@@ -203,7 +203,8 @@ int main(int argc, char** argv) {
   substep_def.rotation = options.rotation;
   const engine::World substep_world(substep_def);
   std::printf("\nsequential_impulse (formerly seed): %d passes of impulses and a projection per step; substep: the "
-              "default solver, %d pass%s per substep, %d substeps by default\n", impulse_world.Def().velocity_iterations,
+              "default solver, %d pass%s per substep, %d substeps by default\n",
+              impulse_world.Def().velocity_iterations,
               substep_world.Def().velocity_iterations, substep_world.Def().velocity_iterations == 1 ? "" : "es",
               substep_world.Def().substeps);
 
