@@ -108,7 +108,7 @@ class Args {
       if (arg == "--help" || arg == "-h") return std::printf("%s", Help().c_str()), 0;
       if (arg.size() > 1 && arg[0] == '-') {
         const Option* option = Find(arg);
-        if (option == nullptr) return Error("unknown option " + arg + Suggestion(arg));
+        if (option == nullptr) return Error("unknown option " + arg);
         if (option->value.empty()) {
           option->set("");
           continue;
@@ -173,32 +173,6 @@ class Args {
       if (o.name == name) return &o;
     }
     return nullptr;
-  }
-
-  // The closest option within two edits, so a typo gets its correction in the error line.
-  std::string Suggestion(const std::string& name) const {
-    const Option* best = nullptr;
-    std::size_t best_distance = 3;
-    for (const Option& o : options_) {
-      const std::size_t d = EditDistance(name, o.name);
-      if (d < best_distance) best = &o, best_distance = d;
-    }
-    return best ? "; did you mean " + best->name + "?" : "";
-  }
-
-  static std::size_t EditDistance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      std::size_t diagonal = row[0];
-      row[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t above = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        diagonal = above;
-      }
-    }
-    return row[b.size()];
   }
 
   std::string program_;

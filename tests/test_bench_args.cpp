@@ -79,7 +79,7 @@ TEST_CASE("bench arguments: the sequential-impulse solver by its name and by its
 
 TEST_CASE("bench arguments: bad input ends the program with exit code 2", "[bench]") {
   const std::vector<std::vector<std::string>> bad = {
-      {"--repeat", "3"},       // unknown option (one edit from --repeats)
+      {"--repeat", "3"},       // unknown option
       {"--repeats"},           // missing value
       {"--repeats", "3x"},     // a number followed by more text
       {"--repeats", ""},       // an empty value
