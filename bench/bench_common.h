@@ -1,14 +1,17 @@
 // What every benchmark program of issue 8 shares: the machine and build it states, medians,
-// fitted log-log slopes, timing by repeats, terminal-only progress and CSV quoting.
+// fitted log-log slopes, timing by repeats, terminal-only progress and CSV files.
 #pragma once
 
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <utility>
@@ -118,6 +121,39 @@ inline void Progress(const std::string& text) {
 
 inline double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU time of the calling thread: on a shared machine it leaves out the time other processes
+// held the core, which wall time cannot.
+inline double ThreadSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// A program's last line, where its CSV files went (each "name.csv (what it holds)"); when they
+/// could not be written, the error instead and exit code 1 in place of `status`.
+inline int ReportCsv(bool written, const std::string& dir, const std::vector<std::string>& files, int status) {
+  if (!written) {
+    std::fprintf(stderr, "error: cannot write CSV to %s\n", dir.c_str());
+    return 1;
+  }
+  std::string list;
+  for (const std::string& file : files) list += (list.empty() ? "" : ", ") + dir + "/" + file;
+  std::printf("\nCSV: %s\n", list.c_str());
+  return status;
+}
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+/// `dir`/`name` open for writing, the folder made first; null when it cannot be opened.
+inline File OpenInFolder(const std::string& dir, const std::string& name) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  return File(std::fopen((dir + "/" + name).c_str(), "w"));
 }
 
 }  // namespace bench

@@ -1,42 +1,28 @@
 // Broad-phase milliseconds per step for each choice as the body count grows (1k to 64k), on an
 // even rain and a clumped pile, with the fitted log-log slope; then whole-world steps per choice.
-#include <time.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/stress_scenes.h"
 #include "broad_phase/broad_phase.h"
 #include "engine/world.h"
 
-#ifndef BALLBOX_BUILD_TYPE
-#define BALLBOX_BUILD_TYPE "unknown"
-#endif
-
 namespace {
 
+using bench::Clock;
 using bench::Median;
-using bench::CpuModel;
-using bench::LoadAverage;
-using bench::Compiler;
 using bench::Progress;
-
-using Clock = std::chrono::steady_clock;
 using engine::AABB;
 using engine::BodyPair;
 using engine::Vec2;
@@ -234,12 +220,6 @@ struct Result {
   std::uint64_t checksum = 14695981039346656037ull;  // FNV-1a over every step's pairs
 };
 
-double ThreadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 void Mix(std::uint64_t* hash, std::uint64_t value) {
   for (int k = 0; k < 8; ++k) {
     *hash ^= (value >> (8 * k)) & 0xff;
@@ -270,11 +250,11 @@ std::vector<Result> Measure(const std::string& scene_name, std::size_t n, const 
   }
   auto step = [](Run& run, double* cpu_seconds) {
     run.scene->Step();
-    const double cpu_start = ThreadSeconds();
+    const double cpu_start = bench::ThreadSeconds();
     const Clock::time_point start = Clock::now();
     run.find(run.scene->Boxes(), &run.pairs);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    *cpu_seconds += ThreadSeconds() - cpu_start;
+    const double seconds = bench::SecondsSince(start);
+    *cpu_seconds += bench::ThreadSeconds() - cpu_start;
     Mix(&run.result.checksum, run.pairs.size());
     for (const BodyPair& p : run.pairs) Mix(&run.result.checksum, (std::uint64_t{p.a} << 32) | p.b);
     run.pair_total += run.pairs.size();
@@ -304,20 +284,8 @@ std::vector<Result> Measure(const std::string& scene_name, std::size_t n, const 
   return results;
 }
 
-// Least-squares slope of log(ms) against log(n): the exponent k in time ∝ n^k.
-double FittedSlope(const std::vector<std::pair<double, double>>& points) {
-  if (points.size() < 2) return std::nan("");
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (auto [n, ms] : points) {
-    const double x = std::log(n), y = std::log(ms);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  const double k = static_cast<double>(points.size());
-  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
-}
+// The exponent k in time ∝ n^k.
+double FittedSlope(const std::vector<std::pair<double, double>>& points) { return bench::LogLogSlope(points); }
 
 std::vector<std::pair<double, double>> Points(const std::vector<Result>& results, const std::string& scene,
                                               const std::string& choice) {
@@ -328,12 +296,8 @@ std::vector<std::pair<double, double>> Points(const std::vector<Result>& results
   return points;
 }
 
-std::string Number(double value) {
-  if (std::isnan(value)) return "n/a";
-  char text[32];
-  std::snprintf(text, sizeof text, value >= 100 ? "%.0f" : "%.3g", value);
-  return text;
-}
+// Whole numbers from 100 up, so the wide tables keep narrow columns.
+std::string Number(double value) { return bench::Number(value, value >= 100 ? "%.0f" : "%.3g"); }
 
 void PrintTable(const std::vector<Result>& results, const Options& options) {
   std::printf("| scene | broad phase |");
@@ -366,17 +330,13 @@ void PrintTable(const std::vector<Result>& results, const Options& options) {
 }
 
 bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/broadphase_bench.csv").c_str(), "w");
-  std::FILE* runs = std::fopen((dir + "/broadphase_bench_runs.csv").c_str(), "w");
-  std::FILE* slopes = std::fopen((dir + "/broadphase_slopes.csv").c_str(), "w");
-  if (csv == nullptr || runs == nullptr || slopes == nullptr) {
-    for (std::FILE* f : {csv, runs, slopes}) {
-      if (f) std::fclose(f);
-    }
-    return false;
-  }
+  const bench::File csv_file = bench::OpenInFolder(dir, "broadphase_bench.csv");
+  const bench::File runs_file = bench::OpenInFolder(dir, "broadphase_bench_runs.csv");
+  const bench::File slopes_file = bench::OpenInFolder(dir, "broadphase_slopes.csv");
+  if (!csv_file || !runs_file || !slopes_file) return false;
+  std::FILE* csv = csv_file.get();
+  std::FILE* runs = runs_file.get();
+  std::FILE* slopes = slopes_file.get();
   std::fprintf(csv, "scene,broad_phase,n,ms_per_step_median,ms_per_step_min,ms_per_step_max,cpu_ms_per_step_median,"
                     "pairs_per_step,repeats\n");
   std::fprintf(runs, "scene,broad_phase,n,repeat,ms_per_step,cpu_ms_per_step\n");
@@ -397,7 +357,6 @@ bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
       if (!std::isnan(slope)) std::fprintf(slopes, "%s,%s,%.4f\n", scene, choice.name, slope);
     }
   }
-  for (std::FILE* f : {csv, runs, slopes}) std::fclose(f);
   return true;
 }
 
@@ -436,7 +395,7 @@ std::vector<WorldResult> MeasureWorld(const Options& options) {
         auto timed = [&world](int steps) {
           const Clock::time_point start = Clock::now();
           for (int s = 0; s < steps; ++s) world.Step();
-          return 1000.0 * std::chrono::duration<double>(Clock::now() - start).count() / steps;
+          return 1000.0 * bench::SecondsSince(start) / steps;
         };
         for (int s = 0; s < kPouringStart; ++s) world.Step();
         pouring.push_back(timed(window));
@@ -451,57 +410,47 @@ std::vector<WorldResult> MeasureWorld(const Options& options) {
   return results;
 }
 
-bool ParseSizes(const std::string& text, std::vector<std::size_t>* sizes) {
-  sizes->clear();
+// "1000,4000": body counts of at least 2; an error, or "" when every item is one.
+std::string ParseSizes(const std::string& text, std::vector<std::size_t>* sizes) {
+  std::vector<std::size_t> parsed;
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    const long value = std::atol(item.c_str());
-    if (value < 2) return false;
-    sizes->push_back(static_cast<std::size_t>(value));
+    std::size_t value = 0;
+    if (!bench::ParseValue(item, &value).empty() || value < 2) {
+      return "\"" + item + "\" is not a body count of 2 or more";
+    }
+    parsed.push_back(value);
   }
-  return !sizes->empty();
+  if (parsed.empty()) return "no sizes in \"" + text + "\"";
+  *sizes = parsed;
+  return "";
 }
 
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-      options.repeats = 1;
-      options.steps = 2;
-      options.warmup = 1;
-      options.sizes = {1000, 4000};
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--steps" && has_value) {
-      options.steps = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--warmup" && has_value) {
-      options.warmup = std::max(0, std::atoi(argv[++i]));
-    } else if (arg == "--sizes" && has_value && ParseSizes(argv[i + 1], &options.sizes)) {
-      ++i;
-    } else if (arg == "--all-pairs-max" && has_value) {
-      options.all_pairs_max = static_cast<std::size_t>(std::max(0L, std::atol(argv[++i])));
-    } else if (arg == "--no-world") {
-      options.world = false;
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_broadphase [--quick] [--repeats R] [--steps S] [--warmup W] [--out DIR]\n"
-                   "                        [--sizes N,N,...] [--all-pairs-max N] [--no-world]\n");
-      return false;
-    }
-  }
-  return true;
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_broadphase", "FindPairs time per step for each broad phase as the body count grows (rain, "
+                                       "pile), then whole-world steps per choice; a table on stdout and CSV files.");
+  // --quick sets its values where it stands on the line, so an option after it still changes them.
+  args.Flag("--quick", [&options] {
+        options.quick = true, options.repeats = 1, options.steps = 2, options.warmup = 1;
+        options.sizes = {1000, 4000};
+      }, "smoke run: sizes 1000 and 4000, 1 warm-up and 2 timed steps, one repeat")
+      .Value("--repeats R", &options.repeats, "timed repeats per size and choice (default 5)", 1)
+      .Value("--steps S", &options.steps, "timed steps per repeat (default 20)", 1)
+      .Value("--warmup W", &options.warmup, "steps before timing (default 10)", 0)
+      .Value("--out DIR", &options.out_dir, "folder for the CSV files (default bench-out)")
+      .Custom("--sizes N,N,...", [&options](const std::string& text) { return ParseSizes(text, &options.sizes); },
+              "body counts (default 1000,4000,16000,64000)")
+      .Value("--all-pairs-max N", &options.all_pairs_max, "time all_pairs only up to N bodies (default 16000)")
+      .Flag("--no-world", [&options] { options.world = false; }, "leave out the whole-world steps");
+  return args;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
-  const std::string load_before = LoadAverage();
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
+  const std::string load_before = bench::LoadAverage();
 
   std::vector<Result> results;
   for (const char* scene : {"rain", "pile"}) {
@@ -519,10 +468,8 @@ int main(int argc, char** argv) {
   std::printf("timing: one thread; %d warm-up steps, then the median over %d repeats of the mean over %d "
               "steps (only the FindPairs call is timed); all_pairs only up to n = %zu\n",
               options.warmup, options.repeats, options.steps, options.all_pairs_max);
-  std::printf("machine: %s, %u cores; compiler: %s; build: %s\n", CpuModel().c_str(),
-              std::thread::hardware_concurrency(), Compiler().c_str(), BALLBOX_BUILD_TYPE);
-  std::printf("load average (1, 5, 15 min) at start: %s, at end: %s\n\n", load_before.c_str(),
-              LoadAverage().c_str());
+  bench::PrintMachine(load_before);
+  std::printf("\n");
   std::printf("ms per step (median):\n\n");
   PrintTable(results, options);
 
@@ -567,12 +514,9 @@ int main(int argc, char** argv) {
     }
   }
 
-  if (!WriteCsv(results, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/broadphase_bench.csv (medians), %s/broadphase_bench_runs.csv (every timed run), "
-              "%s/broadphase_slopes.csv\n", options.out_dir.c_str(), options.out_dir.c_str(),
-              options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(results, options.out_dir), options.out_dir,
+                          {"broadphase_bench.csv (medians)",
+                           "broadphase_bench_runs.csv (every timed run)",
+                           "broadphase_slopes.csv"},
+                          status);
 }

@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/peers/ballbox_engine.h"
 #include "bench/peers/engines.h"
@@ -16,12 +16,18 @@
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 5;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(5) {}
   std::string scene_filter;
-  std::string out_dir = "bench-out";
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_peers", "ballbox beside the peers built in on the same scenes: ms/step and figures from "
+                                  "body states, a table on stdout and CSV files.");
+  options.AddTo(args, "at most 10 steps a scene, one repeat", "timed runs per engine");
+  args.Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT");
+  return args;
+}
 
 constexpr int kQuickSteps = 10;
 
@@ -130,11 +136,10 @@ void PrintTable(const std::vector<Row>& rows, bool sweep_rows, std::FILE* out) {
   }
 }
 
-bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/peers_bench.csv").c_str(), "w");
-  if (csv == nullptr) return false;
+bool WriteFigures(const std::vector<Row>& rows, const std::string& dir) {
+  const bench::File csv_file = bench::OpenInFolder(dir, "peers_bench.csv");
+  if (!csv_file) return false;
+  std::FILE* csv = csv_file.get();
   // Long form, one row per figure, like bench_solver's CSV, so one plot script reads both.
   std::fprintf(csv, "scene,engine,settings,steps,repeats,ms_per_step_median,ms_per_step_min,figure,value,unit,"
                     "headline,same_state\n");
@@ -147,11 +152,14 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
                    f.unit.c_str(), i == 0 ? 1 : 0, r.same_state ? 1 : 0);
     }
   }
-  std::fclose(csv);
+  return true;
+}
 
-  // Wide form for the ratio plot: one row per scene, one column per peer (time, then figure).
-  std::FILE* wide = std::fopen((dir + "/peers_ratios.csv").c_str(), "w");
-  if (wide == nullptr) return false;
+// Wide form for the ratio plot: one row per scene, one column per peer (time, then figure).
+bool WriteRatios(const std::vector<Row>& rows, const std::string& dir) {
+  const bench::File wide_file = bench::OpenInFolder(dir, "peers_ratios.csv");
+  if (!wide_file) return false;
+  std::FILE* wide = wide_file.get();
   std::vector<std::string> peer_names;
   for (const Row& r : rows) {
     if (!r.is_ballbox && std::find(peer_names.begin(), peer_names.end(), r.engine) == peer_names.end()) {
@@ -185,35 +193,18 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
     for (const std::string& f : figure) std::fprintf(wide, ",%s", f.c_str());
     std::fprintf(wide, ",%s\n", bench::Quoted(base->figures.front().name).c_str());
   }
-  std::fclose(wide);
   return true;
 }
 
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--scene" && has_value) {
-      options.scene_filter = argv[++i];
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_peers [--quick] [--repeats R] [--scene TEXT] [--out DIR]\n");
-      return false;
-    }
-  }
-  return true;
+bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
+  return WriteFigures(rows, dir) && WriteRatios(rows, dir);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
   const std::string load_before = bench::LoadAverage();
 
   std::vector<Row> rows;
@@ -250,11 +241,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s, %s: a timed run ended in a different state\n", r.scene.c_str(), r.engine.c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/peers_bench.csv (one row per figure), %s/peers_ratios.csv (each peer ÷ ballbox)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"peers_bench.csv (one row per figure)", "peers_ratios.csv (each peer ÷ ballbox)"}, status);
 }

@@ -1,16 +1,17 @@
 // Frames per second of `ballbox render` (default scene, 800x600, 300 frames) with the fast PNG
 // settings against stb's defaults, measured in one run, and the cost of each stage of a frame.
 #include <algorithm>
-#include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "game/commands.h"
 #include "game/frame_sequence.h"
@@ -25,7 +26,8 @@ using bench::Median;
 using bench::CpuModel;
 using bench::LoadAverage;
 
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::SecondsSince;
 
 struct Settings {
   std::int64_t frames = 300;
@@ -36,8 +38,14 @@ struct Settings {
   std::string out_dir = "bench-out/render";
 };
 
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
+bench::Args Arguments(Settings& settings) {
+  bench::Args args("bench_render", "`ballbox render` of the default scene with the fast PNG settings against stb's "
+                                   "defaults, and the cost of each stage of a frame.");
+  args.Value("--frames N", &settings.frames, "frames per run (default 300)", std::int64_t{1})
+      .Value("--repeats R", &settings.repeats, "runs per PNG setting (default 3)", 1)
+      .Value("--threads T", &settings.threads, "PNG encoder threads; 0: one per core, as ballbox render (default 0)", 0)
+      .Value("--out DIR", &settings.out_dir, "folder for the frames and the CSV file (default bench-out/render)");
+  return args;
 }
 
 std::uintmax_t FolderBytes(const std::string& dir) {
@@ -107,18 +115,18 @@ StageCosts MeasureStages(const Settings& settings) {
   for (std::int64_t frame = 0; frame < settings.frames; ++frame) {
     auto start = Clock::now();
     if (frame > 0) session.Step();
-    simulate += Seconds(start);
+    simulate += SecondsSince(start);
     start = Clock::now();
     renderer->Draw(session.World(), colors, session.Camera());
     renderer->ReadImage(images[frame]);
-    draw_read += Seconds(start);
+    draw_read += SecondsSince(start);
   }
   auto start = Clock::now();
   for (const render::Image& image : images) render::EncodePng(image, render::PngEncoding::kFast);
-  const double fast = Seconds(start);
+  const double fast = SecondsSince(start);
   start = Clock::now();
   for (const render::Image& image : images) render::EncodePng(image, render::PngEncoding::kStbDefault);
-  const double stb = Seconds(start);
+  const double stb = SecondsSince(start);
 
   const double per_frame_ms = 1000.0 / settings.frames;
   costs.simulate_ms = simulate * per_frame_ms;
@@ -128,32 +136,11 @@ StageCosts MeasureStages(const Settings& settings) {
   return costs;
 }
 
-bool ParseArgs(int argc, char** argv, Settings& settings) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--frames" && has_value) {
-      settings.frames = std::max(1LL, std::atoll(argv[++i]));
-    } else if (arg == "--repeats" && has_value) {
-      settings.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--threads" && has_value) {
-      settings.threads = std::max(0, std::atoi(argv[++i]));
-    } else if (arg == "--out" && has_value) {
-      settings.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_render [--frames N] [--repeats R] [--threads T] [--out DIR]\n");
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings settings;
-  if (!ParseArgs(argc, argv, settings)) return 2;
+  if (const std::optional<int> exit_code = Arguments(settings).Parse(argc, argv)) return *exit_code;
   const unsigned cores = std::thread::hardware_concurrency();
   const std::string load_before = LoadAverage();
   const int threads = settings.threads > 0 ? settings.threads : static_cast<int>(std::max(1u, cores));

@@ -1,22 +1,22 @@
 // Scaling: whole-world ms/step against body count (1k to 64k) for a circle pour and a box pile,
 // ballbox and every peer built in, with the fitted log-log slope per engine.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/peers/engines.h"
 #include "bench/peers/scenes.h"
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 3;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(3) {}
   int warmup = 30;  // untimed steps: the block of bodies has collapsed into a pile by then
   int steps = 30;   // timed steps
   std::vector<int> counts = {1000, 2000, 4000, 8000, 16000, 32000, 64000};
@@ -24,8 +24,17 @@ struct Options {
   /// takes seconds a step: repeats would add minutes and no information)
   double slow_ms = 200;
   std::string engine_filter;
-  std::string out_dir = "bench-out";
+  int max_bodies = INT_MAX;  // sizes above it are left out
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_scaling", "Whole-world ms/step against body count (circle pour, box pile) for ballbox and "
+                                    "the peers built in, a table on stdout and CSV files.");
+  options.AddTo(args, "1000 and 2000 bodies, a few steps, one repeat", "timed runs per size and engine");
+  args.Value("--max-bodies N", &options.max_bodies, "leave out the sizes above N (default: none; sizes 1000-64000)")
+      .Value("--engine TEXT", &options.engine_filter, "only the engines whose name contains TEXT");
+  return args;
+}
 
 struct Row {
   std::string scene;  // "circle pour" or "box pile"
@@ -76,15 +85,11 @@ void PrintTable(const std::vector<Row>& rows, const std::vector<std::string>& en
 }
 
 bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/scaling.csv").c_str(), "w");
-  std::FILE* slopes = std::fopen((dir + "/scaling_slopes.csv").c_str(), "w");
-  if (csv == nullptr || slopes == nullptr) {
-    if (csv) std::fclose(csv);
-    if (slopes) std::fclose(slopes);
-    return false;
-  }
+  const bench::File csv_file = bench::OpenInFolder(dir, "scaling.csv");
+  const bench::File slopes_file = bench::OpenInFolder(dir, "scaling_slopes.csv");
+  if (!csv_file || !slopes_file) return false;
+  std::FILE* csv = csv_file.get();
+  std::FILE* slopes = slopes_file.get();
   std::fprintf(csv, "scene,bodies,engine,settings,repeats,ms_per_step_median,ms_per_step_min,same_state,finite\n");
   std::vector<std::pair<std::string, std::string>> series;
   for (const Row& r : rows) {
@@ -98,40 +103,21 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
     std::fprintf(slopes, "%s,%s,%.4g\n", bench::Quoted(scene).c_str(), bench::Quoted(engine).c_str(),
                  bench::LogLogSlope(Points(rows, scene, engine)));
   }
-  std::fclose(csv);
-  std::fclose(slopes);
   return true;
-}
-
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--max-bodies" && has_value) {
-      const int most = std::atoi(argv[++i]);
-      std::erase_if(options.counts, [most](int n) { return n > most; });
-    } else if (arg == "--engine" && has_value) {
-      options.engine_filter = argv[++i];
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_scaling [--quick] [--repeats R] [--max-bodies N] [--engine TEXT] [--out DIR]\n");
-      return false;
-    }
-  }
-  if (options.quick) options.counts = {1000, 2000}, options.repeats = 1, options.warmup = 2, options.steps = 3;
-  return !options.counts.empty();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  const bench::Args args = Arguments(options);
+  if (const std::optional<int> exit_code = args.Parse(argc, argv)) return *exit_code;
+  std::erase_if(options.counts, [&options](int n) { return n > options.max_bodies; });
+  // --quick overrides the sizes, --max-bodies included.
+  if (options.quick) options.counts = {1000, 2000}, options.repeats = 1, options.warmup = 2, options.steps = 3;
+  if (options.counts.empty()) {
+    return args.Error("--max-bodies " + std::to_string(options.max_bodies) + " leaves no size");
+  }
   const std::string load_before = bench::LoadAverage();
   std::vector<peers::EngineEntry> engines;
   for (const peers::EngineEntry& e : peers::Engines()) {
@@ -197,11 +183,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s %d: a timed ballbox run ended in a different state\n", r.scene.c_str(), r.count);
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/scaling.csv (every size and engine), %s/scaling_slopes.csv (fitted slopes)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"scaling.csv (every size and engine)", "scaling_slopes.csv (fitted slopes)"}, status);
 }

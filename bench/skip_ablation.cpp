@@ -5,22 +5,27 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/skip_ablation_scenes.h"
 #include "engine/world.h"
 
 namespace {
 
-struct Options {
-  bool quick = false;
-  int repeats = 9;
-  std::string out_dir = "bench-out";
+struct Options : bench::RunOptions {
+  Options() : RunOptions(9) {}
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_skip", "Every skippable feature present but with nothing to do, against absent: state "
+                                 "hashes and cost, a table on stdout and a CSV file.");
+  options.AddTo(args, "5 steps, one run per side, no timing verdict", "timed runs per side");
+  return args;
+}
 
 struct Row {
   const skip_ablation::Ablation* ablation = nullptr;
@@ -93,10 +98,9 @@ void PrintTable(const std::vector<Row>& rows, bool quick) {
 }
 
 bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/skip_ablation.csv").c_str(), "w");
-  if (csv == nullptr) return false;
+  const bench::File csv_file = bench::OpenInFolder(dir, "skip_ablation.csv");
+  if (!csv_file) return false;
+  std::FILE* csv = csv_file.get();
   std::fprintf(csv, "feature,steps,repeats,hash_absent,hash_present,identical,ms_absent_median,ms_present_median,"
                     "difference,noise_band\n");
   for (const Row& r : rows) {
@@ -105,24 +109,6 @@ bool WriteCsv(const std::vector<Row>& rows, const std::string& dir) {
                  r.absent_hash == r.present_hash ? 1 : 0, bench::Median(r.absent_ms), bench::Median(r.present_ms),
                  Difference(r), Noise(r));
   }
-  std::fclose(csv);
-  return true;
-}
-
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && i + 1 < argc) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--out" && i + 1 < argc) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_skip [--quick] [--repeats R] [--out DIR]\n");
-      return false;
-    }
-  }
   return true;
 }
 
@@ -130,7 +116,7 @@ bool ParseArgs(int argc, char** argv, Options& options) {
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
   const std::string load_before = bench::LoadAverage();
   const std::vector<skip_ablation::Ablation> ablations = skip_ablation::Ablations();
   std::vector<Row> rows;
@@ -154,10 +140,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s: a timed run ended in a different state\n", r.ablation->feature.c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/skip_ablation.csv\n", options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, options.out_dir), options.out_dir,
+                          {"skip_ablation.csv"}, status);
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/scene_rules.h"
 #include "bench/stress_scenes.h"
 #include "engine/world.h"
 
@@ -32,29 +33,33 @@ constexpr int kMixedCount = 1500;
 /// falling into a pile: circle and box contacts of every kind, never at rest within 300 steps.
 inline void AddMixedPour(engine::World& world, const BodyEdit& edit) {
   stress::AddContainer(world, kWidth, kHeight);
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> jitter(-0.025, 0.025), speed(-1.0, 1.0);
-  const double pitch = 0.575;
-  const int per_row = static_cast<int>((kWidth - pitch) / pitch);
-  for (int i = 0; i < kMixedCount; ++i) {
+  int i = 0;
+  bench::JitteredGrid(kMixedCount, 0.25, kWidth, 3, [&](engine::Vec2 position, engine::Vec2 velocity) {
     engine::BodyDef def;
-    if (i % 3 == 2) {
+    if (i++ % 3 == 2) {
       def.shape.type = engine::ShapeType::kBox;
       def.shape.half_extents = {0.25, 0.25};
     } else {
       def.shape.radius = 0.25;
     }
-    def.position = {-0.5 * kWidth + pitch * (1 + i % per_row) + jitter(rng), pitch * (1 + i / per_row) + jitter(rng)};
-    def.velocity = {speed(rng), speed(rng)};
+    def.position = position;
+    def.velocity = velocity;
     def.friction = 0.6;
     edit(def);
     world.CreateBody(def);
-  }
+  });
 }
 
 inline engine::WorldDef AwakeDef() {
   engine::WorldDef def;
   def.sleeping = false;  // every body simulated: the timing is the cost of the feature alone
+  return def;
+}
+
+/// AwakeDef with continuous collision on or off.
+inline engine::WorldDef ContinuousDef(bool continuous) {
+  engine::WorldDef def = AwakeDef();
+  def.continuous = continuous;
   return def;
 }
 
@@ -141,28 +146,11 @@ inline std::vector<Ablation> Ablations() {
                  [] { return Gas(false); }, [] { return Gas(true); }});
   out.push_back({"continuous collision on, no fast body",
                  "no body moves half its size (0.25 m) in a step; off: the switch WorldDef::continuous",
-                 [] {
-                   engine::WorldDef def = AwakeDef();
-                   def.continuous = false;
-                   return Mixed(def);
-                 },
-                 [] {
-                   engine::WorldDef def = AwakeDef();
-                   def.continuous = true;
-                   return Mixed(def);
-                 }});
+                 [] { return Mixed(ContinuousDef(false)); }, [] { return Mixed(ContinuousDef(true)); }});
   out.push_back({"every body a bullet, no fast body",
                  "bullets are always caught, but none is fast (continuous collision off on both sides)",
-                 [] {
-                   engine::WorldDef def = AwakeDef();
-                   def.continuous = false;
-                   return Mixed(def);
-                 },
-                 [] {
-                   engine::WorldDef def = AwakeDef();
-                   def.continuous = false;
-                   return Mixed(def, [](engine::BodyDef& b) { b.bullet = true; });
-                 }});
+                 [] { return Mixed(ContinuousDef(false)); },
+                 [] { return Mixed(ContinuousDef(false), [](engine::BodyDef& b) { b.bullet = true; }); }});
   return out;
 }
 

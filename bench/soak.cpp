@@ -7,18 +7,21 @@
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
-#include <cstdlib>
+#include <optional>
 #include <string>
 
+#include "bench/bench_args.h"
 #include "bench/soak.h"
 
 int main(int argc, char** argv) {
-  const std::int64_t steps = argc > 1 ? std::atoll(argv[1]) : 1'000'000;
-  const std::uint64_t seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
-  if (steps < 10) {
-    std::fprintf(stderr, "usage: bench_soak [STEPS >= 10] [SEED]\n");
-    return 2;
-  }
+  std::int64_t steps = 1'000'000;
+  std::uint64_t seed = 1;
+  bench::Args args("bench_soak", "The default scene for STEPS steps with random clicks: fails on a non-finite "
+                                 "number, energy above what clicks put in, or heap growth after warm-up.");
+  args.Positional("STEPS", &steps, "steps to run, at least 10 (default 1000000)")
+      .Positional("SEED", &seed, "seed of the random clicks (default 1)");
+  if (const std::optional<int> exit_code = args.Parse(argc, argv)) return *exit_code;
+  if (steps < 10) return args.Error("STEPS is " + std::to_string(steps) + "; it must be at least 10");
   utsname machine{};
   uname(&machine);
   std::printf("bench_soak: default scene, %" PRId64 " steps, click every 30 steps, seed %" PRIu64

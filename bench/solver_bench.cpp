@@ -1,49 +1,47 @@
-// Milliseconds per step and stability figures of the seed solver against the substep solver at
-// 1, 2, 4 and 8 substeps, for every stress scene of issue 4, measured in one run.
-#include <time.h>
-#include <unistd.h>
-
+// Milliseconds per step and stability figures of the sequential-impulse solver against the
+// substep solver at 1, 2, 4 and 8 substeps, for every stress scene of issue 4, measured in one run.
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/solver_scenes.h"
 #include "engine/world.h"
 
-#ifndef BALLBOX_BUILD_TYPE
-#define BALLBOX_BUILD_TYPE "unknown"
-#endif
-
 namespace {
 
 using bench::Median;
-using bench::CpuModel;
-using bench::LoadAverage;
-using bench::Compiler;
 using bench::Number;
 using bench::Progress;
 
-using Clock = std::chrono::steady_clock;
-
-struct Options {
-  bool quick = false;
-  int repeats = 5;
-  int steps = 0;              // 0: each scene's own
-  std::string scene_filter;   // run only scenes whose name contains this
-  std::string solver_filter;  // "seed", "substep" or empty for both
-  int substeps_filter = 0;    // 0: every substep count
-  std::string out_dir = "bench-out";
-  bool rotation = false;      // the scenes with turning bodies
+struct Options : bench::RunOptions {
+  Options() : RunOptions(5) {}
+  int steps = 0;                                      // 0: each scene's own
+  std::string scene_filter;                           // run only scenes whose name contains this
+  std::optional<engine::ContactSolver> solver_filter;  // empty: both
+  int substeps_filter = 0;                            // 0: every substep count
+  bool rotation = false;                              // the scenes with turning bodies
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_solver", "Contact solvers side by side on the stress scenes: ms/step and stability "
+                                   "figures, a table on stdout and CSV files.");
+  options.AddTo(args, "at most 10 steps a scene, one repeat, no verdicts", "timed runs per setting");
+  args.Value("--steps N", &options.steps, "steps per run (default: each scene's own)", 2)
+      .Value("--scene TEXT", &options.scene_filter, "only the scenes whose name contains TEXT")
+      .Choice("--solver NAME", &options.solver_filter,
+              {{"sequential_impulse", engine::ContactSolver::kSequentialImpulse},
+               {"seed", engine::ContactSolver::kSequentialImpulse},
+               {"substep", engine::ContactSolver::kSubstep}},
+              "only this solver; seed is the sequential-impulse solver's old name")
+      .Value("--substeps N", &options.substeps_filter, "only this substep count (default 0: every one)", 0)
+      .Flag("--rotation", &options.rotation, "the scenes with turning bodies");
+  return args;
+}
 
 // Quick mode: enough steps to touch every phase (contacts form in the first step), one repeat.
 constexpr int kQuickSteps = 10;
@@ -58,16 +56,9 @@ struct Result {
   bool same_state = true;           // every timed run ended in the figure run's state
 };
 
-// CPU time of the calling thread: on a shared machine it leaves out the time other processes
-// held the core, which wall time cannot.
-double ThreadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
+// The words scene files and --solver take (bench_solver printed "seed" before the engine's rename).
 std::string SolverName(solver_bench::Setting s) {
-  return s.solver == engine::ContactSolver::kSequentialImpulse ? "seed" : "substep";
+  return s.solver == engine::ContactSolver::kSequentialImpulse ? "sequential_impulse" : "substep";
 }
 
 std::string SubstepsText(solver_bench::Setting s) {
@@ -93,7 +84,7 @@ std::string Verdict(const std::vector<solver_bench::Figure>& figures) {
 }
 
 bool Selected(const Options& options, solver_bench::Setting s) {
-  if (!options.solver_filter.empty() && options.solver_filter != SolverName(s)) return false;
+  if (options.solver_filter && *options.solver_filter != s.solver) return false;
   return s.solver == engine::ContactSolver::kSequentialImpulse || options.substeps_filter == 0 ||
          options.substeps_filter == s.substeps;
 }
@@ -122,11 +113,11 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
       engine::World world = solver_bench::MakeWorld(scene, result.setting, options.rotation);
       // The first step sorts the broad phase from scratch; Box2D's benchmark leaves it out too.
       world.Step();
-      const double cpu_start = ThreadSeconds();
-      const Clock::time_point start = Clock::now();
+      const double cpu_start = bench::ThreadSeconds();
+      const bench::Clock::time_point start = bench::Clock::now();
       for (int i = 1; i < steps; ++i) world.Step();
-      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-      const double cpu_seconds = ThreadSeconds() - cpu_start;
+      const double seconds = bench::SecondsSince(start);
+      const double cpu_seconds = bench::ThreadSeconds() - cpu_start;
       result.ms_per_step.push_back(1000.0 * seconds / std::max(1, steps - 1));
       result.cpu_ms_per_step.push_back(1000.0 * cpu_seconds / std::max(1, steps - 1));
       // The engine is deterministic: a timed run that ended elsewhere did other work.
@@ -152,15 +143,11 @@ void PrintTable(const std::vector<Result>& results, bool quick) {
 }
 
 bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/solver_bench.csv").c_str(), "w");
-  std::FILE* runs = std::fopen((dir + "/solver_bench_runs.csv").c_str(), "w");
-  if (csv == nullptr || runs == nullptr) {
-    if (csv) std::fclose(csv);
-    if (runs) std::fclose(runs);
-    return false;
-  }
+  const bench::File csv_file = bench::OpenInFolder(dir, "solver_bench.csv");
+  const bench::File runs_file = bench::OpenInFolder(dir, "solver_bench_runs.csv");
+  if (!csv_file || !runs_file) return false;
+  std::FILE* csv = csv_file.get();
+  std::FILE* runs = runs_file.get();
   // Long form, one row per figure, so scenes with different figures share one file.
   std::fprintf(csv, "scene,solver,substeps,steps,repeats,ms_per_step_median,ms_per_step_min,"
                     "cpu_ms_per_step_median,figure,value,unit,threshold,pass\n");
@@ -180,39 +167,6 @@ bool WriteCsv(const std::vector<Result>& results, const std::string& dir) {
                    r.ms_per_step[k], r.cpu_ms_per_step[k]);
     }
   }
-  std::fclose(csv);
-  std::fclose(runs);
-  return true;
-}
-
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--steps" && has_value) {
-      options.steps = std::max(2, std::atoi(argv[++i]));
-    } else if (arg == "--scene" && has_value) {
-      options.scene_filter = argv[++i];
-    } else if (arg == "--solver" && has_value &&
-               (std::string(argv[i + 1]) == "seed" || std::string(argv[i + 1]) == "substep")) {
-      options.solver_filter = argv[++i];
-    } else if (arg == "--substeps" && has_value) {
-      options.substeps_filter = std::max(0, std::atoi(argv[++i]));
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else if (arg == "--rotation") {
-      options.rotation = true;
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_solver [--quick] [--repeats R] [--out DIR] [--rotation]\n"
-                   "                    [--scene TEXT] [--solver seed|substep] [--substeps N] [--steps N]\n");
-      return false;
-    }
-  }
   return true;
 }
 
@@ -220,8 +174,8 @@ bool ParseArgs(int argc, char** argv, Options& options) {
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
-  const std::string load_before = LoadAverage();
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
+  const std::string load_before = bench::LoadAverage();
 
   std::vector<Result> results;
   for (const solver_bench::Scene& scene : solver_bench::Scenes()) {
@@ -237,21 +191,20 @@ int main(int argc, char** argv) {
               "phase from scratch); a warm-up run per row measures the figures, then median and min of %d "
               "timed run%s, settings interleaved; CPU ms/step is the thread's CPU time\n",
               repeats, repeats == 1 ? "" : "s");
-  std::printf("machine: %s, %u cores; compiler: %s; build: %s\n", CpuModel().c_str(),
-              std::thread::hardware_concurrency(), Compiler().c_str(), BALLBOX_BUILD_TYPE);
-  std::printf("load average (1, 5, 15 min) at start: %s, at end: %s\n\n", load_before.c_str(),
-              LoadAverage().c_str());
+  bench::PrintMachine(load_before);
+  std::printf("\n");
   PrintTable(results, options.quick);
   // The settings left at 0 ("automatic") as the engine resolves them for these scenes.
-  engine::WorldDef seed_def;
-  seed_def.solver = engine::ContactSolver::kSequentialImpulse;
-  seed_def.rotation = options.rotation;
-  const engine::World seed_world(seed_def);
+  engine::WorldDef impulse_def;
+  impulse_def.solver = engine::ContactSolver::kSequentialImpulse;
+  impulse_def.rotation = options.rotation;
+  const engine::World impulse_world(impulse_def);
   engine::WorldDef substep_def;
   substep_def.rotation = options.rotation;
   const engine::World substep_world(substep_def);
-  std::printf("\nseed: %d passes of impulses and a projection per step; substep: the default solver, "
-              "%d pass%s per substep, %d substeps by default\n", seed_world.Def().velocity_iterations,
+  std::printf("\nsequential_impulse (formerly seed): %d passes of impulses and a projection per step; substep: the "
+              "default solver, %d pass%s per substep, %d substeps by default\n",
+              impulse_world.Def().velocity_iterations,
               substep_world.Def().velocity_iterations, substep_world.Def().velocity_iterations == 1 ? "" : "es",
               substep_world.Def().substeps);
 
@@ -262,11 +215,6 @@ int main(int argc, char** argv) {
                  SolverName(r.setting).c_str(), SubstepsText(r.setting).c_str());
     status = 1;
   }
-  if (!WriteCsv(results, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("CSV: %s/solver_bench.csv (one row per figure), %s/solver_bench_runs.csv (every timed run)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(results, options.out_dir), options.out_dir,
+                          {"solver_bench.csv (one row per figure)", "solver_bench_runs.csv (every timed run)"}, status);
 }

@@ -11,19 +11,25 @@
 #include <utility>
 #include <vector>
 
+#include "bench/scene_rules.h"
 #include "bench/stress_scenes.h"
 #include "engine/world.h"
 
 namespace solver_bench {
 
+using bench::kBallDrop;
+using bench::kBallRadius;
+using bench::kBallRestitution;
+using bench::kCradleSpeed;
+
 /// One column of the comparison: the baseline, or the substep solver at a number of substeps.
 struct Setting {
   engine::ContactSolver solver = engine::ContactSolver::kSubstep;
-  int substeps = 4;  ///< ignored by the seed
+  int substeps = 4;  ///< ignored by the sequential-impulse solver
 };
 
-/// The seed, then the substep solver at 1, 2, 4 (the default) and 8 substeps: stability
-/// against cost.
+/// The sequential-impulse solver, then the substep solver at 1, 2, 4 (the default) and 8
+/// substeps: stability against cost.
 inline std::vector<Setting> Settings() {
   return {{engine::ContactSolver::kSequentialImpulse, 1},
           {engine::ContactSolver::kSubstep, 1},
@@ -171,9 +177,6 @@ inline Scene PourScene() {
   return scene;
 }
 
-constexpr double kBallDrop = 10.0, kBallRestitution = 0.8, kBallRadius = 0.5;
-constexpr int kBallBounces = 5;
-
 inline Scene BouncingBallScene() {
   engine::WorldDef def = AwakeWorld();
   def.gravity = {0, -9.81};
@@ -186,34 +189,18 @@ inline Scene BouncingBallScene() {
                 world.CreateBody(ball);
               }, {}};
   scene.measure = [](engine::World& world, int steps) {
-    // Apexes above the contact height, sampled at the end of every step, as the solver test does.
-    std::vector<double> apexes;
-    double previous_vy = 0, highest = 0;
-    bool flying_up = false;
+    bench::BounceApexes apexes;
     for (int i = 0; i < steps; ++i) {
       world.Step();
-      const engine::BodyState& s = world.State(1);
-      if (previous_vy <= 0 && s.velocity.y > 0) flying_up = true, highest = 0;
-      highest = std::max(highest, s.position.y - kBallRadius);
-      if (flying_up && s.velocity.y <= 0) {
-        apexes.push_back(highest);
-        flying_up = false;
-      }
-      previous_vy = s.velocity.y;
+      apexes.Observe(world.State(1).position.y, world.State(1).velocity.y);
     }
-    double worst = apexes.empty() ? std::numeric_limits<double>::quiet_NaN() : 0.0;
-    for (std::size_t n = 0; n < apexes.size() && n < kBallBounces; ++n) {
-      const double expected = std::pow(kBallRestitution, 2.0 * (n + 1)) * kBallDrop;
-      worst = std::max(worst, std::abs(apexes[n] - expected) / expected);
-    }
-    const int seen = static_cast<int>(std::min<std::size_t>(apexes.size(), kBallBounces));
-    return std::vector<Figure>{{"bounces", "", double(seen), "= 5", seen == kBallBounces},
+    const int seen = apexes.Bounces();
+    const double worst = apexes.WorstError();
+    return std::vector<Figure>{{"bounces", "", double(seen), "= 5", seen == bench::kBallBounces},
                                {"max apex error", "", worst, "< 0.005", worst < 0.005}};
   };
   return scene;
 }
-
-constexpr double kCradleSpeed = 3.0;
 
 inline Scene CradleScene() {
   engine::WorldDef def = AwakeWorld();

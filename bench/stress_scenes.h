@@ -2,8 +2,9 @@
 #pragma once
 
 #include <cmath>
-#include <random>
+#include <cstdint>
 
+#include "bench/scene_rules.h"
 #include "engine/world.h"
 
 namespace stress {
@@ -65,21 +66,15 @@ inline void AddContainer(engine::World& world, double width, double height) {
 /// `count` circles of radius `radius` on a jittered grid filling the container from the floor.
 inline void AddCirclePour(engine::World& world, int count, double radius, double width,
                           double restitution = 0.2, std::uint64_t seed = 1) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.1 * radius, 0.1 * radius);
-  std::uniform_real_distribution<double> speed(-1.0, 1.0);
-  const double pitch = 2.3 * radius;
-  const int per_row = static_cast<int>((width - pitch) / pitch);
-  for (int i = 0; i < count; ++i) {
+  bench::JitteredGrid(count, radius, width, seed, [&](engine::Vec2 position, engine::Vec2 velocity) {
     engine::BodyDef def;
     def.shape.radius = radius;
-    def.position = {-0.5 * width + pitch * (1 + i % per_row) + jitter(rng),
-                    pitch * (1 + i / per_row) + jitter(rng)};
-    def.velocity = {speed(rng), speed(rng)};
+    def.position = position;
+    def.velocity = velocity;
     def.restitution = restitution;
     def.friction = 0.6;
     world.CreateBody(def);
-  }
+  });
 }
 
 }  // namespace stress

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "bench/bench_common.h"
 #include "bench/work_precision_scenarios.h"
 #include "engine/world.h"
@@ -16,13 +16,19 @@ namespace {
 
 namespace wp = work_precision;
 
-struct Options {
-  bool quick = false;
-  int repeats = 7;
+struct Options : bench::RunOptions {
+  Options() : RunOptions(7) {}
   double min_sample_seconds = 0.02;  // a timed sample repeats the run until it lasts this long
   std::string scenario_filter;
-  std::string out_dir = "bench-out";
 };
+
+bench::Args Arguments(Options& options) {
+  bench::Args args("bench_work_precision", "Run time per simulated second against error for every integrator on the "
+                                           "analytic scenarios S1-S7, tables on stdout and CSV files.");
+  options.AddTo(args, "a few steps of every run, one sample", "timed samples per run");
+  args.Value("--scenario ID", &options.scenario_filter, "only this scenario, S1 to S7");
+  return args;
+}
 
 struct Row {
   const wp::Scenario* scenario = nullptr;
@@ -190,15 +196,11 @@ void PrintTables(const std::vector<Row>& rows, const std::vector<wp::Scenario>& 
 }
 
 bool WriteCsv(const std::vector<Row>& rows, const std::vector<wp::Scenario>& scenarios, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  std::FILE* csv = std::fopen((dir + "/work_precision.csv").c_str(), "w");
-  std::FILE* orders = std::fopen((dir + "/work_precision_orders.csv").c_str(), "w");
-  if (csv == nullptr || orders == nullptr) {
-    if (csv) std::fclose(csv);
-    if (orders) std::fclose(orders);
-    return false;
-  }
+  const bench::File csv_file = bench::OpenInFolder(dir, "work_precision.csv");
+  const bench::File orders_file = bench::OpenInFolder(dir, "work_precision_orders.csv");
+  if (!csv_file || !orders_file) return false;
+  std::FILE* csv = csv_file.get();
+  std::FILE* orders = orders_file.get();
   // accuracy.md §0 item 8's columns, as far as they apply (l∞ is the position error here).
   std::fprintf(csv, "scenario,integrator,h,rate,steps,evals_per_step,repeats,us_per_sim_s_median,us_per_sim_s_min,"
                     "err_linf_position,max_rel_dE,dE_slope,unstable,reason,blew_up,first_unstable\n");
@@ -228,28 +230,6 @@ bool WriteCsv(const std::vector<Row>& rows, const std::vector<wp::Scenario>& sce
                    energy.note.c_str());
     }
   }
-  std::fclose(csv);
-  std::fclose(orders);
-  return true;
-}
-
-bool ParseArgs(int argc, char** argv, Options& options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--quick") {
-      options.quick = true;
-    } else if (arg == "--repeats" && has_value) {
-      options.repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--scenario" && has_value) {
-      options.scenario_filter = argv[++i];
-    } else if (arg == "--out" && has_value) {
-      options.out_dir = argv[++i];
-    } else {
-      std::fprintf(stderr, "usage: bench_work_precision [--quick] [--repeats R] [--scenario S1..S7] [--out DIR]\n");
-      return false;
-    }
-  }
   return true;
 }
 
@@ -257,7 +237,7 @@ bool ParseArgs(int argc, char** argv, Options& options) {
 
 int main(int argc, char** argv) {
   Options options;
-  if (!ParseArgs(argc, argv, options)) return 2;
+  if (const std::optional<int> exit_code = Arguments(options).Parse(argc, argv)) return *exit_code;
   const std::string load_before = bench::LoadAverage();
   std::vector<wp::Scenario> scenarios;
   for (wp::Scenario& s : wp::Scenarios()) {
@@ -295,11 +275,6 @@ int main(int argc, char** argv) {
                  r.method->name, Rate(r.rate).c_str());
     status = 1;
   }
-  if (!WriteCsv(rows, scenarios, options.out_dir)) {
-    std::fprintf(stderr, "error: cannot write CSV to %s\n", options.out_dir.c_str());
-    return 1;
-  }
-  std::printf("\nCSV: %s/work_precision.csv (every run), %s/work_precision_orders.csv (fitted orders)\n",
-              options.out_dir.c_str(), options.out_dir.c_str());
-  return status;
+  return bench::ReportCsv(WriteCsv(rows, scenarios, options.out_dir), options.out_dir,
+                          {"work_precision.csv (every run)", "work_precision_orders.csv (fitted orders)"}, status);
 }

@@ -12,14 +12,14 @@
 
 namespace peers {
 
-/// A solver setting to compare: the default (substeps and passes chosen by the world), the seed,
-/// or the substep solver at a given number of substeps.
+/// A solver setting to compare: the default (substeps and passes chosen by the world), the
+/// sequential-impulse solver, or the substep solver at a given number of substeps.
 struct BallboxSetting {
   engine::ContactSolver solver = engine::ContactSolver::kSubstep;
   int substeps = 0;  ///< 0: the world's default (4, or 8 with rotation)
 
   std::string Label() const {
-    if (solver == engine::ContactSolver::kSequentialImpulse) return "seed";
+    if (solver == engine::ContactSolver::kSequentialImpulse) return "sequential_impulse";
     return substeps == 0 ? "default" : std::to_string(substeps) + (substeps == 1 ? " substep" : " substeps");
   }
 };
@@ -35,7 +35,7 @@ class BallboxEngine : public PhysicsEngine {
 
   std::string Settings(const SceneSpec& scene) const override {
     const engine::WorldDef def = Def(scene);
-    if (def.solver == engine::ContactSolver::kSequentialImpulse) return "seed: 10 passes per step, double";
+    if (def.solver == engine::ContactSolver::kSequentialImpulse) return "sequential_impulse: 10 passes per step, double";
     const int substeps = def.substeps > 0 ? def.substeps : (scene.rotation ? 8 : 4);
     const int passes = def.velocity_iterations > 0 ? def.velocity_iterations : (scene.rotation ? 4 : 1);
     return std::to_string(substeps) + " substeps x " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") +

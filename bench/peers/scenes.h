@@ -15,10 +15,15 @@
 #include <utility>
 #include <vector>
 
+#include "bench/scene_rules.h"
 #include "engine/math.h"
 
 namespace peers {
 
+using bench::kBallDrop;
+using bench::kBallRadius;
+using bench::kBallRestitution;
+using bench::kCradleSpeed;
 using engine::Vec2;
 
 enum class Kind : std::uint8_t { kCircle, kBox };
@@ -119,18 +124,11 @@ inline void AddContainer(SceneSpec& s, double width, double height, double botto
 /// `count` bodies on a jittered grid from the container's floor with random velocities of up to
 /// 1 m/s: circles of `size` radius, or boxes of `size` half extent (stress::AddCirclePour's rule).
 inline void AddPour(SceneSpec& s, int count, double size, double width, bool boxes, std::uint64_t seed = 1) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.1 * size, 0.1 * size);
-  std::uniform_real_distribution<double> speed(-1.0, 1.0);
-  const double pitch = 2.3 * size;
-  const int per_row = static_cast<int>((width - pitch) / pitch);
-  for (int i = 0; i < count; ++i) {
-    const Vec2 at{-0.5 * width + pitch * (1 + i % per_row) + jitter(rng), pitch * (1 + i / per_row) + jitter(rng)};
-    const Vec2 velocity{speed(rng), speed(rng)};
+  bench::JitteredGrid(count, size, width, seed, [&](Vec2 at, Vec2 velocity) {
     BodySpec b = boxes ? Box(at, {2 * size, 2 * size}) : Circle(at, size);
     b.velocity = velocity;
     s.bodies.push_back(b);
-  }
+  });
 }
 
 /// A square container for `count` bodies of `size` poured as above, about half full when settled.
@@ -307,9 +305,6 @@ inline std::vector<Figure> ContainedFigures(PhysicsEngine& engine, const SceneSp
           {"kinetic energy", "J", KineticEnergy(scene, s)}};
 }
 
-constexpr double kBallDrop = 10.0, kBallRestitution = 0.8, kBallRadius = 0.5, kCradleSpeed = 3.0;
-constexpr int kBallBounces = 5;
-
 /// Every scene of the side-by-side table: the stress scenes of bench_solver (same names, same
 /// parameters), confined circles, the turning versions of the box scenes, and two analytic ones.
 inline std::vector<Scene> Scenes() {
@@ -414,29 +409,15 @@ inline std::vector<Scene> Scenes() {
   ball.spec.bodies.push_back(Box({0, -0.5}, {4, 1}, 1, true));
   ball.spec.bodies.push_back(Circle({0, kBallDrop + kBallRadius}, kBallRadius));
   ball.measure = [](PhysicsEngine& engine, const SceneSpec&, int steps) {
-    std::vector<double> apexes;
-    double previous_vy = 0, highest = 0;
-    bool flying_up = false;
+    bench::BounceApexes apexes;
     std::vector<State> s;
     for (int i = 0; i < steps; ++i) {
       engine.Step();
       engine.Read(s);
-      const State& b = s[1];
-      if (previous_vy <= 0 && b.velocity.y > 0) flying_up = true, highest = 0;
-      highest = std::max(highest, b.position.y - kBallRadius);
-      if (flying_up && b.velocity.y <= 0) {
-        apexes.push_back(highest);
-        flying_up = false;
-      }
-      previous_vy = b.velocity.y;
+      apexes.Observe(s[1].position.y, s[1].velocity.y);
     }
-    double worst = apexes.empty() ? std::numeric_limits<double>::quiet_NaN() : 0.0;
-    for (std::size_t n = 0; n < apexes.size() && n < kBallBounces; ++n) {
-      const double expected = std::pow(kBallRestitution, 2.0 * (n + 1)) * kBallDrop;
-      worst = std::max(worst, std::abs(apexes[n] - expected) / expected);
-    }
-    return std::vector<Figure>{{"max apex error", "", worst},
-                               {"bounces", "", static_cast<double>(std::min<std::size_t>(apexes.size(), kBallBounces))}};
+    return std::vector<Figure>{{"max apex error", "", apexes.WorstError()},
+                               {"bounces", "", static_cast<double>(apexes.Bounces())}};
   };
   out.push_back(ball);
 

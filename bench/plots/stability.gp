@@ -28,21 +28,24 @@ scenes = '"pyramid base 20" "pyramid base 40" "stack of 20" "heavy on light 1000
 figures = '"max drift" "max drift" "max drift" "heavy box sank" "overlap left" "max overlap" "max apex error" "others'' max speed" "peak / start kinetic energy"'
 units = '"m" "m" "m" "m" "m" "m" "relative" "m/s" "ratio"'
 
-ballbox(s, f, v) = (strcol(1) eq s && strcol(8) eq f) ? v : NaN
-label(s, f) = (strcol(1) eq s && strcol(8) eq f) ? (strcol(2) eq 'seed' ? 'seed' : strcol(3)) : ''
+# solver_bench.csv: figure in column 9, value in 10 (after the CPU time); peers_bench.csv: 8 and 9.
+ballbox(s, f, v) = (strcol(1) eq s && strcol(9) eq f) ? v : NaN
+# The sequential-impulse solver is "sequential_impulse" in both CSVs (before the engine renamed it: "seed").
+impulse(name) = name eq 'sequential_impulse' || name eq 'seed'
+label(s, f) = (strcol(1) eq s && strcol(9) eq f) ? (impulse(strcol(2)) ? 'seq. impulse' : strcol(3)) : ''
 sweep(s, f, v) = (strcol(1) eq s && strcol(8) eq f && strcol(2)[1:8] eq 'ballbox ') ? v : NaN
-sweeplabel(s, f) = (strcol(1) eq s && strcol(8) eq f && strcol(2)[1:8] eq 'ballbox ') ? strcol(2)[9:] : ''
+sweeplabel(s, f) = (strcol(1) eq s && strcol(8) eq f && strcol(2)[1:8] eq 'ballbox ') ? (impulse(strcol(2)[9:]) ? 'seq. impulse' : strcol(2)[9:]) : ''
 peer(s, f, e, v) = (strcol(1) eq s && strcol(8) eq f && strcol(2) eq e) ? v : NaN
 
-set multiplot layout 3,3 title "Stability against cost, 60 Hz, sleeping off (ballbox: seed, then substeps 1 2 4 8; a figure of 0 is drawn at 1e-6)" font ",11"
+set multiplot layout 3,3 title "Stability against cost, 60 Hz, sleeping off (ballbox: sequential impulse, then substeps 1 2 4 8; a figure of 0 is drawn at 1e-6)" font ",11"
 do for [i = ifirst:9] {
   s = word(scenes, i)
   f = word(figures, i)
   set title sprintf('%s: %s', s, f)
   set ylabel sprintf('%s, %s', f, word(units, i))
   if (i < 9) {
-    plot solver skip 1 using (ballbox(s, f, $6)):(lift(ballbox(s, f, $9))) with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'ballbox (bench\_solver)', \
-         solver skip 1 using (ballbox(s, f, $6)):(lift(ballbox(s, f, $9))):(label(s, f)) with labels offset 0.8,0.8 font ",8" notitle, \
+    plot solver skip 1 using (ballbox(s, f, $6)):(lift(ballbox(s, f, $10))) with points pt 7 ps 1.3 lc rgb '#1f77b4' title 'ballbox (bench\_solver)', \
+         solver skip 1 using (ballbox(s, f, $6)):(lift(ballbox(s, f, $10))):(label(s, f)) with labels offset 0.8,0.8 font ",8" notitle, \
          peers skip 1 using (peer(s, f, 'Box2D 2.4.1', $6)):(lift(peer(s, f, 'Box2D 2.4.1', $9))) with points pt 5 ps 1.6 lc rgb '#d62728' title 'Box2D 2.4.1', \
          peers skip 1 using (peer(s, f, 'Chipmunk 7.0.3', $6)):(lift(peer(s, f, 'Chipmunk 7.0.3', $9))) with points pt 9 ps 1.8 lc rgb '#2ca02c' title 'Chipmunk 7.0.3'
   } else {
