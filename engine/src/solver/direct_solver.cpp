@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace engine::detail {
 
@@ -31,11 +30,6 @@ constexpr int kMaxSolves = 4;
 constexpr double kLimitTolerance = 1e-6;
 
 enum : std::uint8_t { kFree, kAtLower, kAtUpper };
-
-std::uint32_t Root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
 
 bool IsHeavyPair(const SubstepConstraint& sc, std::span<const BodyInfo> infos) {
   if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) return false;
@@ -427,16 +421,14 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
   // Islands of bodies linked by contacts between turning pairs (static bodies link nothing), and
   // which of them hold a heavy pair.
   const std::size_t n = infos.size();
-  s->parent.resize(n);
-  std::iota(s->parent.begin(), s->parent.end(), 0u);
+  s->linked.Reset(n);
   for (const SubstepConstraint& sc : constraints) {
     if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) continue;
-    const std::uint32_t ra = Root(s->parent, sc.a), rb = Root(s->parent, sc.b);
-    if (ra != rb) s->parent[std::max(ra, rb)] = std::min(ra, rb);
+    s->linked.Join(sc.a, sc.b);
   }
   s->flagged.assign(n, 0);
   for (const SubstepConstraint& sc : constraints) {
-    if (IsHeavyPair(sc, infos)) s->flagged[Root(s->parent, sc.a)] = 1;
+    if (IsHeavyPair(sc, infos)) s->flagged[s->linked.Find(sc.a)] = 1;
   }
   // Each turning contact of a flagged island, numbered by island in the order of their first
   // contacts, then grouped by a counting sort (each group stays in contact order).
@@ -445,7 +437,7 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
   for (std::uint32_t c = 0; c < constraints.size(); ++c) {
     const SubstepConstraint& sc = constraints[c];
     if (!sc.angular) continue;
-    const std::uint32_t root = Root(s->parent, sc.inv_mass_a != 0.0 ? sc.a : sc.b);
+    const std::uint32_t root = s->linked.Find(sc.inv_mass_a != 0.0 ? sc.a : sc.b);
     if (!s->flagged[root]) continue;
     if (island_of_root[root] < 0) {
       island_of_root[root] = static_cast<std::int32_t>(contact_count.size());
