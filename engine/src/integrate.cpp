@@ -25,10 +25,9 @@ void Offset(std::span<const BodyState> base, std::span<const std::uint8_t> movin
   }
 }
 
-}  // namespace
-
-void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* m) {
+// Sizes the free motion and the stages' scratch for n bodies, and takes the first stage's k from
+// the step's start: the velocities, and the accelerations the forces give.
+void StartFreeStep(const ForceModel& forces, std::span<const BodyState> states, FreeMotion* m) {
   const std::size_t n = states.size();
   m->velocity.resize(n);
   m->drift.resize(n);
@@ -40,88 +39,129 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
     m->linear[k].resize(n);
     m->angular[k].resize(n);
   }
+  for (std::size_t i = 0; i < n; ++i) {
+    m->stage_velocity[0][i] = states[i].velocity, m->stage_angular_velocity[0][i] = states[i].angular_velocity;
+  }
+  forces.Evaluate(states, m->linear[0], m->angular[0]);
+}
+
+// Both end at v₀ + h·a₀; explicit Euler moves with v₀, semi-implicit Euler with the end velocity.
+void EulerStep(bool semi_implicit, std::span<const BodyState> states, double h, FreeMotion* m) {
+  const std::vector<Vec2>& v0 = m->stage_velocity[0];
+  const std::vector<double>& w0 = m->stage_angular_velocity[0];
+  const std::vector<Vec2>& a0 = m->linear[0];
+  const std::vector<double>& alpha0 = m->angular[0];
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    m->velocity[i] = states[i].velocity + a0[i] * h;
+    m->angular_velocity[i] = states[i].angular_velocity + alpha0[i] * h;
+    m->drift[i] = semi_implicit ? m->velocity[i] : v0[i];
+    m->angular_drift[i] = semi_implicit ? m->angular_velocity[i] : w0[i];
+  }
+}
+
+// x₁ = x₀ + h·v₀ + ½h²·a₀; a₁ at x₁ (and a predicted v₀ + h·a₀, for velocity-dependent forces);
+// v₁ = v₀ + ½h·(a₀ + a₁).
+void VelocityVerletStep(const ForceModel& forces, std::span<const BodyState> states, double h, FreeMotion* m) {
+  const std::vector<Vec2>& v0 = m->stage_velocity[0];
+  const std::vector<double>& w0 = m->stage_angular_velocity[0];
+  std::vector<Vec2>* a = m->linear;
+  std::vector<double>* alpha = m->angular;
+  Offset(states, forces.moving, forces.rotation, h, v0, w0, a[0], alpha[0], &m->stage);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    m->stage[i].position = states[i].position + h * (v0[i] + 0.5 * h * a[0][i]);
+    if (forces.rotation) m->stage[i].angle = states[i].angle + h * (w0[i] + 0.5 * h * alpha[0][i]);
+  }
+  forces.Evaluate(m->stage, a[1], alpha[1]);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    m->drift[i] = v0[i] + 0.5 * h * a[0][i];
+    m->angular_drift[i] = w0[i] + 0.5 * h * alpha[0][i];
+    m->velocity[i] = v0[i] + 0.5 * h * (a[0][i] + a[1][i]);
+    m->angular_velocity[i] = w0[i] + 0.5 * h * (alpha[0][i] + alpha[1][i]);
+  }
+}
+
+// The accelerations at the half step set the velocity; the velocity there, the drift.
+void MidpointStep(const ForceModel& forces, std::span<const BodyState> states, double h, FreeMotion* m) {
+  const std::vector<Vec2>& v0 = m->stage_velocity[0];
+  const std::vector<double>& w0 = m->stage_angular_velocity[0];
+  std::vector<Vec2>* a = m->linear;
+  std::vector<double>* alpha = m->angular;
+  Offset(states, forces.moving, forces.rotation, 0.5 * h, v0, w0, a[0], alpha[0], &m->stage);
+  forces.Evaluate(m->stage, a[1], alpha[1]);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    m->drift[i] = m->stage[i].velocity;
+    m->angular_drift[i] = m->stage[i].angular_velocity;
+    m->velocity[i] = v0[i] + h * a[1][i];
+    m->angular_velocity[i] = w0[i] + h * alpha[1][i];
+  }
+}
+
+// k_i = (velocity, acceleration) at each stage, the next stage offset by c·k_i; the drift and
+// the velocity change are their weighted means.
+void RungeKutta4Step(const ForceModel& forces, std::span<const BodyState> states, double h, FreeMotion* m) {
   std::vector<Vec2>* v = m->stage_velocity;
   std::vector<double>* w = m->stage_angular_velocity;
   std::vector<Vec2>* a = m->linear;
   std::vector<double>* alpha = m->angular;
-  for (std::size_t i = 0; i < n; ++i) v[0][i] = states[i].velocity, w[0][i] = states[i].angular_velocity;
   const std::vector<Vec2>& v0 = v[0];
   const std::vector<double>& w0 = w[0];
-  forces.Evaluate(states, a[0], alpha[0]);
-
-  switch (integrator) {
-    case Integrator::kSemiImplicitEuler:
-    case Integrator::kExplicitEuler:
-      for (std::size_t i = 0; i < n; ++i) {
-        m->velocity[i] = states[i].velocity + a[0][i] * h;
-        m->angular_velocity[i] = states[i].angular_velocity + alpha[0][i] * h;
-        const bool semi_implicit = integrator == Integrator::kSemiImplicitEuler;
-        m->drift[i] = semi_implicit ? m->velocity[i] : v0[i];
-        m->angular_drift[i] = semi_implicit ? m->angular_velocity[i] : w0[i];
-      }
-      break;
-    case Integrator::kVelocityVerlet: {
-      // x₁ = x₀ + h·v₀ + ½h²·a₀; a₁ at x₁ (and a predicted v₀ + h·a₀, for velocity-dependent
-      // forces); v₁ = v₀ + ½h·(a₀ + a₁).
-      Offset(states, forces.moving, forces.rotation, h, v0, w0, a[0], alpha[0], &m->stage);
-      for (std::size_t i = 0; i < n; ++i) {
-        m->stage[i].position = states[i].position + h * (v0[i] + 0.5 * h * a[0][i]);
-        if (forces.rotation) m->stage[i].angle = states[i].angle + h * (w0[i] + 0.5 * h * alpha[0][i]);
-      }
-      forces.Evaluate(m->stage, a[1], alpha[1]);
-      for (std::size_t i = 0; i < n; ++i) {
-        m->drift[i] = v0[i] + 0.5 * h * a[0][i];
-        m->angular_drift[i] = w0[i] + 0.5 * h * alpha[0][i];
-        m->velocity[i] = v0[i] + 0.5 * h * (a[0][i] + a[1][i]);
-        m->angular_velocity[i] = w0[i] + 0.5 * h * (alpha[0][i] + alpha[1][i]);
-      }
-      break;
-    }
-    case Integrator::kMidpoint: {
-      Offset(states, forces.moving, forces.rotation, 0.5 * h, v0, w0, a[0], alpha[0], &m->stage);
-      forces.Evaluate(m->stage, a[1], alpha[1]);
-      for (std::size_t i = 0; i < n; ++i) {
-        m->drift[i] = m->stage[i].velocity;
-        m->angular_drift[i] = m->stage[i].angular_velocity;
-        m->velocity[i] = v0[i] + h * a[1][i];
-        m->angular_velocity[i] = w0[i] + h * alpha[1][i];
-      }
-      break;
-    }
-    case Integrator::kRungeKutta4: {
-      // k_i = (velocity, acceleration) at each stage, the next stage offset by c·k_i.
-      const double c[3] = {0.5 * h, 0.5 * h, h};
-      for (int k = 1; k < 4; ++k) {
-        Offset(states, forces.moving, forces.rotation, c[k - 1], v[k - 1], w[k - 1], a[k - 1], alpha[k - 1], &m->stage);
-        forces.Evaluate(m->stage, a[k], alpha[k]);
-        for (std::size_t i = 0; i < n; ++i) v[k][i] = m->stage[i].velocity, w[k][i] = m->stage[i].angular_velocity;
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        m->drift[i] = (v[0][i] + 2.0 * v[1][i] + 2.0 * v[2][i] + v[3][i]) / 6.0;
-        m->angular_drift[i] = (w[0][i] + 2.0 * w[1][i] + 2.0 * w[2][i] + w[3][i]) / 6.0;
-        m->velocity[i] = v0[i] + h * ((a[0][i] + 2.0 * a[1][i] + 2.0 * a[2][i] + a[3][i]) / 6.0);
-        m->angular_velocity[i] = w0[i] + h * ((alpha[0][i] + 2.0 * alpha[1][i] + 2.0 * alpha[2][i] + alpha[3][i]) / 6.0);
-      }
-      break;
-    }
+  const double c[3] = {0.5 * h, 0.5 * h, h};
+  for (int k = 1; k < 4; ++k) {
+    Offset(states, forces.moving, forces.rotation, c[k - 1], v[k - 1], w[k - 1], a[k - 1], alpha[k - 1], &m->stage);
+    forces.Evaluate(m->stage, a[k], alpha[k]);
+    for (std::size_t i = 0; i < states.size(); ++i) v[k][i] = m->stage[i].velocity, w[k][i] = m->stage[i].angular_velocity;
   }
-  // Drag stiffer than the step (h·rate > ½) would overshoot, in any explicit method: such a body
-  // takes an implicit Euler step with the rate from the step's start instead,
-  // v' = (v + h·a_other) / (1 + h·rate), stable at any h and at rest exactly at terminal speed.
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    m->drift[i] = (v[0][i] + 2.0 * v[1][i] + 2.0 * v[2][i] + v[3][i]) / 6.0;
+    m->angular_drift[i] = (w[0][i] + 2.0 * w[1][i] + 2.0 * w[2][i] + w[3][i]) / 6.0;
+    m->velocity[i] = v0[i] + h * ((a[0][i] + 2.0 * a[1][i] + 2.0 * a[2][i] + a[3][i]) / 6.0);
+    m->angular_velocity[i] = w0[i] + h * ((alpha[0][i] + 2.0 * alpha[1][i] + 2.0 * alpha[2][i] + alpha[3][i]) / 6.0);
+  }
+}
+
+// Drag stiffer than the step (h·rate > ½) would overshoot, in any explicit method: such a body
+// takes an implicit Euler step with the rate from the step's start instead,
+// v' = (v + h·a_other) / (1 + h·rate), stable at any h and at rest exactly at terminal speed.
+void DampStiffDrag(const ForceModel& forces, std::span<const BodyState> states, double h, FreeMotion* m) {
   constexpr double kStiffDrag = 0.5;
-  for (std::size_t i = 0; i < n && (forces.damping || forces.def.fluid_density != 0.0); ++i) {
+  const std::vector<Vec2>& v0 = m->stage_velocity[0];
+  const std::vector<Vec2>& a0 = m->linear[0];
+  for (std::size_t i = 0; i < states.size() && (forces.damping || forces.def.fluid_density != 0.0); ++i) {
     if (!forces.moving[i]) continue;
     if (forces.def.fluid_density == 0.0 && forces.infos[i].linear_damping == 0.0) continue;  // no drag
     // Judged at the start and after one kick: a body at rest gains speed within the step.
     BodyState kicked = states[i];
-    kicked.velocity = v0[i] + h * a[0][i];
+    kicked.velocity = v0[i] + h * a0[i];
     const double rate = std::max(forces.DragRate(states[i], i), forces.DragRate(kicked, i));
     if (h * rate <= kStiffDrag) continue;
-    const Vec2 other = a[0][i] + rate * v0[i];  // every acceleration but the drag's
+    const Vec2 other = a0[i] + rate * v0[i];  // every acceleration but the drag's
     m->velocity[i] = (v0[i] + h * other) / (1.0 + h * rate);
     m->drift[i] = m->velocity[i];
   }
-  for (std::size_t i = 0; i < n; ++i) {
+}
+
+}  // namespace
+
+void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
+              double h, FreeMotion* m) {
+  StartFreeStep(forces, states, m);
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kExplicitEuler:
+      EulerStep(integrator == Integrator::kSemiImplicitEuler, states, h, m);
+      break;
+    case Integrator::kVelocityVerlet:
+      VelocityVerletStep(forces, states, h, m);
+      break;
+    case Integrator::kMidpoint:
+      MidpointStep(forces, states, h, m);
+      break;
+    case Integrator::kRungeKutta4:
+      RungeKutta4Step(forces, states, h, m);
+      break;
+  }
+  DampStiffDrag(forces, states, h, m);
+  for (std::size_t i = 0; i < states.size(); ++i) {
     if (!forces.moving[i]) continue;
     states[i].velocity = m->velocity[i];
     if (forces.rotation) states[i].angular_velocity = m->angular_velocity[i];

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace engine::detail {
 
@@ -31,11 +30,6 @@ constexpr int kMaxSolves = 4;
 constexpr double kLimitTolerance = 1e-6;
 
 enum : std::uint8_t { kFree, kAtLower, kAtUpper };
-
-std::uint32_t Root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
 
 bool IsHeavyPair(const SubstepConstraint& sc, std::span<const BodyInfo> infos) {
   if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) return false;
@@ -306,24 +300,15 @@ DirectSolver::Sparse SparseRows(const DirectSolver* s, const DirectSolver::Islan
           s->sparse_column.data(), s->sparse_value.data()};
 }
 
-bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint> constraints,
-                 std::span<BodyState> states, const StepStart& start, double inv_h) {
-  const DirectSolver::Island& island = s->islands[index];
+// Takes this substep's impulses on the island's contacts (warm start and Gauss-Seidel) back off
+// its bodies, which leaves their free velocities, and starts x from those impulses. The
+// velocities are saved first, for a solve that fails.
+void TakeOffImpulses(DirectSolver* s, const DirectSolver::Island& island,
+                     std::span<const SubstepConstraint> constraints, std::span<BodyState> states) {
   const int m = static_cast<int>(island.rows);
   const int normals = static_cast<int>(island.normal_rows);
   const DirectSolver::Row* rows = s->rows.data() + island.first_row;
-  const double* k = s->matrix.data() + island.matrix;
-  std::uint8_t* bound = s->bound.data() + island.first_row;
-  double* last_limit = s->last_limit.data() + island.first_row;
-  s->x.resize(m), s->q.resize(m), s->lo.resize(m), s->hi.resize(m), s->limit.resize(m);
-  s->centred.resize(m);
   double* x = s->x.data();
-  double* q = s->q.data();
-  double* lo = s->lo.data();
-  double* hi = s->hi.data();
-
-  // Free velocities: the island's bodies without this substep's impulses on its contacts (warm
-  // start and Gauss-Seidel); the velocities are kept in case the solve fails.
   s->saved.clear();
   for (std::uint32_t i = 0; i < island.body_count; ++i) s->saved.push_back(states[s->bodies[island.first_body + i]]);
   for (int i = normals; i < m; ++i) {
@@ -338,56 +323,91 @@ bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint
     x[i] = friction;
   }
   for (int i = 0; i < normals; ++i) x[i] = constraints[rows[i].constraint].points[rows[i].point].normal_impulse;
-  // q = J·v_free − target: touching contacts may not approach, a gap may close this substep.
+}
+
+// q = J·v_free − target, and the normal rows' bounds: touching contacts may not approach, a gap
+// may close this substep.
+void SetVelocityTargets(DirectSolver* s, const DirectSolver::Island& island,
+                        std::span<const SubstepConstraint> constraints, std::span<const BodyState> states,
+                        const StepStart& start, double inv_h) {
+  const int m = static_cast<int>(island.rows);
+  const DirectSolver::Row* rows = s->rows.data() + island.first_row;
   for (int i = 0; i < m; ++i) {
     const SubstepConstraint& sc = constraints[rows[i].constraint];
     const Jacobian j = RowJacobian(sc, rows[i].point);
     const BodyState& a = states[sc.a];
     const BodyState& b = states[sc.b];
-    q[i] = Dot(j.d, b.velocity - a.velocity) + j.rb * b.angular_velocity - j.ra * a.angular_velocity;
+    s->q[i] = Dot(j.d, b.velocity - a.velocity) + j.rb * b.angular_velocity - j.ra * a.angular_velocity;
     if (rows[i].point >= 0) {
-      q[i] += std::max(CurrentSeparation(sc, sc.points[rows[i].point], states, start), 0.0) * inv_h;
-      lo[i] = 0.0, hi[i] = kInfinity;
+      s->q[i] += std::max(CurrentSeparation(sc, sc.points[rows[i].point], states, start), 0.0) * inv_h;
+      s->lo[i] = 0.0, s->hi[i] = kInfinity;
     }
   }
-  // Each QP holds the friction limits fixed, so it is convex, and its answer can only take
-  // kinetic energy away: with fixed limits every row's impulse does non-positive work on the
-  // answer's velocity (up to the proximal term's residue). Repeat it from its own answer, with
-  // the limits brought up to date, until both settle.
+}
+
+// Sets each friction row's bounds to ± its limit: the first QP (`first`) takes the limits the
+// last answer ended with, each later one μ times the normal impulses just found. True if a
+// binding limit moved, or the answer now lies outside its limit, by more than the tolerance.
+bool UpdateFrictionLimits(DirectSolver* s, const DirectSolver::Island& island,
+                          std::span<const SubstepConstraint> constraints, bool first) {
+  const int m = static_cast<int>(island.rows);
+  const int normals = static_cast<int>(island.normal_rows);
+  const DirectSolver::Row* rows = s->rows.data() + island.first_row;
+  const std::uint8_t* bound = s->bound.data() + island.first_row;
+  const double* last_limit = s->last_limit.data() + island.first_row;
+  const double* x = s->x.data();
+  double largest = 0.0;
+  for (int i = normals; i < m; ++i) {
+    const SubstepConstraint& sc = constraints[rows[i].constraint];
+    double normal = 0.0;
+    for (int n = 0; n < sc.point_count; ++n) normal += x[rows[i].first_normal + n];
+    s->limit[i] = first ? last_limit[i] : sc.friction * normal;
+    largest = std::max(largest, s->limit[i]);
+  }
+  bool moved = false;
+  for (int i = normals; i < m; ++i) {
+    const double limit = s->limit[i];
+    moved = moved || (bound[i] != kFree && std::abs(limit - s->hi[i]) > kLimitTolerance * largest) ||
+            std::abs(x[i]) > limit + kLimitTolerance * largest;
+    s->lo[i] = -limit, s->hi[i] = limit;
+  }
+  return moved;
+}
+
+// Each QP holds the friction limits fixed, so it is convex, and its answer can only take kinetic
+// energy away: with fixed limits every row's impulse does non-positive work on the answer's
+// velocity (up to the proximal term's residue). Repeats it from its own answer, with the limits
+// brought up to date, until both settle; false if a solve fails.
+bool SolveUntilSettled(DirectSolver* s, std::size_t index, std::span<const SubstepConstraint> constraints) {
+  const DirectSolver::Island& island = s->islands[index];
+  const int m = static_cast<int>(island.rows);
+  const double* k = s->matrix.data() + island.matrix;
+  std::uint8_t* bound = s->bound.data() + island.first_row;
+  double* x = s->x.data();
   BoxQp qp(k, m, m, kProximal, SparseRows(s, island), s, index);
   bool solved = false;
   double residual = kInfinity;
   for (int repeat = 0; repeat < kMaxSolves; ++repeat) {
-    double largest = 0.0;
-    for (int i = normals; i < m; ++i) {
-      const SubstepConstraint& sc = constraints[rows[i].constraint];
-      double normal = 0.0;
-      for (int n = 0; n < sc.point_count; ++n) normal += x[rows[i].first_normal + n];
-      s->limit[i] = repeat == 0 ? last_limit[i] : sc.friction * normal;
-      largest = std::max(largest, s->limit[i]);
-    }
-    bool moved = false;
-    for (int i = normals; i < m; ++i) {
-      const double limit = s->limit[i];
-      moved = moved || (bound[i] != kFree && std::abs(limit - hi[i]) > kLimitTolerance * largest) ||
-              std::abs(x[i]) > limit + kLimitTolerance * largest;
-      lo[i] = -limit, hi[i] = limit;
-    }
+    const bool moved = UpdateFrictionLimits(s, island, constraints, repeat == 0);
     if (repeat > 0 && !moved && residual < kVelocityTolerance) break;
-    for (int i = 0; i < m; ++i) s->centred[i] = q[i] - kProximal * k[i * m + i] * x[i];
+    for (int i = 0; i < m; ++i) s->centred[i] = s->q[i] - kProximal * k[i * m + i] * x[i];
     s->previous.assign(x, x + m);
-    solved = qp.Solve(s->centred.data(), lo, hi, bound, x);
+    solved = qp.Solve(s->centred.data(), s->lo.data(), s->hi.data(), bound, x);
     if (!solved) break;
     residual = 0.0;
     for (int i = 0; i < m; ++i) residual = std::max(residual, kProximal * k[i * m + i] * std::abs(x[i] - s->previous[i]));
   }
-  if (!solved) {
-    for (std::uint32_t i = 0; i < island.body_count; ++i) states[s->bodies[island.first_body + i]] = s->saved[i];
-    return false;  // the row states stay: the next substep's pivoting starts from them
-  }
-  for (int i = normals; i < m; ++i) last_limit[i] = hi[i];
-  // The answer, and the impulses for warm starting and the next pass: normals per point, friction
-  // shared evenly between the points, which applies it at their mean anchor as its row has it.
+  return solved;
+}
+
+// The answer, and the impulses for warm starting and the next pass: normals per point, friction
+// shared evenly between the points, which applies it at their mean anchor as its row has it.
+void ApplyAnswer(const DirectSolver* s, const DirectSolver::Island& island,
+                 std::span<SubstepConstraint> constraints, std::span<BodyState> states) {
+  const int m = static_cast<int>(island.rows);
+  const int normals = static_cast<int>(island.normal_rows);
+  const DirectSolver::Row* rows = s->rows.data() + island.first_row;
+  const double* x = s->x.data();
   for (int i = 0; i < normals; ++i) {
     SubstepConstraint& sc = constraints[rows[i].constraint];
     SubstepPoint& p = sc.points[rows[i].point];
@@ -403,11 +423,28 @@ bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint
       ApplyImpulse(sc, p, share * LeftPerp(sc.normal), states);
     }
   }
+}
+
+bool SolveIsland(DirectSolver* s, std::size_t index, std::span<SubstepConstraint> constraints,
+                 std::span<BodyState> states, const StepStart& start, double inv_h) {
+  const DirectSolver::Island& island = s->islands[index];
+  const int m = static_cast<int>(island.rows);
+  s->x.resize(m), s->q.resize(m), s->lo.resize(m), s->hi.resize(m), s->limit.resize(m);
+  s->centred.resize(m);
+  TakeOffImpulses(s, island, constraints, states);
+  SetVelocityTargets(s, island, constraints, states, start, inv_h);
+  if (!SolveUntilSettled(s, index, constraints)) {
+    for (std::uint32_t i = 0; i < island.body_count; ++i) states[s->bodies[island.first_body + i]] = s->saved[i];
+    return false;  // the row states stay: the next substep's pivoting starts from them
+  }
+  double* last_limit = s->last_limit.data() + island.first_row;
+  for (int i = static_cast<int>(island.normal_rows); i < m; ++i) last_limit[i] = s->hi[i];
+  ApplyAnswer(s, island, constraints, states);
   return true;
 }
 
-bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
-                  DirectSolver* s) {
+// Forgets the last step's islands (their storage stays, for this step's).
+void ClearIslands(DirectSolver* s) {
   s->rows.clear();
   s->islands.clear();
   s->matrix.clear();
@@ -420,123 +457,174 @@ bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<cons
   s->sparse_value.clear();
   s->last_limit.clear();
   s->direct_contact.clear();
-  if (std::none_of(constraints.begin(), constraints.end(),
-                   [&](const SubstepConstraint& sc) { return IsHeavyPair(sc, infos); })) {
-    return false;  // the common case: nothing more to do, nothing allocated
-  }
-  // Islands of bodies linked by contacts between turning pairs (static bodies link nothing), and
-  // which of them hold a heavy pair.
+}
+
+// Islands of bodies linked by contacts between turning pairs (static bodies link nothing), and
+// which of them hold a heavy pair (`flagged`, by root).
+void FlagHeavyIslands(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                      DirectSolver* s) {
   const std::size_t n = infos.size();
-  s->parent.resize(n);
-  std::iota(s->parent.begin(), s->parent.end(), 0u);
+  s->linked.Reset(n);
   for (const SubstepConstraint& sc : constraints) {
     if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) continue;
-    const std::uint32_t ra = Root(s->parent, sc.a), rb = Root(s->parent, sc.b);
-    if (ra != rb) s->parent[std::max(ra, rb)] = std::min(ra, rb);
+    s->linked.Join(sc.a, sc.b);
   }
   s->flagged.assign(n, 0);
   for (const SubstepConstraint& sc : constraints) {
-    if (IsHeavyPair(sc, infos)) s->flagged[Root(s->parent, sc.a)] = 1;
+    if (IsHeavyPair(sc, infos)) s->flagged[s->linked.Find(sc.a)] = 1;
   }
-  // Each turning contact of a flagged island, numbered by island in the order of their first
-  // contacts, then grouped by a counting sort (each group stays in contact order).
-  std::vector<std::int32_t> island_of_root(n, -1), island_of(constraints.size(), -1);
-  std::vector<std::uint32_t> contact_count, row_count;
+}
+
+// The turning contacts of the flagged islands, one group per island.
+struct ContactGroups {
+  std::vector<std::uint32_t> start;     ///< group i is contacts[start[i], start[i + 1])
+  std::vector<std::uint32_t> contacts;  ///< constraint indices
+  std::vector<std::uint32_t> count;     ///< per group: its contacts
+  std::vector<std::uint32_t> rows;      ///< per group: its normal and friction rows
+
+  std::span<const std::uint32_t> Group(std::size_t i) const { return {contacts.data() + start[i], count[i]}; }
+};
+
+// Each turning contact of a flagged island, numbered by island in the order of their first
+// contacts, then grouped by a counting sort (each group stays in contact order).
+ContactGroups GroupByIsland(std::span<const SubstepConstraint> constraints, DirectSolver* s) {
+  ContactGroups groups;
+  std::vector<std::int32_t> island_of_root(s->flagged.size(), -1), island_of(constraints.size(), -1);
   for (std::uint32_t c = 0; c < constraints.size(); ++c) {
     const SubstepConstraint& sc = constraints[c];
     if (!sc.angular) continue;
-    const std::uint32_t root = Root(s->parent, sc.inv_mass_a != 0.0 ? sc.a : sc.b);
+    const std::uint32_t root = s->linked.Find(sc.inv_mass_a != 0.0 ? sc.a : sc.b);
     if (!s->flagged[root]) continue;
     if (island_of_root[root] < 0) {
-      island_of_root[root] = static_cast<std::int32_t>(contact_count.size());
-      contact_count.push_back(0), row_count.push_back(0);
+      island_of_root[root] = static_cast<std::int32_t>(groups.count.size());
+      groups.count.push_back(0), groups.rows.push_back(0);
     }
     island_of[c] = island_of_root[root];
-    ++contact_count[island_of[c]];
-    row_count[island_of[c]] += sc.point_count + 1;
+    ++groups.count[island_of[c]];
+    groups.rows[island_of[c]] += sc.point_count + 1;
   }
-  std::vector<std::uint32_t> group_start(contact_count.size() + 1, 0), contacts(constraints.size());
-  for (std::size_t i = 0; i < contact_count.size(); ++i) group_start[i + 1] = group_start[i] + contact_count[i];
-  std::vector<std::uint32_t> fill(group_start.begin(), group_start.end() - 1);
+  groups.start.assign(groups.count.size() + 1, 0);
+  groups.contacts.resize(constraints.size());
+  for (std::size_t i = 0; i < groups.count.size(); ++i) groups.start[i + 1] = groups.start[i] + groups.count[i];
+  std::vector<std::uint32_t> fill(groups.start.begin(), groups.start.end() - 1);
   for (std::uint32_t c = 0; c < constraints.size(); ++c) {
-    if (island_of[c] >= 0) contacts[fill[island_of[c]]++] = c;
+    if (island_of[c] >= 0) groups.contacts[fill[island_of[c]]++] = c;
   }
-  // Rows island by island (the normals, then one friction row per contact), leaving out islands
-  // too large for a dense solve.
-  for (std::size_t i = 0; i < contact_count.size(); ++i) {
-    if (row_count[i] > static_cast<std::uint32_t>(kDirectMaxRows)) continue;
-    const std::span<const std::uint32_t> group(contacts.data() + group_start[i], contact_count[i]);
-    DirectSolver::Island island;
-    island.first_row = static_cast<std::uint32_t>(s->rows.size());
-    for (std::uint32_t c : group) {
-      for (int k = 0; k < constraints[c].point_count; ++k) s->rows.push_back({c, k, 0});
-    }
-    island.normal_rows = static_cast<std::uint32_t>(s->rows.size()) - island.first_row;
-    std::uint32_t first_normal = 0;
-    for (std::uint32_t c : group) {
-      s->rows.push_back({c, -1, first_normal});
-      first_normal += constraints[c].point_count;
-    }
-    island.rows = static_cast<std::uint32_t>(s->rows.size()) - island.first_row;
-    island.first_body = static_cast<std::uint32_t>(s->bodies.size());
-    for (std::uint32_t c : group) {
-      if (constraints[c].inv_mass_a != 0.0) s->bodies.push_back(constraints[c].a);
-      if (constraints[c].inv_mass_b != 0.0) s->bodies.push_back(constraints[c].b);
-    }
-    std::sort(s->bodies.begin() + island.first_body, s->bodies.end());
-    s->bodies.erase(std::unique(s->bodies.begin() + island.first_body, s->bodies.end()), s->bodies.end());
-    island.body_count = static_cast<std::uint32_t>(s->bodies.size()) - island.first_body;
-    // K = J·M⁻¹·Jᵀ, symmetric.
-    const int m = static_cast<int>(island.rows);
-    island.matrix = s->matrix.size();
-    s->matrix.resize(island.matrix + static_cast<std::size_t>(m) * m);
-    double* k = s->matrix.data() + island.matrix;
-    const DirectSolver::Row* rows = s->rows.data() + island.first_row;
-    for (int r = 0; r < m; ++r) {
-      const SubstepConstraint& cr = constraints[rows[r].constraint];
-      const Jacobian jr = RowJacobian(cr, rows[r].point);
-      for (int c = 0; c <= r; ++c) {
-        const SubstepConstraint& cc = constraints[rows[c].constraint];
-        k[r * m + c] = k[c * m + r] = Coupling(cr, jr, cc, RowJacobian(cc, rows[c].point));
-      }
-    }
-    // K's non-zeros row by row, in column order.
-    for (int r = 0; r < m; ++r) {
-      s->sparse_begin.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
-      for (int c = 0; c < m; ++c) {
-        if (k[r * m + c] == 0.0) continue;
-        s->sparse_column.push_back(static_cast<std::uint32_t>(c));
-        s->sparse_value.push_back(k[r * m + c]);
-      }
-      s->sparse_end.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
-    }
-    // First guesses, from the impulses warm starting brought: the normals that pushed are free,
-    // friction is free within μ times its contact's normal impulses; nothing pushes out.
-    for (int r = 0; r < m; ++r) {
-      const SubstepConstraint& sc = constraints[rows[r].constraint];
-      double limit = 0.0;
-      if (rows[r].point < 0) {
-        for (int p = 0; p < sc.point_count; ++p) limit += sc.points[p].normal_impulse;
-        limit *= sc.friction;
-      }
-      const bool pushed = rows[r].point < 0 || sc.points[rows[r].point].normal_impulse > 0.0;
-      s->bound.push_back(pushed ? kFree : kAtLower);
-      s->push_bound.push_back(kAtLower);
-      s->last_limit.push_back(limit);
-    }
-    s->islands.push_back(island);
+  return groups;
+}
+
+// The island's rows: the normals, then one friction row per contact.
+void AddRows(std::span<const SubstepConstraint> constraints, std::span<const std::uint32_t> group,
+             DirectSolver* s, DirectSolver::Island* island) {
+  island->first_row = static_cast<std::uint32_t>(s->rows.size());
+  for (std::uint32_t c : group) {
+    for (int k = 0; k < constraints[c].point_count; ++k) s->rows.push_back({c, k, 0});
   }
-  // The contacts solved directly this step, in pair order, for the next step's hand-off.
+  island->normal_rows = static_cast<std::uint32_t>(s->rows.size()) - island->first_row;
+  std::uint32_t first_normal = 0;
+  for (std::uint32_t c : group) {
+    s->rows.push_back({c, -1, first_normal});
+    first_normal += constraints[c].point_count;
+  }
+  island->rows = static_cast<std::uint32_t>(s->rows.size()) - island->first_row;
+}
+
+// The island's moving bodies, ascending.
+void AddBodies(std::span<const SubstepConstraint> constraints, std::span<const std::uint32_t> group,
+               DirectSolver* s, DirectSolver::Island* island) {
+  island->first_body = static_cast<std::uint32_t>(s->bodies.size());
+  for (std::uint32_t c : group) {
+    if (constraints[c].inv_mass_a != 0.0) s->bodies.push_back(constraints[c].a);
+    if (constraints[c].inv_mass_b != 0.0) s->bodies.push_back(constraints[c].b);
+  }
+  std::sort(s->bodies.begin() + island->first_body, s->bodies.end());
+  s->bodies.erase(std::unique(s->bodies.begin() + island->first_body, s->bodies.end()), s->bodies.end());
+  island->body_count = static_cast<std::uint32_t>(s->bodies.size()) - island->first_body;
+}
+
+// The island's K = J·M⁻¹·Jᵀ (symmetric), and its non-zeros row by row, in column order.
+void AddMatrix(std::span<const SubstepConstraint> constraints, DirectSolver* s, DirectSolver::Island* island) {
+  const int m = static_cast<int>(island->rows);
+  island->matrix = s->matrix.size();
+  s->matrix.resize(island->matrix + static_cast<std::size_t>(m) * m);
+  double* k = s->matrix.data() + island->matrix;
+  const DirectSolver::Row* rows = s->rows.data() + island->first_row;
+  for (int r = 0; r < m; ++r) {
+    const SubstepConstraint& cr = constraints[rows[r].constraint];
+    const Jacobian jr = RowJacobian(cr, rows[r].point);
+    for (int c = 0; c <= r; ++c) {
+      const SubstepConstraint& cc = constraints[rows[c].constraint];
+      k[r * m + c] = k[c * m + r] = Coupling(cr, jr, cc, RowJacobian(cc, rows[c].point));
+    }
+  }
+  for (int r = 0; r < m; ++r) {
+    s->sparse_begin.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
+    for (int c = 0; c < m; ++c) {
+      if (k[r * m + c] == 0.0) continue;
+      s->sparse_column.push_back(static_cast<std::uint32_t>(c));
+      s->sparse_value.push_back(k[r * m + c]);
+    }
+    s->sparse_end.push_back(static_cast<std::uint32_t>(s->sparse_column.size()));
+  }
+}
+
+// First guesses of the island's row states, from the impulses warm starting brought: the
+// normals that pushed are free, friction is free within μ times its contact's normal impulses;
+// nothing pushes out.
+void AddFirstGuesses(std::span<const SubstepConstraint> constraints, const DirectSolver::Island& island,
+                     DirectSolver* s) {
+  const DirectSolver::Row* rows = s->rows.data() + island.first_row;
+  for (std::uint32_t r = 0; r < island.rows; ++r) {
+    const SubstepConstraint& sc = constraints[rows[r].constraint];
+    double limit = 0.0;
+    if (rows[r].point < 0) {
+      for (int p = 0; p < sc.point_count; ++p) limit += sc.points[p].normal_impulse;
+      limit *= sc.friction;
+    }
+    const bool pushed = rows[r].point < 0 || sc.points[rows[r].point].normal_impulse > 0.0;
+    s->bound.push_back(pushed ? kFree : kAtLower);
+    s->push_bound.push_back(kAtLower);
+    s->last_limit.push_back(limit);
+  }
+}
+
+// The contacts solved directly this step, in pair order, for the next step's hand-off.
+void RecordDirectContacts(std::span<const SubstepConstraint> constraints, DirectSolver* s) {
   s->direct_contact.assign(constraints.size(), 0);
   for (const DirectSolver::Row& row : s->rows) s->direct_contact[row.constraint] = 1;
   for (std::uint32_t c = 0; c < constraints.size(); ++c) {
     if (s->direct_contact[c]) s->pairs.push_back({constraints[c].a, constraints[c].b});
   }
-  // Factor slots: one per island for the velocities, one for the push-out.
+}
+
+// Factor slots: one per island for the velocities, one for the push-out, none valid yet.
+void ResetFactorSlots(DirectSolver* s) {
   s->factor.resize(2 * s->islands.size());
   s->factor_rows.resize(2 * s->islands.size());
   s->factor_valid.assign(2 * s->islands.size(), 0);
   for (std::vector<std::uint32_t>& slot : s->factor_rows) slot.clear();
+}
+
+bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
+                  DirectSolver* s) {
+  ClearIslands(s);
+  if (std::none_of(constraints.begin(), constraints.end(),
+                   [&](const SubstepConstraint& sc) { return IsHeavyPair(sc, infos); })) {
+    return false;  // the common case: nothing more to do, nothing allocated
+  }
+  FlagHeavyIslands(constraints, infos, s);
+  const ContactGroups groups = GroupByIsland(constraints, s);
+  for (std::size_t i = 0; i < groups.count.size(); ++i) {
+    if (groups.rows[i] > static_cast<std::uint32_t>(kDirectMaxRows)) continue;  // too large for a dense solve
+    DirectSolver::Island island;
+    AddRows(constraints, groups.Group(i), s, &island);
+    AddBodies(constraints, groups.Group(i), s, &island);
+    AddMatrix(constraints, s, &island);
+    AddFirstGuesses(constraints, island, s);
+    s->islands.push_back(island);
+  }
+  RecordDirectContacts(constraints, s);
+  ResetFactorSlots(s);
   return !s->islands.empty();
 }
 

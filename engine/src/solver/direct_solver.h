@@ -14,6 +14,7 @@
 #include "engine/world_def.h"
 #include "body_pair.h"
 #include "solver/substep_passes.h"
+#include "union_find.h"
 
 namespace engine::detail {
 
@@ -77,7 +78,7 @@ struct DirectSolver {
   std::vector<BodyPair> pairs, previous_pairs;
   std::vector<std::uint8_t> direct_contact;  ///< per constraint of this step
   // Scratch.
-  std::vector<std::uint32_t> parent;
+  UnionFind linked;  ///< bodies linked by contacts between turning pairs
   std::vector<std::uint8_t> flagged;
   std::vector<double> x, q, lo, hi, limit, rhs, centred, previous;
   std::vector<BodyState> saved;

@@ -163,6 +163,112 @@ template <typename C, typename P>
   return p.normal_impulse * sc.normal + p.tangent_impulse * t;
 }
 
+// Adds point `p`'s impulse to its bodies' sums of impulse (and angular impulse, where they turn).
+template <typename C, typename P>
+[[gnu::always_inline]] inline void AddToBodySums(const C& sc, const P& p, Vec2 impulse,
+                                                  WarmStartImpulses sums) {
+  sums.linear[sc.a] -= impulse;
+  sums.linear[sc.b] += impulse;
+  if constexpr (kCanTurn<C>) {
+    if (sc.angular) {
+      sums.angular[sc.a] -= Cross(p.anchor_a, impulse);
+      sums.angular[sc.b] += Cross(p.anchor_b, impulse);
+    }
+  }
+}
+
+// WarmStart where every contact is loaded (gravity): the impulses go straight on.
+template <typename C>
+void WarmStartAll(std::span<C> constraints, std::span<BodyState> states) {
+  for (C& sc : constraints) {
+    BodyState& a = states[sc.a];
+    BodyState& b = states[sc.b];
+    const Vec2 t = LeftPerp(sc.normal);
+    if (!Turns(sc)) {
+      const Vec2 impulse = WarmImpulse(sc, Point(sc, 0), t, a, b);
+      a.velocity -= sc.inv_mass_a * impulse;
+      b.velocity += sc.inv_mass_b * impulse;
+      continue;
+    }
+    if constexpr (kCanTurn<C>) {
+      for (int k = 0; k < sc.point_count; ++k) {
+        SubstepPoint& p = sc.points[k];
+        ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
+      }
+    }
+  }
+}
+
+// The first half of WarmStart's scaling: applies the loaded contacts' impulses and adds the
+// force-free ones to their bodies' sums (`sums`) instead. Returns the targets' side of the
+// force-free a = λwᵀ(u₀ − t), and sets `any_free`.
+template <typename C>
+double ApplyLoadedSumForceFree(std::span<C> constraints, std::span<BodyState> states,
+                               std::span<const std::uint8_t> loaded, const StepStart& start, double inv_h,
+                               WarmStartImpulses sums, bool* any_free) {
+  for (Vec2& p : sums.linear) p = {};
+  for (double& l : sums.angular) l = 0.0;
+  double a = 0.0;
+  bool any = false;
+  for (C& sc : constraints) {
+    BodyState& body_a = states[sc.a];
+    BodyState& body_b = states[sc.b];
+    const Vec2 t = LeftPerp(sc.normal);
+    const bool free = !loaded[sc.a] && !loaded[sc.b];
+    any = any || free;
+    for (int k = 0; k < PointCount(sc); ++k) {
+      auto& p = Point(sc, k);
+      const Vec2 impulse = WarmImpulse(sc, p, t, body_a, body_b);
+      if (!free) {
+        ApplyImpulse(sc, p, impulse, body_a, body_b);
+        continue;
+      }
+      a -= p.normal_impulse * TargetVelocity(sc, p, states, start, inv_h);
+      AddToBodySums(sc, p, impulse, sums);
+    }
+  }
+  *any_free = any;
+  return a;
+}
+
+// The second half: with the loaded part applied, λwᵀ(u₀ − t) = Σ P·v (+ L·ω) + the targets' side
+// (`a` brings it), and λwᵀAλw = Σ |P|²/m (+ L²/I), P and L each body's sums of the force-free
+// impulses. Applies them scaled by α = clamp(−a / b, 0, 1), scales the stored ones to match, and
+// returns α.
+template <typename C>
+double ApplyForceFreeScaled(std::span<C> constraints, std::span<BodyState> states,
+                            std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
+                            WarmStartImpulses sums, double a) {
+  const bool rotation = !sums.angular.empty();
+  double b = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const Vec2 p = sums.linear[i];
+    a += Dot(p, states[i].velocity);
+    b += infos[i].inv_mass * Dot(p, p);
+    if (rotation) {
+      const double l = sums.angular[i];
+      a += l * states[i].angular_velocity;
+      b += infos[i].inv_inertia * l * l;
+    }
+  }
+  if (!(b > 0.0)) return 1.0;  // no force-free impulse moves anything
+  const double alpha = std::clamp(-a / b, 0.0, 1.0);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].velocity += (alpha * infos[i].inv_mass) * sums.linear[i];
+    if (rotation) states[i].angular_velocity += (alpha * infos[i].inv_inertia) * sums.angular[i];
+  }
+  if (alpha != 1.0) {
+    for (C& sc : constraints) {
+      if (loaded[sc.a] || loaded[sc.b]) continue;
+      for (int k = 0; k < PointCount(sc); ++k) {
+        Point(sc, k).normal_impulse *= alpha;
+        Point(sc, k).tangent_impulse *= alpha;
+      }
+    }
+  }
+  return alpha;
+}
+
 }  // namespace
 
 // The warm start re-applies last substep's impulses λw, the guess that the contacts need the
@@ -207,87 +313,14 @@ template <typename C>
 double WarmStart(std::span<C> constraints, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
                  const StepStart& start, double inv_h, WarmStartImpulses scratch) {
-  // Every contact loaded (gravity): the impulses go straight on.
   if (loaded.empty()) {
-    for (C& sc : constraints) {
-      BodyState& a = states[sc.a];
-      BodyState& b = states[sc.b];
-      const Vec2 t = LeftPerp(sc.normal);
-      if (!Turns(sc)) {
-        const Vec2 impulse = WarmImpulse(sc, Point(sc, 0), t, a, b);
-        a.velocity -= sc.inv_mass_a * impulse;
-        b.velocity += sc.inv_mass_b * impulse;
-        continue;
-      }
-      if constexpr (kCanTurn<C>) {
-        for (int k = 0; k < sc.point_count; ++k) {
-          SubstepPoint& p = sc.points[k];
-          ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
-        }
-      }
-    }
+    WarmStartAll(constraints, states);
     return 1.0;
   }
-  const bool rotation = !scratch.angular.empty();
-  for (Vec2& p : scratch.linear) p = {};
-  for (double& l : scratch.angular) l = 0.0;
-  // The force-free part of a = λwᵀ(u₀ − t): its targets' side here, its bodies' side below.
-  double a = 0.0;
   bool any_free = false;
-  for (C& sc : constraints) {
-    BodyState& body_a = states[sc.a];
-    BodyState& body_b = states[sc.b];
-    const Vec2 t = LeftPerp(sc.normal);
-    const bool free = !loaded[sc.a] && !loaded[sc.b];
-    any_free = any_free || free;
-    for (int k = 0; k < PointCount(sc); ++k) {
-      auto& p = Point(sc, k);
-      const Vec2 impulse = WarmImpulse(sc, p, t, body_a, body_b);
-      if (!free) {
-        ApplyImpulse(sc, p, impulse, body_a, body_b);
-        continue;
-      }
-      a -= p.normal_impulse * TargetVelocity(sc, p, states, start, inv_h);
-      scratch.linear[sc.a] -= impulse;
-      scratch.linear[sc.b] += impulse;
-      if constexpr (kCanTurn<C>) {
-        if (sc.angular) {
-          scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
-          scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
-        }
-      }
-    }
-  }
+  const double a = ApplyLoadedSumForceFree(constraints, states, loaded, start, inv_h, scratch, &any_free);
   if (!any_free) return 1.0;
-  // With the loaded part applied: λwᵀ(u₀ − t) = Σ P·v (+ L·ω) + the targets' side, and
-  // λwᵀAλw = Σ |P|²/m (+ L²/I), P and L each body's sums of the force-free impulses.
-  double b = 0.0;
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    const Vec2 p = scratch.linear[i];
-    a += Dot(p, states[i].velocity);
-    b += infos[i].inv_mass * Dot(p, p);
-    if (rotation) {
-      const double l = scratch.angular[i];
-      a += l * states[i].angular_velocity;
-      b += infos[i].inv_inertia * l * l;
-    }
-  }
-  if (!(b > 0.0)) return 1.0;  // no force-free impulse moves anything
-  const double alpha = std::clamp(-a / b, 0.0, 1.0);
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    states[i].velocity += (alpha * infos[i].inv_mass) * scratch.linear[i];
-    if (rotation) states[i].angular_velocity += (alpha * infos[i].inv_inertia) * scratch.angular[i];
-  }
-  if (alpha != 1.0) {
-    for (C& sc : constraints) {
-      if (loaded[sc.a] || loaded[sc.b]) continue;
-      for (int k = 0; k < PointCount(sc); ++k) {
-        Point(sc, k).normal_impulse *= alpha;
-        Point(sc, k).tangent_impulse *= alpha;
-      }
-    }
-  }
-  return alpha;
+  return ApplyForceFreeScaled(constraints, states, infos, loaded, scratch, a);
 }
 
 double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo> infos) {
@@ -321,15 +354,7 @@ double LimitContactEnergy(std::span<C> constraints, std::span<BodyState> states,
     const Vec2 t = LeftPerp(sc.normal);
     for (int k = 0; k < PointCount(sc); ++k) {
       const auto& p = Point(sc, k);
-      const Vec2 impulse = p.normal_impulse * sc.normal + p.tangent_impulse * t;
-      scratch.linear[sc.a] -= impulse;
-      scratch.linear[sc.b] += impulse;
-      if constexpr (kCanTurn<C>) {
-        if (sc.angular) {
-          scratch.angular[sc.a] -= Cross(p.anchor_a, impulse);
-          scratch.angular[sc.b] += Cross(p.anchor_b, impulse);
-        }
-      }
+      AddToBodySums(sc, p, p.normal_impulse * sc.normal + p.tangent_impulse * t, scratch);
     }
   }
   double slope = 0.0, curvature = 0.0;
