@@ -9,8 +9,15 @@
 
 namespace engine::detail {
 
-bool CollideBodies(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b,
-                   double margin, Manifold* m) {
+namespace {
+
+// The manifold between two bodies (normal from a to b); false when they are farther apart than
+// `margin`. A box that has turned takes the oriented tests, an unturned one the exact
+// axis-aligned ones, so a scene where nothing turns computes exactly what the axis-aligned game
+// does. Inlined into the loop over the pairs: called, it cost 20 % of the narrow phase (a circle
+// pour's pairs are mostly this test; measured with callgrind).
+[[gnu::always_inline]] inline bool CollideBodies(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib,
+                                                 const BodyState& b, double margin, Manifold* m) {
   const Vec2 pa = a.position, pb = b.position;
   const bool circle_a = ia.shape.type == ShapeType::kCircle;
   const bool circle_b = ib.shape.type == ShapeType::kCircle;
@@ -35,6 +42,28 @@ bool CollideBodies(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, c
   return CollideOrientedBoxes(box_a(), box_b(), m, margin);
 }
 
+// Last step's impulses on the points of `contact` that match by feature id, if the pair was in
+// contact then with about the same normal. `cursor` walks forward through last step's list,
+// which is in the same pair order.
+[[gnu::always_inline]] inline void CarryImpulses(const std::vector<Contact>& previous, Contact* contact,
+                                                 std::size_t* cursor) {
+  const BodyPair pair{contact->a, contact->b};
+  while (*cursor < previous.size() && BodyPair{previous[*cursor].a, previous[*cursor].b} < pair) ++*cursor;
+  if (*cursor == previous.size()) return;
+  const Contact& old = previous[*cursor];
+  if (old.a != pair.a || old.b != pair.b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) return;
+  const Manifold& m = contact->manifold;
+  for (int i = 0; i < m.point_count; ++i) {
+    for (int j = 0; j < old.manifold.point_count; ++j) {
+      if (old.manifold.points[j].id != m.points[i].id) continue;
+      contact->normal_impulse[i] = old.normal_impulse[j];
+      contact->tangent_impulse[i] = old.tangent_impulse[j];
+    }
+  }
+}
+
+}  // namespace
+
 void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                          std::span<const BodyInfo> infos, std::span<const double> margins) {
   previous_contacts_.swap(contacts_);
@@ -50,28 +79,10 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
     if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margins[pair.a] + margins[pair.b], &m)) continue;
     Contact contact{pair.a, pair.b, m, std::max(ia.restitution, ib.restitution),
                     std::sqrt(ia.friction * ib.friction)};
-    WarmStart(&contact, &previous);
+    CarryImpulses(previous_contacts_, &contact, &previous);
     contacts_.push_back(contact);
   }
 }
 
-void NarrowPhase::WarmStart(Contact* contact, std::size_t* previous) const {
-  const BodyPair pair{contact->a, contact->b};
-  while (*previous < previous_contacts_.size() &&
-         BodyPair{previous_contacts_[*previous].a, previous_contacts_[*previous].b} < pair) {
-    ++*previous;
-  }
-  if (*previous == previous_contacts_.size()) return;
-  const Contact& old = previous_contacts_[*previous];
-  if (old.a != pair.a || old.b != pair.b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) return;
-  const Manifold& m = contact->manifold;
-  for (int i = 0; i < m.point_count; ++i) {
-    for (int j = 0; j < old.manifold.point_count; ++j) {
-      if (old.manifold.points[j].id != m.points[i].id) continue;
-      contact->normal_impulse[i] = old.normal_impulse[j];
-      contact->tangent_impulse[i] = old.tangent_impulse[j];
-    }
-  }
-}
 
 }  // namespace engine::detail
