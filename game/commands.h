@@ -2,6 +2,7 @@
 #pragma once
 
 #include "game/cli.h"
+#include "game/event_log.h"
 #include "game/scene.h"
 #include "game/script.h"
 #include "game/status.h"
@@ -15,6 +16,10 @@ struct RunInput {
   std::vector<InputEvent> events;
 };
 Expected<RunInput> LoadRunInput(const RunOptions& options);
+
+/// Prints the events summary to stdout (after a line per miss when `list_misses`).
+void PrintEventSummary(const Scene& scene, const EventLog& log, const EventsAfterEnd& late,
+                       bool list_misses);
 
 Status RunSim(const SimOptions& options);
 Status RunRender(const RenderOptions& options);

@@ -1,9 +1,7 @@
 // `ballbox play`: the scene in a window in real time, drawn by the same renderer as `ballbox
 // render` (its picture copied to the window), with clicks, keys, recording and replay.
-#include <atomic>
 #include <chrono>
 #include <cinttypes>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "game/commands.h"
+#include "game/interrupt.h"
 #include "game/output_file.h"
 #include "game/play_controller.h"
 #include "game/play_view.h"
@@ -26,12 +25,6 @@ namespace {
 
 constexpr const char* kScreenshotDir = "screenshots";
 constexpr render::Color kBarColor{0x20, 0x23, 0x28};
-constexpr render::Color kStatusBackdrop{0x20, 0x23, 0x28};
-constexpr render::Color kStatusText{0xf4, 0xf1, 0xea};
-
-// Ctrl-C in the terminal ends the run as Esc does: the recording is written, the hash printed.
-std::atomic<bool> g_interrupted{false};
-extern "C" void OnInterrupt(int) { g_interrupted = true; }
 
 Failure NoDisplay(const std::string& reason) {
   return RuntimeFailure("ballbox play needs a window, and there is no display (" + reason +
@@ -83,16 +76,7 @@ class FpsMeter {
 
 std::vector<render::FilledRect> StatusOverlay(const std::string& text, int framebuffer_width) {
   // Twice the font's cells on a window wide enough; the line stays small either way.
-  const int cell = framebuffer_width >= 480 ? 2 : 1;
-  const int pad = 2 * cell;
-  std::vector<render::FilledRect> overlay;
-  overlay.push_back({{pad, pad, render::TextWidth(text, cell) + 2 * pad,
-                      render::kGlyphRows * cell + 2 * pad},
-                     kStatusBackdrop});
-  for (const render::FilledRect& r : render::LayoutText(text, 2 * pad, 2 * pad, cell, kStatusText)) {
-    overlay.push_back(r);
-  }
-  return overlay;
+  return render::TextPanel(text, framebuffer_width >= 480 ? 2 : 1, render::kPanelBackdrop, render::kPanelText);
 }
 
 std::string Title(const PlayController& controller) {
@@ -147,7 +131,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
   const int image_width = controller.GetSession().ImageWidth();
   const int image_height = controller.GetSession().ImageHeight();
 
-  while (!g_interrupted) {
+  while (!Interrupted()) {
     // Nothing changes before the next step is due, so wait for it (or for input) rather than
     // redraw the same state; a paused game only waits for input.
     const bool idle = controller.Paused() || controller.Finished();
@@ -264,12 +248,12 @@ Status RunPlay(const PlayOptions& options) {
     colors.push_back(body.color);
   }
 
-  g_interrupted = false;
-  auto previous_int = std::signal(SIGINT, OnInterrupt);
-  auto previous_term = std::signal(SIGTERM, OnInterrupt);
-  Status status = RunWindow(*window, *renderer, controller, colors);
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
+  Status status;
+  {
+    // Ctrl-C in the terminal ends the run as Esc does: the recording is written, the hash printed.
+    InterruptGuard guard;
+    status = RunWindow(*window, *renderer, controller, colors);
+  }
   renderer.reset();
   window.reset();
   if (status) return status;

@@ -3,7 +3,6 @@
 // replay cannot depend on window size, camera fitting or rounding of pixels.
 #include "game/play_controller.h"
 
-#include "render/camera.h"
 
 namespace game {
 
@@ -91,15 +90,18 @@ void PlayController::StepOne() {
 }
 
 void PlayController::Apply(const InputEvent& event) {
-  // The same mapping Session::ApplyEvent uses for pixel clicks, so the point is bit-identical.
-  const engine::Vec2 p =
-      event.kind == EventKind::kClickPixel
-          ? render::PixelToWorld(session_->Camera(), session_->ImageWidth(),
-                                 session_->ImageHeight(), event.at.x, event.at.y)
-          : event.at;
-  const InputEvent applied{session_->StepIndex(), EventKind::kClickWorld, p};
-  session_->ApplyEvent(applied);
-  recorded_.push_back(applied);
+  // The session maps a pixel click as it maps a script's, so the point is bit-identical.
+  const engine::Vec2 p = session_->ApplyEvent(event);
+  recorded_.push_back(InputEvent{session_->StepIndex(), EventKind::kClickWorld, p});
+}
+
+EventsAfterEnd PlayController::EventsLeft() const {
+  EventsAfterEnd late;
+  late.count = script_.size() - next_script_event_ + pending_clicks_.size();
+  late.first_step = session_->StepIndex();
+  if (next_script_event_ < script_.size()) late.first_step = script_[next_script_event_].step;
+  late.end_step = session_->StepIndex();
+  return late;
 }
 
 }  // namespace game

@@ -57,6 +57,8 @@ class PlayController {
   /// Every event applied since the last start, in the order applied, as world-point clicks:
   /// FormatScript of this replays to the same state in sim and render, at any --size.
   const std::vector<InputEvent>& Recorded() const { return recorded_; }
+  /// Script events and live clicks not applied yet: late, once the run has ended.
+  EventsAfterEnd EventsLeft() const;
   /// Real time until the next step is due (for waiting on input in between).
   double SecondsToNextStep() const { return clock_.SecondsToNextStep(); }
   int MaxStepsPerFrame() const { return clock_.MaxStepsPerFrame(); }
