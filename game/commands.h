@@ -17,6 +17,10 @@ struct RunInput {
 };
 Expected<RunInput> LoadRunInput(const RunOptions& options);
 
+/// The body `--follow` names, by index, or nothing without the flag; an unknown id is bad input.
+Expected<std::optional<engine::BodyId>> FollowedBody(const Scene& scene, const ViewOptions& view,
+                                                     const std::string& scene_label);
+
 /// Prints the events summary to stdout (after a line per miss when `list_misses`).
 void PrintEventSummary(const Scene& scene, const EventLog& log, const EventsAfterEnd& late,
                        bool list_misses);

@@ -11,6 +11,12 @@
 
 namespace game {
 
+/// What the picture shows instead of the scene's view: `--camera` and `--follow`.
+struct FilmView {
+  std::optional<render::Camera> camera;  ///< centre and width as at 800x600
+  std::optional<engine::BodyId> follow;
+};
+
 class FilmCamera {
  public:
   /// `view`: centre and width as an 800x600 image shows them. With `follow`, the centre

@@ -99,7 +99,7 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
 
   std::vector<render::Color> colors;
   for (const SceneBody& body : session.SceneDef().bodies) colors.push_back(body.color);
-  FilmCamera camera(options.camera.value_or(session.View()), options.follow, session.World());
+  FilmCamera camera(options.view.camera.value_or(session.View()), options.view.follow, session.World());
   InterruptGuard interrupt;
   ProgressBar progress("render", options.frames, "frames", options.show_progress);
   FrameSequenceStats stats;

@@ -3,13 +3,11 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <string>
 
-#include "engine/world.h"
+#include "game/film_camera.h"
 #include "game/session.h"
 #include "game/status.h"
-#include "render/camera.h"
 #include "render/png_writer.h"
 
 namespace game {
@@ -24,8 +22,7 @@ struct FrameSequenceOptions {
   int encoder_threads = 0;    ///< 0: one per core
   std::int64_t from = 0;      ///< steps simulated before frame 0
   bool hud = false;           ///< step, time and state hash drawn on every frame
-  std::optional<render::Camera> camera;  ///< instead of the session's view (as at 800x600)
-  std::optional<engine::BodyId> follow;  ///< the camera tracks this body
+  FilmView view;              ///< --camera instead of the session's view; --follow
 };
 
 struct FrameSequenceStats {
@@ -37,7 +34,7 @@ struct FrameSequenceStats {
 
 /// Writes out_dir/frame_00000.png … and/or the video for frames k = 0 … N−1, frame k showing
 /// the session after from + k·K more steps. Images are the session's image size, seen through
-/// its camera (or `camera`, or following `follow`). Frames of an earlier run numbered N or more
+/// its camera (or view's camera, or following view's body). Frames of an earlier run numbered N or more
 /// are removed from the folder, so it holds this film alone. Failures (GL context, output,
 /// writing) exit 1, and so does Ctrl-C, which stops at the next frame: the frames written so far
 /// stay, the video and every temporary file go, and the message says which frames are complete.

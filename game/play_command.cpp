@@ -91,7 +91,7 @@ void TakeScreenshot(render::Renderer& renderer, const PlayController& controller
                     const std::vector<render::Color>& colors) {
   // Drawn afresh from the current state, so the file shows exactly the step its name says.
   const Session& session = controller.GetSession();
-  renderer.Draw(session.World(), colors, session.Camera());
+  renderer.Draw(session.World(), colors, controller.Camera());
   render::Image image;
   renderer.ReadImage(image);
   Expected<std::string> path = SaveScreenshot(
@@ -112,8 +112,11 @@ std::string RecordingHeader(const PlayOptions& options, const PlayController& co
                 session.StepIndex(), session.World().StateHash());
   const std::string scene =
       options.run.scene_path ? *options.run.scene_path : std::string("(the built-in scene)");
+  // The recording holds world points, which need no size; the size line says what the window
+  // showed, and a pixel click added by hand below it maps at that size.
   return "# recorded by ballbox play: " + scene + "\n" + line +
-         "# every click applied, live or scripted, as the world point it acted on\n";
+         "# every click applied, live or scripted, as the world point it acted on\n" +
+         SizeLine(session.ImageWidth(), session.ImageHeight());
 }
 
 // The window loop. Returns when the user quits, the stop step is reached, or GL fails.
@@ -143,8 +146,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       } else if (event.type == render::WindowEvent::Type::kMouseDown) {
         if (event.button != 0) continue;
         // Clicks on the letterbox bars are on no part of the picture and do nothing.
-        const Session& session = controller.GetSession();
-        if (auto p = WindowPointToWorld(session.Camera(), picture, event.x, event.y)) {
+        if (auto p = WindowPointToWorld(controller.Camera(), picture, event.x, event.y)) {
           controller.Click(*p);
         }
       } else if (event.key == "escape") {
@@ -185,7 +187,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       }
     }
     const Session& session = controller.GetSession();
-    renderer.Draw(session.World(), colors, session.Camera());
+    renderer.Draw(session.World(), colors, controller.Camera());
     const double time = static_cast<double>(session.StepIndex()) * session.World().Def().dt;
     const std::vector<render::FilledRect> overlay = StatusOverlay(
         StatusLine(session.StepIndex(), time, fps.Fps(), controller.Paused()), framebuffer_width);
@@ -206,6 +208,9 @@ Status RunPlay(const PlayOptions& options) {
   // Bad input is reported first (exit 2), as in every command, and before anything opens.
   Expected<RunInput> input = LoadRunInput(options.run);
   if (!input.HasValue()) return input.Error();
+  Expected<std::optional<engine::BodyId>> follow = FollowedBody(
+      input.Value().scene, options.view, options.run.scene_path.value_or("the default scene"));
+  if (!follow.HasValue()) return follow.Error();
   Expected<std::optional<std::int64_t>> stop_at = StepFromEnvironment("BALLBOX_PLAY_STOP_AT");
   if (!stop_at.HasValue()) return stop_at.Error();
   Expected<std::optional<std::int64_t>> pause_at = StepFromEnvironment("BALLBOX_PLAY_PAUSE_AT");
@@ -231,7 +236,8 @@ Status RunPlay(const PlayOptions& options) {
   const int width = options.run.width;
   const int height = options.run.height;
   PlayController controller(std::move(input.Value().scene), std::move(input.Value().events),
-                            width, height, PlayLimits{stop_at.Value(), pause_at.Value()});
+                            width, height, PlayLimits{stop_at.Value(), pause_at.Value()},
+                            kMaxFrameSeconds, FilmView{options.view.camera, follow.Value()});
   std::string error;
   render::Window::Failure failure = render::Window::Failure::kNone;
   std::unique_ptr<render::Window> window =
@@ -275,6 +281,8 @@ Status RunPlay(const PlayOptions& options) {
   }
   std::printf("play: stopped at step %" PRId64 " (%.3f s simulated)\n", session.StepIndex(),
               static_cast<double>(session.StepIndex()) * session.World().Def().dt);
+  PrintEventSummary(session.SceneDef(), session.Events(), controller.EventsLeft(),
+                    options.run.list_misses);
   std::printf("state-hash: %016" PRIx64 "\n", session.World().StateHash());
   return std::nullopt;
 }

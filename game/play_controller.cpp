@@ -7,15 +7,18 @@
 namespace game {
 
 PlayController::PlayController(Scene scene, std::vector<InputEvent> script, int image_width,
-                               int image_height, PlayLimits limits, double max_frame_seconds)
+                               int image_height, PlayLimits limits, double max_frame_seconds,
+                               FilmView view)
     : scene_(std::move(scene)),
       script_(std::move(script)),
       image_width_(image_width),
       image_height_(image_height),
       limits_(limits),
       // The session gets no events: this class applies them, so it can record each one.
+      view_(view),
       session_(std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width,
                                          image_height)),
+      camera_(view_.camera.value_or(session_->View()), view_.follow, session_->World()),
       clock_(session_->World().Def().dt, max_frame_seconds) {}
 
 bool PlayController::Finished() const {
@@ -70,6 +73,7 @@ bool PlayController::StepOnce() {
 void PlayController::Restart() {
   session_ = std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width_,
                                        image_height_);
+  camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
   next_script_event_ = 0;
   pending_clicks_.clear();
   recorded_.clear();
@@ -87,6 +91,11 @@ void PlayController::StepOne() {
   }
   pending_clicks_.clear();
   session_->Step();
+  camera_.Advance(session_->World());
+}
+
+render::Camera PlayController::Camera() const {
+  return camera_.For(session_->ImageWidth(), session_->ImageHeight());
 }
 
 void PlayController::Apply(const InputEvent& event) {

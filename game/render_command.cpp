@@ -35,15 +35,6 @@ Status CheckVideo(const std::string& path, int width, int height) {
   return std::nullopt;
 }
 
-Expected<std::optional<engine::BodyId>> FollowedBody(const Scene& scene, const ViewOptions& view,
-                                                     const std::string& scene_label) {
-  if (!view.follow) return std::optional<engine::BodyId>();
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].id == *view.follow) return std::optional<engine::BodyId>(i);
-  }
-  return BadInput("--follow: " + scene_label + " has no body with the id \"" + *view.follow + "\"");
-}
-
 std::string Destination(const FrameSequenceOptions& sequence, const FrameSequenceStats& s,
                         double frame_seconds) {
   std::string to = sequence.out_dir;
@@ -91,8 +82,7 @@ Status RunRender(const RenderOptions& options) {
   sequence.show_progress = StderrIsTerminal();
   sequence.from = options.from;
   sequence.hud = options.hud;
-  sequence.camera = options.view.camera;
-  sequence.follow = follow.Value();
+  sequence.view = {options.view.camera, follow.Value()};
   Expected<FrameSequenceStats> stats = RenderFrameSequence(session, sequence);
   if (!stats.HasValue()) return stats.Error();
 

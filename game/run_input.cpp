@@ -23,6 +23,15 @@ Expected<RunInput> LoadRunInput(const RunOptions& options) {
   return input;
 }
 
+Expected<std::optional<engine::BodyId>> FollowedBody(const Scene& scene, const ViewOptions& view,
+                                                     const std::string& scene_label) {
+  if (!view.follow) return std::optional<engine::BodyId>();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].id == *view.follow) return std::optional<engine::BodyId>(i);
+  }
+  return BadInput("--follow: " + scene_label + " has no body with the id \"" + *view.follow + "\"");
+}
+
 void PrintEventSummary(const Scene& scene, const EventLog& log, const EventsAfterEnd& late,
                        bool list_misses) {
   if (list_misses) {

@@ -180,6 +180,8 @@ bool FfmpegEncoder::Open(const std::string& path, std::string& error) {
     error = std::string("cannot set up a ") + names.muxer + " file: " + AvError(made);
     return false;
   }
+  // No muxing date or random segment id (WebM writes both): the same film gives the same bytes.
+  format_->flags |= AVFMT_FLAG_BITEXACT;
   if (!OpenCodec(error) || !OpenFrame(error)) return false;
   if (const int opened = avio_open(&format_->pb, path.c_str(), AVIO_FLAG_WRITE); opened < 0) {
     error = "cannot write: " + AvError(opened);
