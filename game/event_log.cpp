@@ -25,6 +25,7 @@ void EventLog::Record(const InputEvent& event, engine::Vec2 world, bool hit,
 
 std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed) {
   const std::int64_t applied = log.Applied();
+  if (applied == 0 && late.count == 0) return "events: none";
   const std::size_t missed = log.Misses().size();
   std::string line = "events: " + std::to_string(applied) + (applied == 1 ? " click" : " clicks") +
                      " applied, " + std::to_string(log.Hits()) + " hit a ball, " +

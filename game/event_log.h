@@ -45,7 +45,8 @@ struct EventsAfterEnd {
 };
 
 /// The summary line, e.g. "events: 6 clicks applied, 5 hit a ball, 1 missed (--misses lists
-/// where)". `misses_listed`: the misses are printed above it, so the hint is left out.
+/// where)", or "events: none" for a run without any. `misses_listed`: the misses are printed
+/// above it, so the hint is left out.
 std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed);
 
 /// One line per miss, e.g. "miss: step 40, click 361 231 (pixels at 800x600) -> world (-1.07,

@@ -23,8 +23,9 @@ class FilmCamera {
   /// starts on that body.
   FilmCamera(render::Camera view, std::optional<engine::BodyId> follow, const engine::World& world);
 
-  /// After `steps` simulation steps: the centre moves toward the followed body, as a first-order
-  /// lag of kFollowSeconds, so a bounce or a click does not jolt the picture.
+  /// After `steps` simulation steps: the centre moves toward the followed body (aimed at where
+  /// its velocity takes it in kFollowSeconds) as a first-order lag of kFollowSeconds, so it
+  /// keeps up with a steady mover and a bounce or a click does not jolt the picture.
   void Advance(const engine::World& world, std::int64_t steps = 1);
 
   /// The camera of a width × height image (render::FrameCamera of the current view).

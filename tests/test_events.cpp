@@ -83,6 +83,7 @@ TEST_CASE("events: hits and misses are counted; a miss keeps its step, point and
         "events: 4 clicks applied, 1 hit a ball, 3 missed (--misses lists where)");
   CHECK(game::EventSummary(log, session.EventsLeft(), true) ==
         "events: 4 clicks applied, 1 hit a ball, 3 missed");
+  CHECK(game::EventSummary(game::EventLog{}, game::EventsAfterEnd{}, false) == "events: none");
 }
 
 TEST_CASE("events: the gap to the nearest ball is its distance from the rim", "[events]") {

@@ -89,8 +89,8 @@ TEST_CASE("render --camera: the picture shows X,Y at its centre, WIDTH metres ac
   CHECK(wide.At(320, 55) == render::kBackgroundColor);
 }
 
-TEST_CASE("follow camera: starts on the body and trails a steady mover by about v times its time "
-          "constant", "[film][camera]") {
+TEST_CASE("follow camera: starts on the body, keeps a steady mover centred, smooths a sudden turn",
+          "[film][camera]") {
   engine::WorldDef def;
   def.gravity = {0, 0};
   engine::World world(def);
@@ -106,13 +106,23 @@ TEST_CASE("follow camera: starts on the body and trails a steady mover by about 
     world.Step();
     camera.Advance(world);
   }
-  // A first-order lag of a target moving v·dt a step settles at v·dt·(1 − a)/a behind, with
-  // a = 1 − exp(−dt/τ): close to v·τ = 0.5 m.
+  // The aim runs v·τ ahead, and a first-order lag of an aim moving v·dt a step settles at
+  // v·dt·(1 − a)/a behind it, a = 1 − exp(−dt/τ): the camera leads the body by
+  // v·τ − v·dt·(1 − a)/a, about v·dt/2 (a plain lag would trail it by v·τ = 0.5 m).
   const double dt = def.dt;
-  const double a = 1.0 - std::exp(-dt / game::FilmCamera::kFollowSeconds);
-  const double lag = world.State(id).position.x - camera.View().center.x;
-  CHECK(lag == Approx(2.0 * dt * (1.0 - a) / a).epsilon(1e-6));
+  const double tau = game::FilmCamera::kFollowSeconds;
+  const double a = 1.0 - std::exp(-dt / tau);
+  const double lead = camera.View().center.x - world.State(id).position.x;
+  CHECK(lead == Approx(2.0 * tau - 2.0 * dt * (1.0 - a) / a).epsilon(1e-6));
+  CHECK(std::abs(lead) < 2.0 * dt);
   CHECK(camera.View().center.y == 4.0);
+  // The ball stops dead (as against a wall): the centre does not jump, it eases over.
+  const double before = camera.View().center.x;
+  world.ApplyLinearImpulse(id, {-2.0 * 3.14159265358979323846 * 0.25, 0});  // mass π·0.5², v = 2
+  world.Step();
+  camera.Advance(world);
+  CHECK(std::abs(world.State(id).velocity.x) < 1e-12);
+  CHECK(std::abs(camera.View().center.x - before) < 2.0 * 0.5 * a + 2.0 * dt);
   // Without a body to follow, the view stays put.
   game::FilmCamera still(render::Camera{{1, 2}, 20}, std::nullopt, world);
   still.Advance(world, 50);
