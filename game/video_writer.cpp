@@ -37,44 +37,27 @@ Expected<std::unique_ptr<VideoWriter>> VideoWriter::Open(const std::string& path
 
 VideoWriter::VideoWriter(std::string path, std::string temp_path,
                          std::unique_ptr<render::VideoEncoder> encoder)
-    : path_(std::move(path)), temp_path_(std::move(temp_path)), encoder_(std::move(encoder)) {
+    : path_(std::move(path)),
+      temp_path_(std::move(temp_path)),
+      encoder_(std::move(encoder)),
+      queue_(kQueueFrames) {
   worker_ = std::thread([this] { WorkerLoop(); });
 }
 
 VideoWriter::~VideoWriter() {
-  if (!finished_) {
-    std::lock_guard lock(mutex_);
-    queue_.clear();  // the file is going: encoding what waits would only delay that
-  }
-  Stop();
-  if (!finished_) {
-    encoder_.reset();  // closes the file before it goes
-    std::remove(temp_path_.c_str());
-  }
-}
-
-bool VideoWriter::Submit(render::Image frame) {
-  std::unique_lock lock(mutex_);
-  changed_.wait(lock, [this] { return queue_.size() < kQueueFrames || failure_; });
-  if (failure_ || closing_) return false;
-  queue_.push_back(std::move(frame));
-  lock.unlock();
-  changed_.notify_all();
-  return true;
-}
-
-void VideoWriter::Stop() {
-  {
-    std::lock_guard lock(mutex_);
-    closing_ = true;
-  }
-  changed_.notify_all();
+  if (finished_) return;
+  queue_.Abandon();  // the file is going: encoding what waits would only delay that
   if (worker_.joinable()) worker_.join();
+  encoder_.reset();  // closes the file before it goes
+  std::remove(temp_path_.c_str());
 }
+
+bool VideoWriter::Submit(render::Image frame) { return queue_.Push(std::move(frame)); }
 
 Status VideoWriter::Finish() {
-  Stop();
-  if (failure_) return failure_;
+  queue_.Close();
+  if (worker_.joinable()) worker_.join();
+  if (Status failed = queue_.FirstFailure()) return failed;
   std::string error;
   if (!encoder_->Finish(error)) return RuntimeFailure(path_ + ": " + error);
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
@@ -85,24 +68,9 @@ Status VideoWriter::Finish() {
 }
 
 void VideoWriter::WorkerLoop() {
-  for (;;) {
-    render::Image frame;
-    {
-      std::unique_lock lock(mutex_);
-      changed_.wait(lock, [this] { return !queue_.empty() || closing_; });
-      if (queue_.empty()) return;
-      frame = std::move(queue_.front());
-      queue_.pop_front();
-    }
-    changed_.notify_all();
+  while (std::optional<render::Image> frame = queue_.Pop()) {
     std::string error;
-    if (!encoder_->Write(frame, error)) {
-      std::lock_guard lock(mutex_);
-      failure_ = RuntimeFailure(path_ + ": " + error);
-      queue_.clear();
-      changed_.notify_all();
-      return;
-    }
+    if (!encoder_->Write(*frame, error)) queue_.Fail(RuntimeFailure(path_ + ": " + error));
   }
 }
 

@@ -4,15 +4,13 @@
 // destruction before Finish.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 
 #include "game/status.h"
+#include "game/work_queue.h"
 #include "render/image.h"
 #include "render/video_encoder.h"
 
@@ -38,17 +36,12 @@ class VideoWriter {
  private:
   VideoWriter(std::string path, std::string temp_path, std::unique_ptr<render::VideoEncoder> encoder);
   void WorkerLoop();
-  void Stop();
 
   const std::string path_;
   const std::string temp_path_;
   std::unique_ptr<render::VideoEncoder> encoder_;
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<render::Image> queue_;
-  bool closing_ = false;
+  WorkQueue<render::Image> queue_;
   bool finished_ = false;
-  Status failure_;
   std::thread worker_;
 };
 

@@ -15,9 +15,12 @@
 #include "run_program.h"
 
 namespace fs = std::filesystem;
+using testing::Ballbox;
 using engine::Vec2;
 
 namespace {
+
+fs::path FreshDir(const std::string& name) { return testing::FreshTestDir("events", name); }
 
 // A ball of radius 0.35 at (2, 1) and a box, no gravity, camera 8 m wide at (0, 0).
 game::Scene SmallBallScene() {
@@ -35,17 +38,6 @@ game::Scene SmallBallScene() {
   box.def.position = {-2, 0};
   scene.bodies = {ball, box};
   return scene;
-}
-
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(BALLBOX_TEST_TMP) / "events" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-testing::ProgramRun Ballbox(const std::string& args, const fs::path& dir) {
-  return testing::RunShell("'" BALLBOX_EXE "' " + args, dir, dir.parent_path() / (dir.filename().string() + "_out"));
 }
 
 }  // namespace

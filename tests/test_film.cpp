@@ -25,20 +25,12 @@
 #include "run_program.h"
 
 namespace fs = std::filesystem;
+using testing::Ballbox;
 using engine::Vec2;
 
 namespace {
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(BALLBOX_TEST_TMP) / "film" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-testing::ProgramRun Ballbox(const std::string& args, const fs::path& dir) {
-  return testing::RunShell("'" BALLBOX_EXE "' " + args, dir, dir.parent_path() / (dir.filename().string() + "_out"));
-}
+fs::path FreshDir(const std::string& name) { return testing::FreshTestDir("film", name); }
 
 render::Image LoadPng(const fs::path& path) {
   int w = 0, h = 0, n = 0;
@@ -48,13 +40,6 @@ render::Image LoadPng(const fs::path& path) {
   render::Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + static_cast<std::size_t>(w) * h * 3)};
   stbi_image_free(pixels);
   return image;
-}
-
-std::vector<std::string> Names(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 // A scene with one static box, 2 m square at (10, 10), coloured #c84 (0xcc, 0x88, 0x44).
@@ -150,7 +135,7 @@ TEST_CASE("render --from STEP: frame k shows step STEP + k*K, the same pictures 
   const testing::ProgramRun run = Ballbox("render --from 30 --frames 3 --every 5 --size 96x72 --out part", dir);
   REQUIRE(run.exit_code == 0);
   CHECK_THAT(run.out, Catch::Contains("3 frames, 40 steps"));
-  CHECK(Names(dir / "part") == std::vector<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"});
+  CHECK(testing::SortedNames(dir / "part") == std::vector<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"});
   CHECK(testing::ReadFile(dir / "part" / "frame_00000.png") == testing::ReadFile(dir / "all" / "frame_00030.png"));
   CHECK(testing::ReadFile(dir / "part" / "frame_00002.png") == testing::ReadFile(dir / "all" / "frame_00040.png"));
 }
@@ -209,8 +194,8 @@ TEST_CASE("render interrupted with Ctrl-C: no temporary file or video left, and 
   char last[32];
   std::snprintf(last, sizeof last, "frame_%05d.png", frames - 1);
   CHECK(m[2] == last);
-  CHECK(Names(dir) == std::vector<std::string>{"frames"});  // no film.gif, no film.gif.tmp-*
-  const std::vector<std::string> names = Names(dir / "frames");
+  CHECK(testing::SortedNames(dir) == std::vector<std::string>{"frames"});  // no film.gif, no film.gif.tmp-*
+  const std::vector<std::string> names = testing::SortedNames(dir / "frames");
   CHECK(names.size() == static_cast<std::size_t>(frames));  // every frame named, nothing half-written
   CHECK(names.back() == last);
   CHECK(LoadPng(dir / "frames" / last).width == 64);
@@ -233,7 +218,7 @@ TEST_CASE("render: temporary frames of dead runs are removed, a live process's a
     std::ofstream(dir / "f" / name) << "";
   }
   REQUIRE(Ballbox("render --frames 1 --size 32x24 --out f", dir).exit_code == 0);
-  CHECK(Names(dir / "f") == std::vector<std::string>{"frame_00000.png", live,
+  CHECK(testing::SortedNames(dir / "f") == std::vector<std::string>{"frame_00000.png", live,
                                                      "frame_3.png.tmp-" + std::to_string(child),
                                                      "notes.tmp-" + std::to_string(child)});
 }

@@ -16,26 +16,11 @@
 #include "run_program.h"
 
 namespace fs = std::filesystem;
+using testing::Ballbox;
 
 namespace {
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(BALLBOX_TEST_TMP) / "video" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-testing::ProgramRun Ballbox(const std::string& args, const fs::path& cwd) {
-  return testing::RunShell("'" BALLBOX_EXE "' " + args, cwd, cwd.parent_path() / (cwd.filename().string() + "_captured"));
-}
-
-std::vector<std::string> Names(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+fs::path FreshDir(const std::string& name) { return testing::FreshTestDir("video", name); }
 
 void CheckExit2WithOneError(const testing::ProgramRun& run) {
   INFO("stdout: " << run.out << "stderr: " << run.err);
@@ -172,7 +157,7 @@ TEST_CASE("render --video in a build without FFmpeg says so and exits 1", "[vide
   const testing::ProgramRun run = Ballbox("render --frames 2 --size 64x48 --video film.mp4", dir);
   CHECK(run.exit_code == 1);
   CHECK(run.err.find("without FFmpeg") != std::string::npos);
-  CHECK(Names(dir).empty());
+  CHECK(testing::SortedNames(dir).empty());
 }
 
 #endif
@@ -183,8 +168,8 @@ TEST_CASE("render --video alone writes the video and nothing else", "[video]") {
   const testing::ProgramRun run = Ballbox("render --frames 5 --size 64x48 --video films/film.gif", dir);
   INFO(run.err);
   REQUIRE(run.exit_code == 0);
-  CHECK(Names(dir) == std::vector<std::string>{"films"});  // no out/ folder
-  CHECK(Names(dir / "films") == std::vector<std::string>{"film.gif"});  // no temporary file
+  CHECK(testing::SortedNames(dir) == std::vector<std::string>{"films"});  // no out/ folder
+  CHECK(testing::SortedNames(dir / "films") == std::vector<std::string>{"film.gif"});  // no temporary file
   CHECK_THAT(run.out, Catch::Contains("-> films/film.gif (GIF, 4 frames over 0.08 s)"));
 }
 
@@ -193,9 +178,9 @@ TEST_CASE("render --video does not change the pictures or the simulation", "[vid
   const fs::path dir = FreshDir("same_pictures");
   REQUIRE(Ballbox("render --frames 50 --every 6 --size 120x90 --out plain", dir).exit_code == 0);
   REQUIRE(Ballbox("render --frames 50 --every 6 --size 120x90 --out with --video film.mp4", dir).exit_code == 0);
-  const std::vector<std::string> names = Names(dir / "plain");
+  const std::vector<std::string> names = testing::SortedNames(dir / "plain");
   REQUIRE(names.size() == 50);
-  CHECK(Names(dir / "with") == names);
+  CHECK(testing::SortedNames(dir / "with") == names);
   for (const std::string& name : names) {
     INFO(name);
     CHECK(testing::ReadFile(dir / "plain" / name) == testing::ReadFile(dir / "with" / name));
@@ -210,7 +195,7 @@ TEST_CASE("render --video: bad names and sizes exit 2 with one line and write no
                            "--video a.mp4 --video b.mp4"}) {
     INFO(args);
     CheckExit2WithOneError(Ballbox(std::string("render --frames 2 ") + args, dir));
-    CHECK(Names(dir) == std::vector<std::string>{"folder.mp4"});
+    CHECK(testing::SortedNames(dir) == std::vector<std::string>{"folder.mp4"});
   }
   const testing::ProgramRun odd = Ballbox("render --frames 2 --video film.mp4 --size 321x241", dir);
   CHECK(odd.err == "error: --video film.mp4: an .mp4 film (H.264 in yuv420p) needs an even width and "
