@@ -47,14 +47,15 @@ std::string RenderHelp() {
              "usage: ballbox render [SCENE] [--script FILE] [--frames N] [--every K] [--size WxH]\n"
              "                      [--out DIR] [--video FILE] [--camera X,Y,WIDTH] [--follow ID]\n"
              "                      [--from STEP] [--hud] [--misses]\n\n"
-             "Simulates headlessly and writes DIR/frame_00000.png, frame_00001.png, ...; frame k\n"
-             "shows the world after k*K steps (frame 0 is the initial state).\n\n") +
+             "Simulates headlessly and writes DIR/frame_00000.png, frame_00001.png, ... and/or one\n"
+             "video file; frame k shows the world after k*K steps (frame 0 is the initial state),\n"
+             "or after STEP + k*K steps with --from STEP.\n\n") +
          kRunFlags +
          "  --frames N       number of frames to write (default 300)\n"
          "  --every K        simulation steps between frames (default 1)\n"
          "  --out DIR        output folder (default out/<scene name>; none with --video alone)\n"
-         "  --video FILE     write the film as FILE.mp4 (H.264), FILE.webm (VP9) or FILE.gif,\n"
-         "                   playing in real time (1/(dt*K) frames/s)\n" +
+         "  --video FILE     write the film as one file, by its extension: .mp4 (H.264, yuv420p),\n"
+         "                   .webm (VP9) or .gif; it plays in real time (1/(dt*K) frames/s)\n" +
          kViewFlags +
          "  --from STEP      simulate STEP steps first: frame 0 shows step STEP\n"
          "  --hud            draw the step, simulated time and state hash in the top-left corner\n";

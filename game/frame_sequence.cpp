@@ -57,9 +57,10 @@ Failure InterruptedAt(std::int64_t frame, const FrameSequenceOptions& options) {
   return RuntimeFailure(message);
 }
 
-// The simulation's steps, with the film camera following each one.
+// The simulation's steps, with the film camera following each one; Ctrl-C cuts them short (a
+// long --from must not make the user wait), and the caller then reports the interruption.
 Status Simulate(Session& session, FilmCamera& camera, std::int64_t steps) {
-  for (std::int64_t i = 0; i < steps; ++i) {
+  for (std::int64_t i = 0; i < steps && !Interrupted(); ++i) {
     session.Step();
     camera.Advance(session.World());
     // A broken-down state is reported, never drawn; the frames before it stay.
@@ -103,6 +104,7 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
   InterruptGuard interrupt;
   ProgressBar progress("render", options.frames, "frames", options.show_progress);
   FrameSequenceStats stats;
+  const std::int64_t first_step = session.StepIndex();
   for (std::int64_t frame = 0; frame < options.frames; ++frame) {
     const std::int64_t steps = frame == 0 ? options.from : options.every;
     if (Status fault = Simulate(session, camera, steps)) {
@@ -110,7 +112,7 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
       progress.Finish();
       return *fault;
     }
-    stats.steps += steps;
+    stats.steps = session.StepIndex() - first_step;
     if (Interrupted()) {
       const Status kept = output.Abandon();
       progress.Finish();

@@ -5,6 +5,7 @@
 #include "game/scene_json.h"
 
 #include <algorithm>
+#include <set>
 #include <vector>
 
 namespace game {
@@ -47,15 +48,13 @@ class CheckingSax {
   }
   bool key(std::string& k) {
     Frame& object = frames_.back();
-    // Objects in scenes hold a handful of keys: a linear search beats building a set.
-    if (std::find(object.keys.begin(), object.keys.end(), k) != object.keys.end()) {
+    if (!object.Insert(k)) {
       const std::string where = Path(frames_.size() - 1);
       error_.message = (where.empty() ? std::string() : where + ": ") + "duplicate key " +
                Json(k).dump(-1, ' ', false, Json::error_handler_t::replace) +
                " (each key may appear once in an object)";
       return false;
     }
-    object.keys.push_back(k);
     object.key = k;
     object.has_key = true;
     return dom_.key(k);
@@ -102,7 +101,22 @@ class CheckingSax {
     std::size_t index = 0;  // for arrays: one past the element being read
     bool has_key = false;   // for objects: a key has been read
     std::string key;        // the key being read
-    std::vector<std::string> keys;
+    std::vector<std::string> keys;  // the keys so far, while there are few
+    std::set<std::string> many;     // the keys so far, once there are many
+
+    // Adds a key; false when the object has it already. Scene objects hold a handful of keys,
+    // where a linear search beats a set; a file with thousands in one object must not make the
+    // search quadratic.
+    bool Insert(const std::string& k) {
+      constexpr std::size_t kFew = 32;
+      if (many.empty()) {
+        if (std::find(keys.begin(), keys.end(), k) != keys.end()) return false;
+        keys.push_back(k);
+        if (keys.size() > kFew) many.insert(keys.begin(), keys.end());
+        return true;
+      }
+      return many.insert(k).second;
+    }
   };
 
   // A value starts: in an array it is the next element.

@@ -132,6 +132,15 @@ TEST_CASE("scene error: a key given twice in one object names where", "[scene]")
                     "duplicate key \"gravity\" (each key may appear once in an object)");
   RequireSceneError("scene_duplicate_nested_key.json",
                     "camera: duplicate key \"width\" (each key may appear once in an object)");
+  // Among thousands of keys in one object (the search must not grow quadratic), the repeat is
+  // still found.
+  std::string many = "{";
+  for (int i = 0; i < 50000; ++i) many += "\"k" + std::to_string(i) + "\": 0, ";
+  many += "\"k49999\": 1}";
+  const game::Expected<game::Scene> crowded = game::ParseScene(many, "many.json", "many");
+  REQUIRE_FALSE(crowded.HasValue());
+  CHECK(crowded.Error().message ==
+        "many.json: duplicate key \"k49999\" (each key may appear once in an object)");
   // The same key in different objects is fine.
   const game::Expected<game::Scene> twice = game::ParseScene(
       R"({"bodies": [{"shape": "circle", "radius": 1, "position": [0, 0]},
