@@ -50,6 +50,9 @@ class FfmpegEncoder final : public VideoEncoder {
  public:
   explicit FfmpegEncoder(const VideoSettings& settings) : settings_(settings) {}
   ~FfmpegEncoder() override {
+    // An abandoned film still gets its trailer: some muxers (GIF's in FFmpeg 5.1) free the
+    // packet they hold back only there. The caller removes the file anyway.
+    if (header_written_ && !trailer_written_) av_write_trailer(format_);
     sws_freeContext(sws_);
     av_frame_free(&frame_);
     av_packet_free(&packet_);
@@ -81,6 +84,8 @@ class FfmpegEncoder final : public VideoEncoder {
   std::int64_t given_ = 0;
   std::int64_t kept_ = 0;
   std::int64_t last_pts_ = 0;
+  bool header_written_ = false;
+  bool trailer_written_ = false;
 };
 
 bool FfmpegEncoder::OpenCodec(std::string& error) {
@@ -196,6 +201,7 @@ bool FfmpegEncoder::Open(const std::string& path, std::string& error) {
     error = "cannot write: " + AvError(written);
     return false;
   }
+  header_written_ = true;
   return true;
 }
 
@@ -267,6 +273,7 @@ bool FfmpegEncoder::Write(const Image& image, std::string& error) {
 
 bool FfmpegEncoder::Finish(std::string& error) {
   if (!Send(nullptr, error)) return false;  // drains the frames the encoder holds back
+  trailer_written_ = true;
   if (const int ended = av_write_trailer(format_); ended < 0) {
     error = "cannot write: " + AvError(ended);
     return false;
