@@ -8,6 +8,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 PACKAGES := build-essential cmake pkg-config nlohmann-json3-dev catch2 \
             libosmesa6-dev libstb-dev zlib1g-dev libglfw3-dev xvfb xauth xdotool \
+            libavcodec-dev libavformat-dev libswscale-dev libavutil-dev \
             clang libclang-rt-14-dev
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 

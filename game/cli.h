@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "game/status.h"
+#include "render/camera.h"
 
 namespace game {
 
@@ -16,6 +17,14 @@ struct RunOptions {
   std::optional<std::string> script_path;  ///< none: no events (the default scene's demo script)
   int width = 800;
   int height = 600;
+  bool list_misses = false;  ///< --misses: a line for each click that hit no ball
+};
+
+/// What the picture shows, apart from the scene's camera. Pixel clicks in scripts keep mapping
+/// through the scene's camera, so these never change the simulation.
+struct ViewOptions {
+  std::optional<render::Camera> camera;  ///< --camera X,Y,WIDTH (WIDTH as at 800x600)
+  std::optional<std::string> follow;     ///< --follow ID: the camera tracks this body
 };
 
 struct SimOptions {
@@ -29,12 +38,17 @@ struct RenderOptions {
   RunOptions run;
   std::int64_t frames = 300;
   std::int64_t every = 1;
-  std::optional<std::string> out_dir;  ///< none: out/<scene name>
+  std::optional<std::string> out_dir;  ///< none: out/<scene name> (none at all with --video)
+  std::optional<std::string> video_path;  ///< --video FILE: .mp4, .webm or .gif
+  ViewOptions view;
+  std::int64_t from = 0;  ///< --from STEP: the first frame shows this step
+  bool hud = false;       ///< --hud: step, time and state hash drawn in a corner
 };
 
 struct PlayOptions {
   RunOptions run;
   std::optional<std::string> record_path;
+  ViewOptions view;
 };
 
 enum class CommandKind { kHelp, kVersion, kSim, kRender, kPlay };

@@ -26,6 +26,17 @@ std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
   return std::nullopt;
 }
 
+std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p) {
+  std::optional<NearBall> nearest;
+  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    const engine::BodyInfo& info = world.Info(id);
+    if (info.is_static || info.shape.type != engine::ShapeType::kCircle) continue;
+    const double gap = engine::Length(p - world.State(id).position) - info.shape.radius;
+    if (!nearest || gap < nearest->gap) nearest = NearBall{id, gap};
+  }
+  return nearest;
+}
+
 std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double max_impulse) {
   const std::optional<ClickHit> hit = ResolveClick(world, p, max_impulse);
   if (hit) world.ApplyLinearImpulse(hit->body, hit->impulse);

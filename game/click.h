@@ -22,6 +22,16 @@ struct ClickHit {
 std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
                                      double max_impulse);
 
+/// A dynamic ball near a point, for telling a user what a missed click missed.
+struct NearBall {
+  engine::BodyId body;
+  double gap;  ///< metres from the point to the ball's rim (≤ 0 inside it)
+};
+
+/// The dynamic circle whose rim is nearest to p (the first in scene order on a tie), or nothing
+/// when the world has none.
+std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p);
+
 /// Resolves the click and applies its impulse; returns what it hit.
 std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double max_impulse);
 

@@ -1,17 +1,19 @@
 // Simulation and drawing stay on this thread (the GL context is current here); encoding and
-// writing run on FrameWriter's threads, so the simulation runs ahead while frames are encoded.
+// writing run on the outputs' threads, so the simulation runs ahead while frames are encoded.
 #include "game/frame_sequence.h"
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
-#include <string_view>
-#include <system_error>
 #include <thread>
 #include <vector>
 
+#include "game/film_camera.h"
+#include "game/film_output.h"
 #include "game/frame_writer.h"
+#include "game/hud.h"
+#include "game/interrupt.h"
 #include "game/progress_bar.h"
+#include "render/bitmap_text.h"
 #include "render/context.h"
 #include "render/renderer.h"
 
@@ -19,40 +21,65 @@ namespace game {
 
 namespace {
 
-// Frames past this run's last, left in the folder by an earlier and longer run, would pass for
-// part of this film (a video tool takes every frame_*.png). Only names this program writes are
-// touched: frame_ with the index as FrameFileName spells it, then .png.
-Status RemoveStaleFrames(const std::string& dir, std::int64_t frames) {
-  std::vector<std::filesystem::path> stale;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    constexpr std::string_view kPrefix = "frame_";
-    constexpr std::string_view kSuffix = ".png";
-    if (name.size() <= kPrefix.size() + kSuffix.size() || !name.starts_with(kPrefix) ||
-        !name.ends_with(kSuffix)) {
-      continue;
-    }
-    const std::string digits =
-        name.substr(kPrefix.size(), name.size() - kPrefix.size() - kSuffix.size());
-    if (digits.size() > 18 ||
-        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      continue;
-    }
-    const std::int64_t index = std::stoll(digits);
-    if (index >= frames && FrameFileName(index) == name && entry.is_regular_file()) {
-      stale.push_back(entry.path());
-    }
+FilmOutputOptions OutputOptions(const Session& session, const FrameSequenceOptions& options) {
+  FilmOutputOptions out;
+  out.out_dir = options.out_dir;
+  out.encoding = options.encoding;
+  out.png_threads = options.encoder_threads > 0
+                        ? options.encoder_threads
+                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  out.video_path = options.video_path;
+  if (!options.video_path.empty()) {
+    out.video.format = render::VideoFormatOf(options.video_path).value_or(render::VideoFormat::kMp4);
+    out.video.width = session.ImageWidth();
+    out.video.height = session.ImageHeight();
+    out.video.frame_seconds = session.World().Def().dt * static_cast<double>(options.every);
+    // A GIF palette holds the colours known to fill large areas exactly.
+    out.video.gif_keep = {render::kBackgroundColor, render::kPanelBackdrop, render::kPanelText};
+    for (const SceneBody& body : session.SceneDef().bodies) out.video.gif_keep.push_back(body.color);
   }
-  if (ec) return RuntimeFailure(dir + ": cannot list the output folder: " + ec.message());
-  for (const std::filesystem::path& path : stale) {
-    std::filesystem::remove(path, ec);
-    if (ec) {
-      return RuntimeFailure(path.string() + ": cannot remove this frame of an earlier run: " +
-                            ec.message());
-    }
+  return out;
+}
+
+// Why the film stopped early, and what of it is there to keep.
+Failure InterruptedAt(std::int64_t frame, const FrameSequenceOptions& options) {
+  std::string message = "interrupted at frame " + std::to_string(frame) + " of " +
+                        std::to_string(options.frames) + ": ";
+  if (!options.out_dir.empty()) {
+    message += frame == 0 ? "no frame was complete in " + options.out_dir
+                          : FrameFileName(0) + " to " + FrameFileName(frame - 1) + " in " +
+                                options.out_dir + " are complete";
+  }
+  if (!options.video_path.empty()) {
+    message += std::string(options.out_dir.empty() ? "" : "; ") + options.video_path +
+               " was not written";
+  }
+  return RuntimeFailure(message);
+}
+
+// The simulation's steps, with the film camera following each one; Ctrl-C cuts them short (a
+// long --from must not make the user wait), and the caller then reports the interruption.
+Status Simulate(Session& session, FilmCamera& camera, std::int64_t steps) {
+  for (std::int64_t i = 0; i < steps && !Interrupted(); ++i) {
+    session.Step();
+    camera.Advance(session.World());
+    // A broken-down state is reported, never drawn; the frames before it stay.
+    if (Status fault = session.Fault()) return fault;
   }
   return std::nullopt;
+}
+
+render::Image DrawFrame(render::Renderer& renderer, const Session& session,
+                        const FilmCamera& camera, const std::vector<render::Color>& colors,
+                        bool hud) {
+  renderer.Draw(session.World(), colors, camera.For(session.ImageWidth(), session.ImageHeight()));
+  render::Image image;
+  renderer.ReadImage(image);
+  if (hud) {
+    const double time = static_cast<double>(session.StepIndex()) * session.World().Def().dt;
+    PaintHud(image, HudText(session.StepIndex(), time, session.World().StateHash()));
+  }
+  return image;
 }
 
 }  // namespace
@@ -60,55 +87,45 @@ Status RemoveStaleFrames(const std::string& dir, std::int64_t frames) {
 Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
                                                  const FrameSequenceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-
-  // The context comes before the folder, so a machine without GL leaves nothing behind.
+  // The context comes before any output, so a machine without GL leaves nothing behind.
   std::string error;
   std::unique_ptr<render::GlContext> context = render::CreateOffscreenContext(error);
   if (!context) return RuntimeFailure(error);
   std::unique_ptr<render::Renderer> renderer =
       render::Renderer::Create(*context, session.ImageWidth(), session.ImageHeight(), error);
   if (!renderer) return RuntimeFailure(error);
-
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(options.out_dir)) {
-    return RuntimeFailure(options.out_dir + ": cannot create the output folder: " +
-                          (ec ? ec.message() : "a file of that name is in the way"));
-  }
+  Expected<std::unique_ptr<FilmOutput>> opened = FilmOutput::Open(OutputOptions(session, options));
+  if (!opened.HasValue()) return opened.Error();
+  FilmOutput& output = *opened.Value();
 
   std::vector<render::Color> colors;
   for (const SceneBody& body : session.SceneDef().bodies) colors.push_back(body.color);
-
-  const int threads = options.encoder_threads > 0
-                          ? options.encoder_threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  // Two frames per encoder keep every encoder busy; more would only hold memory.
-  FrameWriter writer(options.out_dir, options.encoding, threads, 2 * threads);
+  FilmCamera camera(options.view.camera.value_or(session.View()), options.view.follow, session.World());
+  InterruptGuard interrupt;
   ProgressBar progress("render", options.frames, "frames", options.show_progress);
   FrameSequenceStats stats;
+  const std::int64_t first_step = session.StepIndex();
   for (std::int64_t frame = 0; frame < options.frames; ++frame) {
-    if (frame > 0) {
-      for (std::int64_t i = 0; i < options.every; ++i) session.Step();
-      stats.steps += options.every;
-      // A broken-down state is reported, never drawn; the frames before it stay.
-      if (Status fault = session.Fault()) {
-        (void)writer.Finish();  // the fault is the error to report; frames so far are kept
-        progress.Finish();
-        return *fault;
-      }
+    const std::int64_t steps = frame == 0 ? options.from : options.every;
+    if (Status fault = Simulate(session, camera, steps)) {
+      (void)output.Abandon();  // the fault is the error to report; frames so far are kept
+      progress.Finish();
+      return *fault;
     }
-    renderer->Draw(session.World(), colors, session.Camera());
-    render::Image image;
-    renderer->ReadImage(image);
-    if (!writer.Submit(frame, std::move(image))) break;
+    stats.steps = session.StepIndex() - first_step;
+    if (Interrupted()) {
+      const Status kept = output.Abandon();
+      progress.Finish();
+      return kept ? *kept : InterruptedAt(frame, options);
+    }
+    if (!output.Submit(frame, DrawFrame(*renderer, session, camera, colors, options.hud))) break;
     ++stats.frames;
     progress.Update(frame + 1);
   }
-  const Status written = writer.Finish();
+  const Status written = output.Finish(options.frames);
   progress.Finish();
   if (written) return *written;
-  if (Status removed = RemoveStaleFrames(options.out_dir, options.frames)) return *removed;
-
+  stats.video_frames = output.VideoFrames();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

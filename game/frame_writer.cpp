@@ -19,56 +19,28 @@ std::string FrameFileName(std::int64_t index) {
 
 FrameWriter::FrameWriter(std::string dir, render::PngEncoding encoding, int threads,
                          std::size_t queue_capacity)
-    : dir_(std::move(dir)),
-      encoding_(encoding),
-      queue_capacity_(std::max<std::size_t>(1, queue_capacity)) {
+    : dir_(std::move(dir)), encoding_(encoding), queue_(queue_capacity) {
   for (int i = 0; i < std::max(1, threads); ++i) workers_.emplace_back([this] { WorkerLoop(); });
 }
 
 FrameWriter::~FrameWriter() { Finish(); }
 
 bool FrameWriter::Submit(std::int64_t index, render::Image image) {
-  std::unique_lock lock(mutex_);
-  slot_free_.wait(lock, [this] { return queue_.size() < queue_capacity_ || failure_; });
-  if (failure_ || closing_) return false;
-  queue_.push_back(Job{index, std::move(image)});
-  lock.unlock();
-  job_ready_.notify_one();
-  return true;
+  return queue_.Push(Job{index, std::move(image)});
 }
 
 Status FrameWriter::Finish() {
-  {
-    std::lock_guard lock(mutex_);
-    closing_ = true;
-  }
-  job_ready_.notify_all();
+  queue_.Close();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
-  std::lock_guard lock(mutex_);
-  return failure_;
+  return queue_.FirstFailure();
 }
 
 void FrameWriter::WorkerLoop() {
-  for (;;) {
-    Job job;
-    {
-      std::unique_lock lock(mutex_);
-      job_ready_.wait(lock, [this] { return !queue_.empty() || closing_; });
-      if (queue_.empty()) return;
-      job = std::move(queue_.front());
-      queue_.pop_front();
-      // After a failure the remaining frames are dropped, not written.
-      if (failure_) continue;
-    }
-    slot_free_.notify_one();
-    Status written = Write(job);
-    if (written) {
-      std::lock_guard lock(mutex_);
-      if (!failure_) failure_ = std::move(written);
-      // Wake a Submit blocked on a full queue, so the renderer learns of the failure.
-      slot_free_.notify_all();
-    }
+  // After a failure the queue hands out nothing more: the remaining frames are dropped, and a
+  // Submit blocked on a full queue returns, so the renderer learns of the failure.
+  while (std::optional<Job> job = queue_.Pop()) {
+    if (Status written = Write(*job)) queue_.Fail(std::move(*written));
   }
 }
 

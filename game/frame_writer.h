@@ -2,16 +2,14 @@
 // bounded queue keeps memory flat however far behind the encoders fall.
 #pragma once
 
-#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "game/status.h"
+#include "game/work_queue.h"
 #include "render/image.h"
 #include "render/png_writer.h"
 
@@ -48,13 +46,7 @@ class FrameWriter {
 
   const std::string dir_;
   const render::PngEncoding encoding_;
-  const std::size_t queue_capacity_;
-  std::mutex mutex_;
-  std::condition_variable job_ready_;
-  std::condition_variable slot_free_;
-  std::deque<Job> queue_;
-  bool closing_ = false;
-  Status failure_;
+  WorkQueue<Job> queue_;
   std::vector<std::thread> workers_;
 };
 

@@ -9,6 +9,10 @@
 
 namespace game {
 
+std::string TemporaryPath(const std::string& path) {
+  return path + ".tmp-" + std::to_string(::getpid());
+}
+
 Expected<AtomicOutputFile> AtomicOutputFile::Open(const std::string& path) {
   // A device or pipe (/dev/stdout, /dev/null, a FIFO) is written in place: a temporary file
   // renamed over it would replace the device node itself, which root is allowed to do.
@@ -19,7 +23,7 @@ Expected<AtomicOutputFile> AtomicOutputFile::Open(const std::string& path) {
     if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
     return AtomicOutputFile(path, std::string(), file);
   }
-  std::string temp_path = path + ".tmp-" + std::to_string(::getpid());
+  std::string temp_path = TemporaryPath(path);
   std::FILE* file = std::fopen(temp_path.c_str(), "wb");
   if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
   return AtomicOutputFile(path, std::move(temp_path), file);

@@ -8,6 +8,9 @@
 
 namespace game {
 
+/// The temporary name a file is written under before it is renamed: "`path`.tmp-<pid>".
+std::string TemporaryPath(const std::string& path);
+
 class AtomicOutputFile {
  public:
   /// Opens `path`.tmp-<pid> beside `path` for writing; a device or pipe (/dev/stdout) is

@@ -1,9 +1,7 @@
 // `ballbox play`: the scene in a window in real time, drawn by the same renderer as `ballbox
 // render` (its picture copied to the window), with clicks, keys, recording and replay.
-#include <atomic>
 #include <chrono>
 #include <cinttypes>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "game/commands.h"
+#include "game/interrupt.h"
 #include "game/output_file.h"
 #include "game/play_controller.h"
 #include "game/play_view.h"
@@ -26,12 +25,6 @@ namespace {
 
 constexpr const char* kScreenshotDir = "screenshots";
 constexpr render::Color kBarColor{0x20, 0x23, 0x28};
-constexpr render::Color kStatusBackdrop{0x20, 0x23, 0x28};
-constexpr render::Color kStatusText{0xf4, 0xf1, 0xea};
-
-// Ctrl-C in the terminal ends the run as Esc does: the recording is written, the hash printed.
-std::atomic<bool> g_interrupted{false};
-extern "C" void OnInterrupt(int) { g_interrupted = true; }
 
 Failure NoDisplay(const std::string& reason) {
   return RuntimeFailure("ballbox play needs a window, and there is no display (" + reason +
@@ -83,16 +76,7 @@ class FpsMeter {
 
 std::vector<render::FilledRect> StatusOverlay(const std::string& text, int framebuffer_width) {
   // Twice the font's cells on a window wide enough; the line stays small either way.
-  const int cell = framebuffer_width >= 480 ? 2 : 1;
-  const int pad = 2 * cell;
-  std::vector<render::FilledRect> overlay;
-  overlay.push_back({{pad, pad, render::TextWidth(text, cell) + 2 * pad,
-                      render::kGlyphRows * cell + 2 * pad},
-                     kStatusBackdrop});
-  for (const render::FilledRect& r : render::LayoutText(text, 2 * pad, 2 * pad, cell, kStatusText)) {
-    overlay.push_back(r);
-  }
-  return overlay;
+  return render::TextPanel(text, framebuffer_width >= 480 ? 2 : 1, render::kPanelBackdrop, render::kPanelText);
 }
 
 std::string Title(const PlayController& controller) {
@@ -107,7 +91,7 @@ void TakeScreenshot(render::Renderer& renderer, const PlayController& controller
                     const std::vector<render::Color>& colors) {
   // Drawn afresh from the current state, so the file shows exactly the step its name says.
   const Session& session = controller.GetSession();
-  renderer.Draw(session.World(), colors, session.Camera());
+  renderer.Draw(session.World(), colors, controller.Camera());
   render::Image image;
   renderer.ReadImage(image);
   Expected<std::string> path = SaveScreenshot(
@@ -128,8 +112,11 @@ std::string RecordingHeader(const PlayOptions& options, const PlayController& co
                 session.StepIndex(), session.World().StateHash());
   const std::string scene =
       options.run.scene_path ? *options.run.scene_path : std::string("(the built-in scene)");
+  // The recording holds world points, which need no size; the size line says what the window
+  // showed, and a pixel click added by hand below it maps at that size.
   return "# recorded by ballbox play: " + scene + "\n" + line +
-         "# every click applied, live or scripted, as the world point it acted on\n";
+         "# every click applied, live or scripted, as the world point it acted on\n" +
+         SizeLine(session.ImageWidth(), session.ImageHeight());
 }
 
 // The window loop. Returns when the user quits, the stop step is reached, or GL fails.
@@ -147,7 +134,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
   const int image_width = controller.GetSession().ImageWidth();
   const int image_height = controller.GetSession().ImageHeight();
 
-  while (!g_interrupted) {
+  while (!Interrupted()) {
     // Nothing changes before the next step is due, so wait for it (or for input) rather than
     // redraw the same state; a paused game only waits for input.
     const bool idle = controller.Paused() || controller.Finished();
@@ -159,8 +146,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       } else if (event.type == render::WindowEvent::Type::kMouseDown) {
         if (event.button != 0) continue;
         // Clicks on the letterbox bars are on no part of the picture and do nothing.
-        const Session& session = controller.GetSession();
-        if (auto p = WindowPointToWorld(session.Camera(), picture, event.x, event.y)) {
+        if (auto p = WindowPointToWorld(controller.Camera(), picture, event.x, event.y)) {
           controller.Click(*p);
         }
       } else if (event.key == "escape") {
@@ -201,7 +187,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       }
     }
     const Session& session = controller.GetSession();
-    renderer.Draw(session.World(), colors, session.Camera());
+    renderer.Draw(session.World(), colors, controller.Camera());
     const double time = static_cast<double>(session.StepIndex()) * session.World().Def().dt;
     const std::vector<render::FilledRect> overlay = StatusOverlay(
         StatusLine(session.StepIndex(), time, fps.Fps(), controller.Paused()), framebuffer_width);
@@ -222,6 +208,9 @@ Status RunPlay(const PlayOptions& options) {
   // Bad input is reported first (exit 2), as in every command, and before anything opens.
   Expected<RunInput> input = LoadRunInput(options.run);
   if (!input.HasValue()) return input.Error();
+  Expected<std::optional<engine::BodyId>> follow = FollowedBody(
+      input.Value().scene, options.view, options.run.scene_path.value_or("the default scene"));
+  if (!follow.HasValue()) return follow.Error();
   Expected<std::optional<std::int64_t>> stop_at = StepFromEnvironment("BALLBOX_PLAY_STOP_AT");
   if (!stop_at.HasValue()) return stop_at.Error();
   Expected<std::optional<std::int64_t>> pause_at = StepFromEnvironment("BALLBOX_PLAY_PAUSE_AT");
@@ -247,7 +236,8 @@ Status RunPlay(const PlayOptions& options) {
   const int width = options.run.width;
   const int height = options.run.height;
   PlayController controller(std::move(input.Value().scene), std::move(input.Value().events),
-                            width, height, PlayLimits{stop_at.Value(), pause_at.Value()});
+                            width, height, PlayLimits{stop_at.Value(), pause_at.Value()},
+                            kMaxFrameSeconds, FilmView{options.view.camera, follow.Value()});
   std::string error;
   render::Window::Failure failure = render::Window::Failure::kNone;
   std::unique_ptr<render::Window> window =
@@ -264,12 +254,12 @@ Status RunPlay(const PlayOptions& options) {
     colors.push_back(body.color);
   }
 
-  g_interrupted = false;
-  auto previous_int = std::signal(SIGINT, OnInterrupt);
-  auto previous_term = std::signal(SIGTERM, OnInterrupt);
-  Status status = RunWindow(*window, *renderer, controller, colors);
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
+  Status status;
+  {
+    // Ctrl-C in the terminal ends the run as Esc does: the recording is written, the hash printed.
+    InterruptGuard guard;
+    status = RunWindow(*window, *renderer, controller, colors);
+  }
   renderer.reset();
   window.reset();
   if (status) return status;
@@ -291,6 +281,8 @@ Status RunPlay(const PlayOptions& options) {
   }
   std::printf("play: stopped at step %" PRId64 " (%.3f s simulated)\n", session.StepIndex(),
               static_cast<double>(session.StepIndex()) * session.World().Def().dt);
+  PrintEventSummary(session.SceneDef(), session.Events(), controller.EventsLeft(),
+                    options.run.list_misses);
   std::printf("state-hash: %016" PRIx64 "\n", session.World().StateHash());
   return std::nullopt;
 }

@@ -3,20 +3,22 @@
 // replay cannot depend on window size, camera fitting or rounding of pixels.
 #include "game/play_controller.h"
 
-#include "render/camera.h"
 
 namespace game {
 
 PlayController::PlayController(Scene scene, std::vector<InputEvent> script, int image_width,
-                               int image_height, PlayLimits limits, double max_frame_seconds)
+                               int image_height, PlayLimits limits, double max_frame_seconds,
+                               FilmView view)
     : scene_(std::move(scene)),
       script_(std::move(script)),
       image_width_(image_width),
       image_height_(image_height),
       limits_(limits),
       // The session gets no events: this class applies them, so it can record each one.
+      view_(view),
       session_(std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width,
                                          image_height)),
+      camera_(view_.camera.value_or(session_->View()), view_.follow, session_->World()),
       clock_(session_->World().Def().dt, max_frame_seconds) {}
 
 bool PlayController::Finished() const {
@@ -71,6 +73,7 @@ bool PlayController::StepOnce() {
 void PlayController::Restart() {
   session_ = std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width_,
                                        image_height_);
+  camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
   next_script_event_ = 0;
   pending_clicks_.clear();
   recorded_.clear();
@@ -88,18 +91,26 @@ void PlayController::StepOne() {
   }
   pending_clicks_.clear();
   session_->Step();
+  camera_.Advance(session_->World());
+}
+
+render::Camera PlayController::Camera() const {
+  return camera_.For(session_->ImageWidth(), session_->ImageHeight());
 }
 
 void PlayController::Apply(const InputEvent& event) {
-  // The same mapping Session::ApplyEvent uses for pixel clicks, so the point is bit-identical.
-  const engine::Vec2 p =
-      event.kind == EventKind::kClickPixel
-          ? render::PixelToWorld(session_->Camera(), session_->ImageWidth(),
-                                 session_->ImageHeight(), event.at.x, event.at.y)
-          : event.at;
-  const InputEvent applied{session_->StepIndex(), EventKind::kClickWorld, p};
-  session_->ApplyEvent(applied);
-  recorded_.push_back(applied);
+  // The session maps a pixel click as it maps a script's, so the point is bit-identical.
+  const engine::Vec2 p = session_->ApplyEvent(event);
+  recorded_.push_back(InputEvent{session_->StepIndex(), EventKind::kClickWorld, p});
+}
+
+EventsAfterEnd PlayController::EventsLeft() const {
+  EventsAfterEnd late;
+  late.count = script_.size() - next_script_event_ + pending_clicks_.size();
+  late.first_step = session_->StepIndex();
+  if (next_script_event_ < script_.size()) late.first_step = script_[next_script_event_].step;
+  late.end_step = session_->StepIndex();
+  return late;
 }
 
 }  // namespace game

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/math.h"
+#include "game/film_camera.h"
 #include "game/frame_clock.h"
 #include "game/scene.h"
 #include "game/script.h"
@@ -27,8 +28,11 @@ class PlayController {
  public:
   /// `script`: events to replay (pixel clicks map through the camera of an image_width ×
   /// image_height picture, as in sim and render).
+  /// `view`: what the window shows instead of the scene's view (--camera, --follow); live
+  /// clicks map through what it shows (Camera()), script pixel clicks through the scene's view.
   PlayController(Scene scene, std::vector<InputEvent> script, int image_width, int image_height,
-                 PlayLimits limits = {}, double max_frame_seconds = kMaxFrameSeconds);
+                 PlayLimits limits = {}, double max_frame_seconds = kMaxFrameSeconds,
+                 FilmView view = {});
 
   /// One frame's real time: takes the steps the clock says are due, unless paused or
   /// finished. Returns the number of steps taken.
@@ -52,11 +56,15 @@ class PlayController {
   /// The stop_at step is reached: the run is over.
   bool Finished() const;
   const Session& GetSession() const { return *session_; }
+  /// The camera of the picture the window shows (framed at the session's image size).
+  render::Camera Camera() const;
   /// Live clicks not applied yet (they wait for the current step to be simulated).
   std::size_t PendingClicks() const { return pending_clicks_.size(); }
   /// Every event applied since the last start, in the order applied, as world-point clicks:
   /// FormatScript of this replays to the same state in sim and render, at any --size.
   const std::vector<InputEvent>& Recorded() const { return recorded_; }
+  /// Script events and live clicks not applied yet: late, once the run has ended.
+  EventsAfterEnd EventsLeft() const;
   /// Real time until the next step is due (for waiting on input in between).
   double SecondsToNextStep() const { return clock_.SecondsToNextStep(); }
   int MaxStepsPerFrame() const { return clock_.MaxStepsPerFrame(); }
@@ -75,7 +83,9 @@ class PlayController {
   int image_height_;
   PlayLimits limits_;
   bool pause_at_done_ = false;
+  FilmView view_;
   std::unique_ptr<Session> session_;
+  FilmCamera camera_;
   FrameClock clock_;
   bool paused_ = false;
   std::vector<engine::Vec2> pending_clicks_;  ///< live clicks waiting for the next step

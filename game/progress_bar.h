@@ -15,7 +15,8 @@ class ProgressBar {
  public:
   /// `label` leads the line, `unit` follows the counts ("frames"). Draws nothing unless enabled.
   ProgressBar(std::string label, std::int64_t total, std::string unit, bool enabled);
-  /// Shows `done` of total; redraws at most a few dozen times a second.
+  /// Shows `done` of total and, once there is a rate to go by, the time left ("ETA 0:42");
+  /// redraws at most a few dozen times a second.
   void Update(std::int64_t done);
   /// Clears the line, so what is printed next starts clean.
   void Finish();
@@ -27,7 +28,12 @@ class ProgressBar {
   std::int64_t total_;
   std::string unit_;
   bool enabled_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last_draw_{};
 };
+
+/// The time left at the average rate so far, as "M:SS" (or "H:MM:SS" past an hour); empty
+/// until half a second has passed or while nothing is done.
+std::string EtaText(double elapsed_seconds, std::int64_t done, std::int64_t total);
 
 }  // namespace game

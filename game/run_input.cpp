@@ -1,4 +1,7 @@
-// Where a run's scene and events come from: files, or the embedded default and its demo script.
+// Where a run's scene and events come from (files, or the embedded default and its demo script),
+// and what became of the events at its end.
+#include <cstdio>
+
 #include "game/commands.h"
 #include "game/default_scene.h"
 
@@ -18,6 +21,25 @@ Expected<RunInput> LoadRunInput(const RunOptions& options) {
     input.events = std::move(events.Value());
   }
   return input;
+}
+
+Expected<std::optional<engine::BodyId>> FollowedBody(const Scene& scene, const ViewOptions& view,
+                                                     const std::string& scene_label) {
+  if (!view.follow) return std::optional<engine::BodyId>();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].id == *view.follow) return std::optional<engine::BodyId>(i);
+  }
+  return BadInput("--follow: " + scene_label + " has no body with the id \"" + *view.follow + "\"");
+}
+
+void PrintEventSummary(const Scene& scene, const EventLog& log, const EventsAfterEnd& late,
+                       bool list_misses) {
+  if (list_misses) {
+    std::vector<std::string> ids;
+    for (const SceneBody& body : scene.bodies) ids.push_back(body.id);
+    for (const MissedClick& miss : log.Misses()) std::printf("%s\n", MissLine(miss, ids).c_str());
+  }
+  std::printf("%s\n", EventSummary(log, late, list_misses).c_str());
 }
 
 }  // namespace game

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "game/limits.h"
+#include "game/scene_json.h"
 #include "game/text_file.h"
 
 namespace game {
@@ -399,38 +400,15 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   return scene;
 }
 
-// 1-based line and column of a byte offset, for syntax errors.
-std::string LineColumn(std::string_view text, std::size_t byte) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(column);
-}
-
 }  // namespace
 
 Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
                            const std::string& default_name) {
   Json root;
-  try {
-    root = Json::parse(json.begin(), json.end());
-  } catch (const Json::parse_error& e) {
-    // nlohmann reports the byte just past the fault; the column is of the character at fault.
-    const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    std::string reason = e.what();
-    if (const auto colon = reason.find(": "); colon != std::string::npos) reason.erase(0, colon + 2);
-    return BadInput(file_label + ":" + LineColumn(json, at) + ": " + reason);
-  } catch (const Json::exception& e) {
-    // A number too large for a double (1e999) is an out_of_range error without a position.
-    std::string reason = e.what();
-    if (const auto bracket = reason.find("] "); bracket != std::string::npos) reason.erase(0, bracket + 2);
-    return BadInput(file_label + ": " + reason);
+  JsonError error;
+  if (!ParseJsonChecked(json, root, error)) {
+    const std::string where = error.line_column.empty() ? "" : error.line_column + ":";
+    return BadInput(file_label + ":" + where + " " + error.message);
   }
   try {
     return ReadScene(root, default_name);

@@ -20,13 +20,22 @@ struct InputEvent {
   std::int64_t step = 0;  ///< applied before this step is simulated
   EventKind kind = EventKind::kClickWorld;
   engine::Vec2 at;
+  /// kClickPixel: the image size the pixel was made for (the script's `size W H` line), so it
+  /// maps through the camera framed at that size; 0 × 0: the size being rendered.
+  int image_width = 0;
+  int image_height = 0;
 };
 
-/// Parses a script; errors name `file_label` and the line. Steps must not decrease.
+/// Parses a script; errors name `file_label` and the line. Steps must not decrease. A UTF-8
+/// byte order mark at the start is skipped (editors on Windows write one).
 Expected<std::vector<InputEvent>> ParseScript(std::string_view text, const std::string& file_label);
 Expected<std::vector<InputEvent>> LoadScript(const std::string& path);
 
-/// Writes events in the script format, so that ParseScript reads back exactly the same values.
+/// Writes events in the script format, so that ParseScript reads back exactly the same values;
+/// a `size` line comes first when the pixel clicks carry an image size.
 std::string FormatScript(const std::vector<InputEvent>& events);
+
+/// The line naming the image size pixel clicks were made for: "size 800 600\n".
+std::string SizeLine(int image_width, int image_height);
 
 }  // namespace game

@@ -7,8 +7,10 @@ namespace game {
 
 namespace {
 
-render::Camera ChooseCamera(const Scene& scene, const engine::World& world, int width, int height) {
-  render::Camera camera = render::FitCamera(world, width, height);
+// Fitted at 800x600 like a scene camera is framed, so the fit too shows the same region at
+// every size once framed.
+render::Camera ChooseView(const Scene& scene, const engine::World& world) {
+  render::Camera camera = render::FitCamera(world, render::kFramingWidth, render::kFramingHeight);
   if (scene.camera.center) camera.center = *scene.camera.center;
   if (scene.camera.width) camera.width = *scene.camera.width;
   return camera;
@@ -21,7 +23,8 @@ Session::Session(const Scene& scene, std::vector<InputEvent> events, int image_w
     : scene_(scene),
       world_(BuildWorld(scene)),
       events_(std::move(events)),
-      camera_(ChooseCamera(scene, world_, image_width, image_height)),
+      view_(ChooseView(scene, world_)),
+      camera_(render::FrameCamera(view_, image_width, image_height)),
       image_width_(image_width),
       image_height_(image_height) {}
 
@@ -40,12 +43,29 @@ Status Session::Fault() const {
                         std::to_string(fault->step) + "; the numbers outgrew double precision");
 }
 
-void Session::ApplyEvent(const InputEvent& event) {
-  const engine::Vec2 p = event.kind == EventKind::kClickPixel
-                             ? render::PixelToWorld(camera_, image_width_, image_height_,
-                                                    event.at.x, event.at.y)
-                             : event.at;
-  ApplyClick(world_, p, scene_.click_max_impulse);
+engine::Vec2 Session::EventPoint(const InputEvent& event) const {
+  if (event.kind != EventKind::kClickPixel) return event.at;
+  if (event.image_width == 0) {
+    return render::PixelToWorld(camera_, image_width_, image_height_, event.at.x, event.at.y);
+  }
+  const render::Camera camera = render::FrameCamera(view_, event.image_width, event.image_height);
+  return render::PixelToWorld(camera, event.image_width, event.image_height, event.at.x,
+                              event.at.y);
+}
+
+engine::Vec2 Session::ApplyEvent(const InputEvent& event) {
+  const engine::Vec2 p = EventPoint(event);
+  const bool hit = ApplyClick(world_, p, scene_.click_max_impulse).has_value();
+  log_.Record(event, p, hit, world_);
+  return p;
+}
+
+EventsAfterEnd Session::EventsLeft() const {
+  EventsAfterEnd late;
+  late.count = events_.size() - next_event_;
+  late.first_step = late.count > 0 ? events_[next_event_].step : 0;
+  late.end_step = StepIndex();
+  return late;
 }
 
 }  // namespace game

@@ -68,6 +68,7 @@ Status RunSim(const SimOptions& options) {
   }
   std::printf("sim: %s, %zu bodies, %" PRId64 " steps in %.3f s\n", session.SceneDef().name.c_str(),
               session.World().BodyCount(), options.steps, seconds);
+  PrintEventSummary(session.SceneDef(), session.Events(), session.EventsLeft(), options.run.list_misses);
   std::printf("state-hash: %016" PRIx64 "\n", session.World().StateHash());
   return std::nullopt;
 }

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <iterator>
 #include <string>
+#include <vector>
 
 namespace testing {
 
@@ -38,6 +40,29 @@ inline ProgramRun RunShell(const std::string& command, const std::filesystem::pa
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return run;
+}
+
+// A fresh, empty folder for one test: BALLBOX_TEST_TMP/`group`/`name`.
+inline std::filesystem::path FreshTestDir(const std::string& group, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(BALLBOX_TEST_TMP) / group / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Runs `ballbox <args>` (a shell command line) in `dir`, its output captured beside the folder,
+// so the folder holds only what the program wrote.
+inline ProgramRun Ballbox(const std::string& args, const std::filesystem::path& dir) {
+  return RunShell("'" BALLBOX_EXE "' " + args, dir,
+                  dir.parent_path() / (dir.filename().string() + "_captured"));
+}
+
+// The names in a folder, sorted.
+inline std::vector<std::string> SortedNames(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 }  // namespace testing

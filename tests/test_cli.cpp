@@ -253,6 +253,85 @@ TEST_CASE("cli error: two scenes", "[cli]") {
                     "more than one scene given: \"a.json\" and \"b.json\" (see: ballbox sim --help)");
 }
 
+TEST_CASE("cli error: a flag given twice", "[cli]") {
+  // The later value would win silently; `--steps 10 --steps 20` may be a typo for anything.
+  RequireUsageError({"sim", "--steps", "10", "--steps", "20"},
+                    "--steps is given more than once (see: ballbox sim --help)");
+  RequireUsageError({"render", "--script", "a.txt", "--script=b.txt"},
+                    "--script is given more than once (see: ballbox render --help)");
+  RequireUsageError({"render", "--hud", "--hud"}, "--hud is given more than once (see: ballbox render --help)");
+  RequireUsageError({"play", "--misses", "--size", "8x6", "--misses"},
+                    "--misses is given more than once (see: ballbox play --help)");
+}
+
+TEST_CASE("cli: the film and events flags", "[cli]") {
+  const game::CommandLine cl = Parse({"render", "--video", "film.MP4", "--camera", "-1.5,2e1,+10",
+                                      "--follow", "small_ball", "--from", "120", "--hud", "--misses"});
+  CHECK(cl.render.video_path == "film.MP4");
+  REQUIRE(cl.render.view.camera);
+  CHECK(cl.render.view.camera->center.x == -1.5);
+  CHECK(cl.render.view.camera->center.y == 20);
+  CHECK(cl.render.view.camera->width == 10);
+  CHECK(cl.render.view.follow == "small_ball");
+  CHECK(cl.render.from == 120);
+  CHECK(cl.render.hud);
+  CHECK(cl.render.run.list_misses);
+  const game::CommandLine defaults = Parse({"render"});
+  CHECK_FALSE(defaults.render.video_path);
+  CHECK_FALSE(defaults.render.view.camera);
+  CHECK_FALSE(defaults.render.view.follow);
+  CHECK(defaults.render.from == 0);
+  CHECK_FALSE(defaults.render.hud);
+  CHECK_FALSE(defaults.render.run.list_misses);
+  const game::CommandLine play = Parse({"play", "--camera=0,5,30", "--follow=ball"});
+  CHECK(play.play.view.camera->width == 30);
+  CHECK(play.play.view.follow == "ball");
+  CHECK(Parse({"sim", "--steps", "3", "--misses"}).sim.run.list_misses);
+}
+
+TEST_CASE("cli error: bad film flags", "[cli]") {
+  for (const char* camera : {"1,2", "1,2,0", "1,2,-3", "a,2,3", "1,2,3,4", "1,,3", "1e10,0,5", "1,2,inf", "1;2;3"}) {
+    RequireUsageError({"render", "--camera", camera},
+                      std::string("--camera: expected X,Y,WIDTH (metres; WIDTH > 0, each at most 1e9 in size), got \"") +
+                          camera + "\" (see: ballbox render --help)");
+  }
+  RequireUsageError({"render", "--from", "-1"},
+                    "--from: expected a whole number from 0 to 1000000000000, got \"-1\" (see: ballbox render --help)");
+  RequireUsageError({"render", "--video", "film.mov"},
+                    "--video: \"film.mov\" does not end in .mp4, .webm or .gif (see: ballbox render --help)");
+  RequireUsageError({"render", "--hud=yes"}, "--hud takes no value, got \"yes\" (see: ballbox render --help)");
+  RequireUsageError({"sim", "--steps", "1", "--hud"}, "unknown option \"--hud\" for ballbox sim (see: ballbox sim --help)");
+  RequireUsageError({"play", "--video", "a.mp4"}, "unknown option \"--video\" for ballbox play (see: ballbox play --help)");
+}
+
+TEST_CASE("cli: every flag a command takes is in its --help", "[cli]") {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> flags = {
+      {"render", {"--script", "--size", "--misses", "--frames", "--every", "--out", "--video", "--camera",
+                  "--follow", "--from", "--hud"}},
+      {"sim", {"--script", "--size", "--misses", "--steps", "--dump", "--dump-every"}},
+      {"play", {"--script", "--size", "--misses", "--record", "--camera", "--follow"}}};
+  // The flag as a whole word: "--every" must not be found inside "--dump-every".
+  auto names_flag = [](const std::string& text, const std::string& flag) {
+    for (std::size_t at = text.find(flag); at != std::string::npos; at = text.find(flag, at + 1)) {
+      const char before = at > 0 ? text[at - 1] : ' ';
+      const char after = at + flag.size() < text.size() ? text[at + flag.size()] : ' ';
+      if ((before == ' ' || before == '[') && (after == ' ' || after == ']')) return true;
+    }
+    return false;
+  };
+  for (const auto& [command, names] : flags) {
+    const std::string help = Parse({command, "--help"}).help_text;
+    const std::string usage = Parse({"--help"}).help_text;
+    for (const std::string& flag : names) {
+      INFO(command << " " << flag);
+      CHECK(help.find("\n  " + flag + " ") != std::string::npos);  // a line that explains it
+      CHECK(names_flag(help.substr(0, help.find("\n\n")), flag));  // in the usage line
+      const std::string line = usage.substr(usage.find("ballbox " + command));
+      CHECK(names_flag(line.substr(0, line.find("ballbox", 8)), flag));  // and in ballbox --help
+    }
+  }
+}
+
 // --- The real binary.
 
 TEST_CASE("ballbox --help, COMMAND --help and --version exit 0 on stdout", "[cli][exe]") {

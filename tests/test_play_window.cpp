@@ -255,6 +255,14 @@ TEST_CASE("play window: an xdotool click hits a ball, and the recording replays 
   CHECK(hit->body == heavy);
   CHECK(hit->impulse.x > 0.0);  // clicked left of the centre: pushed to the right
   CHECK(recorded.Value().size() == 4);  // demo clicks at 40, 90, 130 and the live one
+  // The size line names the picture the clicks were made on. The summary counts all four: the
+  // live push sends heavy_ball elsewhere, so the demo clicks at 90 and 130, aimed for the run
+  // without it, now miss.
+  CHECK_THAT(ReadFile(dir / "rec.script"), Catch::Contains("\nsize 400 300\n"));
+  CHECK_THAT(out, Catch::Contains("\nevents: 4 clicks applied, 2 hit a ball, 2 missed (--misses lists where); "
+                                  "3 events after the end "
+                                  "of the run (the first at step 170; the run ended before simulating step "
+                                  "150)\nstate-hash: "));
 
   // sim replays the recording to the live hash (at any --size: the points are world points).
   const Run sim = Shell(Exe() + " sim --script rec.script --steps 150", dir);

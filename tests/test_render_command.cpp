@@ -95,11 +95,15 @@ TEST_CASE("render command: --frames and --every give that many frames, named in 
     CHECK(image.width == 160);
     CHECK(image.height == 120);
   }
-  // One summary line: frames, steps ((5 − 1) · 3), wall time, frames/s. No progress bar
-  // when stderr is not a terminal.
-  CHECK(std::count(run.out.begin(), run.out.end(), '\n') == 1);
-  CHECK_THAT(run.out, Catch::Contains("5 frames") && Catch::Contains("12 steps") &&
-                          Catch::Contains(" s ") && Catch::Contains("frames/s"));
+  // The events summary (the demo clicks at steps 40 and later come after these 12 steps), then
+  // one summary line: frames, steps ((5 − 1) · 3), wall time, frames/s. No progress bar when
+  // stderr is not a terminal.
+  CHECK(std::count(run.out.begin(), run.out.end(), '\n') == 2);
+  CHECK(run.out.rfind("events: 0 clicks applied, 0 hit a ball, 0 missed; 6 events after the end", 0) == 0);
+  const std::string last = run.out.substr(run.out.find('\n') + 1);
+  CHECK(last.rfind("render: default, ", 0) == 0);
+  CHECK_THAT(last, Catch::Contains("5 frames") && Catch::Contains("12 steps") &&
+                       Catch::Contains(" s ") && Catch::Contains("frames/s"));
   CHECK(run.err.empty());
 }
 

@@ -109,16 +109,44 @@ TEST_CASE("scene unknown key with a newline in it still gives a one-line message
 
 // --- Values of the wrong kind.
 
-TEST_CASE("scene number too large for a double is bad input, not a crash", "[scene]") {
-  // JSON has no infinity; 1e999 is how a non-finite number reaches the loader. nlohmann throws
-  // out_of_range (not parse_error) for it, which ParseScene must catch too.
+TEST_CASE("scene number too large for a double is bad input naming its line, column and key",
+          "[scene]") {
+  // JSON has no infinity; 1e999 is how a non-finite number reaches the loader. nlohmann reports
+  // it as out_of_range 406 with no position; the loader's own parse names where it stands.
   const std::string path = DataPath("scene_non_finite.json");
   game::Expected<game::Scene> scene{game::Failure{}};
   REQUIRE_NOTHROW(scene = game::LoadScene(path));
   REQUIRE_FALSE(scene.HasValue());
   CHECK(scene.Error().exit_code == 2);
-  CHECK(scene.Error().message.rfind(path + ":", 0) == 0);
-  CHECK(scene.Error().message.find("1e999") != std::string::npos);
+  // Line 3, column 36 is the "1" of 1e999, counted by hand in the file.
+  CHECK(scene.Error().message == path + ":3:36: bodies[0].radius: the number 1e999 is too large for "
+                                        "a double (at most about 1.8e308)");
+}
+
+TEST_CASE("scene error: a key given twice in one object names where", "[scene]") {
+  // JSON parsers keep the later value silently; a scene would then run with a value the user
+  // may not be looking at.
+  RequireSceneError("scene_duplicate_key.json",
+                    "bodies[1]: duplicate key \"radius\" (each key may appear once in an object)");
+  RequireSceneError("scene_duplicate_top_key.json",
+                    "duplicate key \"gravity\" (each key may appear once in an object)");
+  RequireSceneError("scene_duplicate_nested_key.json",
+                    "camera: duplicate key \"width\" (each key may appear once in an object)");
+  // Among thousands of keys in one object (the search must not grow quadratic), the repeat is
+  // still found.
+  std::string many = "{";
+  for (int i = 0; i < 50000; ++i) many += "\"k" + std::to_string(i) + "\": 0, ";
+  many += "\"k49999\": 1}";
+  const game::Expected<game::Scene> crowded = game::ParseScene(many, "many.json", "many");
+  REQUIRE_FALSE(crowded.HasValue());
+  CHECK(crowded.Error().message ==
+        "many.json: duplicate key \"k49999\" (each key may appear once in an object)");
+  // The same key in different objects is fine.
+  const game::Expected<game::Scene> twice = game::ParseScene(
+      R"({"bodies": [{"shape": "circle", "radius": 1, "position": [0, 0]},
+                     {"shape": "circle", "radius": 2, "position": [3, 0]}]})", "s.json", "s");
+  REQUIRE(twice.HasValue());
+  CHECK(twice.Value().bodies[1].def.shape.radius == 2);
 }
 
 TEST_CASE("scene string where a number belongs", "[scene]") {

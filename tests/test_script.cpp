@@ -154,3 +154,55 @@ TEST_CASE("FormatScript then ParseScript gives back bit-identical events", "[scr
     CHECK(Bits(parsed.Value()[i].at.y) == Bits(events[i].at.y));
   }
 }
+
+TEST_CASE("script: a UTF-8 byte order mark at the start is skipped", "[script]") {
+  // Notepad and other editors write EF BB BF first; it must not glue itself to the first step.
+  const auto events = game::ParseScript("\xEF\xBB\xBF" "5 click-world 1 2\n", "bom.txt");
+  REQUIRE(events.HasValue());
+  REQUIRE(events.Value().size() == 1);
+  CHECK(events.Value()[0].step == 5);
+  // Elsewhere it is no whitespace: a byte order mark in the middle of a line stays an error.
+  RequireParseError("1 click-world 1 2\n\xEF\xBB\xBF" "5 click-world 1 2\n",
+                    "s.txt:2: step \"\xEF\xBB\xBF" "5\" is not a whole number >= 0");
+}
+
+TEST_CASE("script: a size line gives the pixel clicks below it their image size", "[script]") {
+  const auto events = game::ParseScript(
+      "# made at 1280x720\n5 click-world 1 2\nsize 1280 720   # the size\n6 click 10 20\n7 click 3 4\n",
+      "s.txt");
+  REQUIRE(events.HasValue());
+  REQUIRE(events.Value().size() == 3);
+  CHECK(events.Value()[0].image_width == 0);  // world clicks need no size
+  for (int i : {1, 2}) {
+    CHECK(events.Value()[i].image_width == 1280);
+    CHECK(events.Value()[i].image_height == 720);
+  }
+  // Without one, pixel clicks map at the size being rendered.
+  const auto plain = game::ParseScript("6 click 10 20\n", "s.txt");
+  REQUIRE(plain.HasValue());
+  CHECK(plain.Value()[0].image_width == 0);
+  CHECK(plain.Value()[0].image_height == 0);
+}
+
+TEST_CASE("script error: a size line after a pixel click, a second one, or a bad size", "[script]") {
+  RequireParseError("6 click 10 20\nsize 800 600\n",
+                    "s.txt:2: the size line must come before the first pixel click");
+  RequireParseError("size 800 600\nsize 400 300\n", "s.txt:2: a second size line (a script has at most one)");
+  RequireParseError("size 800\n", "s.txt:1: expected \"size W H\" (the image size in pixels), got 2 fields");
+  RequireParseError("size 800 0\n", "s.txt:1: height \"0\" is not a whole number from 1 to 16384");
+  RequireParseError("size 16385 600\n", "s.txt:1: width \"16385\" is not a whole number from 1 to 16384");
+  RequireParseError("size 8.5 600\n", "s.txt:1: width \"8.5\" is not a whole number from 1 to 16384");
+}
+
+TEST_CASE("FormatScript writes the size line, and the round trip keeps it", "[script]") {
+  std::vector<game::InputEvent> events = {{3, game::EventKind::kClickWorld, {1, 2}},
+                                          {4, game::EventKind::kClickPixel, {10, 20}, 640, 480}};
+  const std::string text = game::FormatScript(events);
+  CHECK(text.rfind("size 640 480\n", 0) == 0);
+  const auto parsed = game::ParseScript(text, "round-trip");
+  REQUIRE(parsed.HasValue());
+  REQUIRE(parsed.Value().size() == 2);
+  CHECK(parsed.Value()[1].image_width == 640);
+  CHECK(parsed.Value()[1].image_height == 480);
+  CHECK(game::SizeLine(800, 600) == "size 800 600\n");
+}

@@ -76,4 +76,12 @@ int TextWidth(std::string_view text, int cell) {
   return static_cast<int>(text.size()) * (kGlyphColumns + 1) * cell - cell;
 }
 
+std::vector<FilledRect> TextPanel(std::string_view text, int cell, Color backdrop, Color ink) {
+  const int pad = 2 * cell;
+  std::vector<FilledRect> panel;
+  panel.push_back({{pad, pad, TextWidth(text, cell) + 2 * pad, kGlyphRows * cell + 2 * pad}, backdrop});
+  for (const FilledRect& r : LayoutText(text, 2 * pad, 2 * pad, cell, ink)) panel.push_back(r);
+  return panel;
+}
+
 }  // namespace render

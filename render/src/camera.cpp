@@ -2,6 +2,7 @@
 #include "render/camera.h"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace render {
 
@@ -16,6 +17,16 @@ engine::Vec2 WorldToPixel(const Camera& camera, int image_width, int image_heigh
   const double s = camera.width / image_width;
   return {(p.x - camera.center.x) / s + image_width / 2.0,
           image_height / 2.0 - (p.y - camera.center.y) / s};
+}
+
+Camera FrameCamera(const Camera& view, int image_width, int image_height) {
+  // Compared in integers, so every 4:3 size keeps the view's width exactly (800 / 600 is not a
+  // double, and a width off by one ulp would move every pixel click).
+  const std::int64_t wide = std::int64_t{image_width} * kFramingHeight;
+  const std::int64_t tall = std::int64_t{image_height} * kFramingWidth;
+  if (wide <= tall) return view;  // as wide as 4:3 or taller: the height grows
+  // Wider than 4:3: the 800x600 height stays, the width grows with the aspect.
+  return Camera{view.center, view.width * static_cast<double>(wide) / static_cast<double>(tall)};
 }
 
 Camera FitCamera(const engine::World& world, int image_width, int image_height) {

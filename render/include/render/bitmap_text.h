@@ -1,5 +1,6 @@
 // A tiny built-in bitmap font (3×5 cells a character) laid out as filled rectangles, for the
-// window's status line: the renderer has no text, and this needs no texture or shader.
+// window's status line and the film's HUD: the renderer has no text, and this needs no texture
+// or shader.
 #pragma once
 
 #include <string_view>
@@ -20,5 +21,14 @@ std::vector<FilledRect> LayoutText(std::string_view text, int x, int y, int cell
 
 /// The width in pixels LayoutText covers for `text` (no trailing gap).
 int TextWidth(std::string_view text, int cell);
+
+/// The panel colours of the window's status line and the film's HUD: light text on the dark of
+/// the letterbox bars.
+inline constexpr Color kPanelBackdrop{0x20, 0x23, 0x28};
+inline constexpr Color kPanelText{0xf4, 0xf1, 0xea};
+
+/// A line of text on a backdrop in the top-left corner, two cells in from the edges: the
+/// backdrop first, then the glyphs.
+std::vector<FilledRect> TextPanel(std::string_view text, int cell, Color backdrop, Color ink);
 
 }  // namespace render

@@ -1,0 +1,56 @@
+// What became of a run's clicks: how many were applied, hit a ball or missed, where each miss
+// was, and how many events the run ended before. Commands print it as their events summary.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/math.h"
+#include "engine/world.h"
+#include "game/script.h"
+
+namespace game {
+
+/// A click that hit no dynamic ball.
+struct MissedClick {
+  InputEvent event;    ///< as the script or the window gave it (pixel or world point)
+  engine::Vec2 world;  ///< the world point it acted on
+  std::optional<engine::BodyId> nearest;  ///< the dynamic ball nearest to that point, if any
+  double gap = 0.0;    ///< metres from `world` to that ball's rim
+};
+
+class EventLog {
+ public:
+  /// Notes one applied click that acted at `world` on `world_state` and hit a ball or not.
+  void Record(const InputEvent& event, engine::Vec2 world, bool hit,
+              const engine::World& world_state);
+
+  std::int64_t Applied() const { return hits_ + static_cast<std::int64_t>(misses_.size()); }
+  std::int64_t Hits() const { return hits_; }
+  const std::vector<MissedClick>& Misses() const { return misses_; }
+
+ private:
+  std::int64_t hits_ = 0;
+  std::vector<MissedClick> misses_;
+};
+
+/// Events a run never applied because it ended first.
+struct EventsAfterEnd {
+  std::size_t count = 0;
+  std::int64_t first_step = 0;  ///< the step of the first of them
+  std::int64_t end_step = 0;    ///< the step the run ended before (events at it or later are late)
+};
+
+/// The summary line, e.g. "events: 6 clicks applied, 5 hit a ball, 1 missed (--misses lists
+/// where)", or "events: none" for a run without any. `misses_listed`: the misses are printed
+/// above it, so the hint is left out.
+std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed);
+
+/// One line per miss, e.g. "miss: step 40, click 361 231 (pixels at 800x600) -> world (-1.07,
+/// 8.40): no ball there; nearest \"bouncy_ball\", 0.12 m beyond its rim". `ids`: body ids.
+std::string MissLine(const MissedClick& miss, const std::vector<std::string>& ids);
+
+}  // namespace game
