@@ -23,14 +23,6 @@ engine::Vec2 Momentum(const engine::World& world) {
   return p;
 }
 
-double KineticEnergy(const engine::World& world) {
-  double e = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-    e += 0.5 * world.Info(id).mass * engine::LengthSquared(world.State(id).velocity);
-  }
-  return e;
-}
-
 // Two touching balls of masses 1 and 3 meeting head on at 4 and −2 m/s.
 engine::World HeadOn(double restitution) {
   engine::World world(NoGravity());
@@ -48,13 +40,13 @@ TEST_CASE("head-on collision of masses 1 and 3 follows the collision law", "[res
     engine::World world = HeadOn(1.0);
     CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
     CHECK(world.State(1).velocity.x == Approx(1.0).epsilon(1e-12));
-    CHECK(KineticEnergy(world) == Approx(14.0).epsilon(1e-12));
+    CHECK(testing::LinearKineticEnergy(world) == Approx(14.0).epsilon(1e-12));
   }
   SECTION("e = 0.5: -2.75 and 0.25 m/s, loses ½·μ·(1 − e²)·Δv² = 10.125 J") {
     engine::World world = HeadOn(0.5);
     CHECK(world.State(0).velocity.x == Approx(-2.75).epsilon(1e-12));
     CHECK(world.State(1).velocity.x == Approx(0.25).epsilon(1e-12));
-    CHECK(14.0 - KineticEnergy(world) == Approx(10.125).epsilon(1e-12));
+    CHECK(14.0 - testing::LinearKineticEnergy(world) == Approx(10.125).epsilon(1e-12));
   }
   SECTION("the pair uses the larger restitution") {
     engine::World world(NoGravity());
@@ -89,7 +81,7 @@ TEST_CASE("momentum is conserved in collisions without gravity", "[response]") {
     world.CreateBody(WithMaterial(def, e(rng), mu(rng)));
   }
   const engine::Vec2 p0 = Momentum(world);
-  const double e0 = KineticEnergy(world);
+  const double e0 = testing::LinearKineticEnergy(world);
   int contacts = 0;
   for (int i = 0; i < 600; ++i) {
     world.Step();
@@ -97,7 +89,7 @@ TEST_CASE("momentum is conserved in collisions without gravity", "[response]") {
     const engine::Vec2 p = Momentum(world);
     REQUIRE(p.x == Approx(p0.x).margin(1e-10));
     REQUIRE(p.y == Approx(p0.y).margin(1e-10));
-    REQUIRE(KineticEnergy(world) <= e0 * (1 + 1e-12));  // restitution ≤ 1 never adds energy
+    REQUIRE(testing::LinearKineticEnergy(world) <= e0 * (1 + 1e-12));  // restitution ≤ 1 never adds energy
   }
   CHECK(contacts > 100);  // the bodies really did collide
 }

@@ -56,14 +56,6 @@ double HeavyBoxSink(bool rotation, double ratio, const engine::SubstepFeatures& 
   return sank;
 }
 
-double KineticEnergy(const engine::World& world) {
-  double e = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-    e += 0.5 * world.Info(id).mass * engine::LengthSquared(world.State(id).velocity);
-  }
-  return e;
-}
-
 // The largest rise of kinetic energy from one step to the next, as a fraction of the start, in a
 // packed grid of circles in a closed box without gravity (docs/solver.md, "Warm start").
 double WorstEnergyRise(const engine::SubstepFeatures& features) {
@@ -83,11 +75,11 @@ double WorstEnergyRise(const engine::SubstepFeatures& features) {
     const engine::Vec2 at{0.96 * (i % 15 - 7), 0.96 * (i / 15 - 7)};
     world.CreateBody(WithMaterial(Circle(at, 0.5, {speed(rng), speed(rng)}), 0.2, 0.6));
   }
-  const double start = KineticEnergy(world);
+  const double start = testing::LinearKineticEnergy(world);
   double previous = start, worst = 0.0;
   for (int i = 0; i < 60; ++i) {
     world.Step();
-    const double e = KineticEnergy(world);
+    const double e = testing::LinearKineticEnergy(world);
     worst = std::max(worst, (e - previous) / start);
     previous = e;
   }

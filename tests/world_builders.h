@@ -46,4 +46,13 @@ inline engine::WorldDef NoGravity() {
   return def;
 }
 
+/// J, of the bodies' motion along (rotation not counted).
+inline double LinearKineticEnergy(const engine::World& world) {
+  double e = 0;
+  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    e += 0.5 * world.Info(id).mass * engine::LengthSquared(world.State(id).velocity);
+  }
+  return e;
+}
+
 }  // namespace testing
