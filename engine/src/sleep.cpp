@@ -5,7 +5,6 @@
 #include "union_find.h"
 
 #include <algorithm>
-#include <numeric>
 #include <vector>
 
 namespace engine::detail {

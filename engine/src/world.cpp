@@ -139,9 +139,17 @@ void World::Step() {
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, w.candidates.Margins());
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
-  detail::StepContext context{w.def,           bodies.states,       bodies.infos,
-                              w.sleep.awake,   w.narrow_phase.Contacts(), bodies.start_positions,
-                              bodies.turnable > 0, forces, w.free_motion, w.step_count, w.fault};
+  detail::StepContext context{.def = w.def,
+                              .states = bodies.states,
+                              .infos = bodies.infos,
+                              .moving = w.sleep.awake,
+                              .contacts = w.narrow_phase.Contacts(),
+                              .start_positions = bodies.start_positions,
+                              .can_turn = bodies.turnable > 0,
+                              .forces = forces,
+                              .free_motion = w.free_motion,
+                              .step = w.step_count,
+                              .fault = w.fault};
   std::visit([&](auto& solver) { solver.Step(context); }, w.solver);
   if (w.fault) return;                  // broken down mid-step: stop where it appeared
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep

@@ -46,6 +46,12 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   plan.block_solver = features.block_solver;
   plan.check_forces = context.forces.BeyondGravity();
   plan.track_turning = def.rotation;
+  plan.h = def.dt / def.substeps;
+  plan.inv_h = 1.0 / plan.h;
+  // Remove the same fraction of the overlap per step as the sequential-impulse solver does,
+  // spread over the substeps: 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is
+  // that times the overlap / h.
+  plan.push_out_rate = (1.0 - std::pow(1.0 - def.position_correction, 1.0 / def.substeps)) * plan.inv_h;
   return plan;
 }
 
@@ -96,12 +102,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
                             const StepStart& start) {
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
-  const double h = def.dt / def.substeps;
-  const double inv_h = 1.0 / h;
-  // Remove the same fraction of the overlap per step as the sequential-impulse solver does,
-  // spread over the substeps: 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is
-  // that times the overlap / h.
-  const double push_out_rate = (1.0 - std::pow(1.0 - def.position_correction, 1.0 / def.substeps)) * inv_h;
+  const double h = plan.h, inv_h = plan.inv_h;
   const WarmStartImpulses warm{warm_free_, warm_free_angular_};
   const PushVelocities push{push_velocities_, push_angular_velocities_};
 
@@ -124,10 +125,10 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h);
   if (plan.track_turning) UpdateTurned(context);
-  PushOut(constraints, states, start, push, push_out_rate, def.max_push_out_speed, def.linear_slop);
+  PushOut(constraints, states, start, push, plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
-      PushOutDirect(&direct_solver_, constraints, states, start, push, push_out_rate,
+      PushOutDirect(&direct_solver_, constraints, states, start, push, plan.push_out_rate,
                     def.max_push_out_speed, def.linear_slop);
     }
   }

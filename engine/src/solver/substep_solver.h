@@ -26,6 +26,9 @@ struct SubstepPlan {
   bool block_solver;       ///< two-point turning contacts solved together (switch)
   bool check_forces;       ///< forces beyond gravity act: they may overflow, checked each substep
   bool track_turning;      ///< rotation is on: contacts follow how far bodies have turned
+  double h;                ///< the substep, s
+  double inv_h;
+  double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep
 };
 
 class SubstepSolver {
