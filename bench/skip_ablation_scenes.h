@@ -104,10 +104,10 @@ inline std::vector<Ablation> Ablations() {
                  [] { return Mixed(AwakeDef()); },
                  [] {
                    engine::World world = Mixed(AwakeDef());
-                   for (engine::BodyId id = 5; id < world.BodyCount(); ++id) {
+                   for (engine::BodyIndex i = 5; i < world.BodyCount(); ++i) {
                      engine::SpringDef spring;
-                     spring.body_a = id - 1;
-                     spring.body_b = id;
+                     spring.body_a = {i - 1};
+                     spring.body_b = engine::BodyId{i};
                      spring.rest_length = 1.0;
                      world.AddSpring(spring);
                    }

@@ -54,7 +54,7 @@ inline std::int64_t ProcStatusKiB(const std::string& field) {
 inline double MechanicalEnergy(const engine::World& world) {
   const engine::Vec2 g = world.Def().gravity;
   double energy = 0.0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyInfo& info = world.Info(id);
     if (info.is_static) continue;
     const engine::BodyState& s = world.State(id);
@@ -79,11 +79,11 @@ class Soak {
     if (session_.StepIndex() % click_every_ == 0) Click();
     session_.Step();
     const engine::World& world = session_.World();
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       const engine::BodyState& s = world.State(id);
       for (double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
         if (!std::isfinite(v)) {
-          return "body " + session_.SceneDef().bodies[id].id + " is not finite after step " +
+          return "body " + session_.SceneDef().bodies[id.index].id + " is not finite after step " +
                  std::to_string(session_.StepIndex());
         }
       }
@@ -108,7 +108,7 @@ class Soak {
   int BodiesInTheBox() const {
     int inside = 0;
     const engine::World& world = session_.World();
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       const engine::BodyState& s = world.State(id);
       if (!world.Info(id).is_static && std::abs(s.position.x) < 9.0 && s.position.y > -0.1) ++inside;
     }
@@ -134,7 +134,7 @@ class Soak {
                   std::uniform_real_distribution<double>(0, kHeight)(rng_)};
     } else {
       std::vector<engine::BodyId> balls;
-      for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+      for (const engine::BodyId id : world.BodyIds()) {
         const engine::BodyInfo& info = world.Info(id);
         if (!info.is_static && info.shape.type == engine::ShapeType::kCircle) balls.push_back(id);
       }

@@ -81,11 +81,11 @@ inline void StepN(engine::World& world, int steps) {
 /// The largest distance any body ends from where it started, over `steps` steps.
 inline double MaxDrift(engine::World& world, int steps) {
   std::vector<engine::Vec2> start;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) start.push_back(world.State(id).position);
+  for (const engine::BodyId id : world.BodyIds()) start.push_back(world.State(id).position);
   StepN(world, steps);
   double drift = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-    drift = std::max(drift, engine::Length(world.State(id).position - start[id]));
+  for (const engine::BodyId id : world.BodyIds()) {
+    drift = std::max(drift, engine::Length(world.State(id).position - start[id.index]));
   }
   return drift;
 }
@@ -136,7 +136,7 @@ inline Scene OverlapRecoveryScene() {
       world.Step();
       // The push-out speed plus free fall: overlap must never launch a body.
       const double limit = world.Def().max_push_out_speed + g * i * world.Def().dt;
-      for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+      for (const engine::BodyId id : world.BodyIds()) {
         const double speed = engine::Length(world.State(id).velocity);
         fastest = std::max(fastest, speed);
         within_limit = within_limit && speed <= limit;
@@ -161,7 +161,7 @@ inline Scene PourScene() {
   scene.measure = [](engine::World& world, int steps) {
     StepN(world, steps);
     int escaped = 0, not_finite = 0;
-    for (engine::BodyId id = 4; id < world.BodyCount(); ++id) {  // after the container's 4 walls
+    for (const engine::BodyId id : world.BodyIds().subspan(4)) {  // after the container's 4 walls
       const engine::BodyState& s = world.State(id);
       if (!engine::IsFinite(s.position) || !engine::IsFinite(s.velocity)) {
         ++not_finite;
@@ -192,7 +192,7 @@ inline Scene BouncingBallScene() {
     bench::BounceApexes apexes;
     for (int i = 0; i < steps; ++i) {
       world.Step();
-      apexes.Observe(world.State(1).position.y, world.State(1).velocity.y);
+      apexes.Observe(world.State({1}).position.y, world.State({1}).velocity.y);
     }
     const int seen = apexes.Bounces();
     const double worst = apexes.WorstError();
@@ -221,10 +221,10 @@ inline Scene CradleScene() {
               }, {}};
   scene.measure = [](engine::World& world, int steps) {
     StepN(world, steps);
-    const engine::BodyId last = static_cast<engine::BodyId>(world.BodyCount() - 1);
+    const engine::BodyId last = world.BodyIds().back();
     const double ratio = engine::Length(world.State(last).velocity) / kCradleSpeed;
     double others = 0;
-    for (engine::BodyId id = 0; id < last; ++id) {
+    for (const engine::BodyId id : world.BodyIds().first(world.BodyCount() - 1)) {
       others = std::max(others, engine::Length(world.State(id).velocity));
     }
     return std::vector<Figure>{{"last / striker speed", "", ratio, "1 +- 0.01", std::abs(ratio - 1) < 0.01},

@@ -77,7 +77,7 @@ inline engine::BodyDef Ball(engine::Vec2 position, engine::Vec2 velocity, double
   return def;
 }
 
-inline engine::Vec2 FirstBody(const engine::World& world) { return world.State(0).position; }
+inline engine::Vec2 FirstBody(const engine::World& world) { return world.State({0}).position; }
 
 // S2 and S3: m = 1 on a spring of rest length 0 to the origin, from x = 1 at rest.
 inline engine::World SpringWorld(engine::Integrator integrator, double h, double damping) {
@@ -141,7 +141,7 @@ inline std::vector<Scenario> Scenarios() {
   s2.build = [](engine::Integrator integrator, double h) { return SpringWorld(integrator, h, 0.0); };
   s2.exact = [](double t) { return Vec2{std::cos(2 * kPi * t), 0}; };
   s2.energy = [](const World& world) {
-    const engine::BodyState& s = world.State(0);
+    const engine::BodyState& s = world.State({0});
     return 0.5 * engine::Dot(s.velocity, s.velocity) + 0.5 * 4 * kPi * kPi * engine::Dot(s.position, s.position);
   };
   out.push_back(s2);
@@ -198,11 +198,11 @@ inline std::vector<Scenario> Scenarios() {
     world.CreateBody(Ball({0.4, 0}, {0, 2}, 1e-20, 0.01));
     return world;
   };
-  s6.observed = [](const World& world) { return world.State(1).position - world.State(0).position; };
+  s6.observed = [](const World& world) { return world.State({1}).position - world.State({0}).position; };
   s6.exact = [](double t) { return KeplerPosition(t, 0.6); };
   s6.energy = [](const World& world) {
-    const Vec2 r = world.State(1).position - world.State(0).position;
-    const Vec2 v = world.State(1).velocity - world.State(0).velocity;
+    const Vec2 r = world.State({1}).position - world.State({0}).position;
+    const Vec2 v = world.State({1}).velocity - world.State({0}).velocity;
     return 0.5 * engine::Dot(v, v) - 1.0 / engine::Length(r);
   };
   out.push_back(s6);
@@ -221,7 +221,7 @@ inline std::vector<Scenario> Scenarios() {
     world.CreateBody(ball);
     return world;
   };
-  s7.observed = [](const World& world) { return world.State(1).position - Vec2{0, kBallRadius}; };
+  s7.observed = [](const World& world) { return world.State({1}).position - Vec2{0, kBallRadius}; };
   s7.exact = [](double t) { return Vec2{0, BounceHeight(t)}; };
   out.push_back(s7);
   return out;

@@ -14,10 +14,11 @@ engine::Vec2 ClickImpulse(engine::Vec2 center, double radius, engine::Vec2 p, do
 std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
                                      double max_impulse) {
   // Scan from the back: the last ball in scene order is drawn on top, so it takes the click.
-  for (std::size_t i = world.BodyCount(); i-- > 0;) {
-    const auto id = static_cast<engine::BodyId>(i);
+  const std::span<const engine::BodyId> ids = world.BodyIds();
+  for (auto it = ids.rbegin(); it != ids.rend(); ++it) {
+    const engine::BodyId id = *it;
     const engine::BodyInfo& info = world.Info(id);
-    if (info.is_static || info.shape.type != engine::ShapeType::kCircle) continue;
+    if (engine::HasInfiniteMass(info) || info.shape.type != engine::ShapeType::kCircle) continue;
     const engine::Vec2 center = world.State(id).position;
     const double r = info.shape.radius;
     if (engine::LengthSquared(p - center) > r * r) continue;
@@ -28,9 +29,9 @@ std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
 
 std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p) {
   std::optional<NearBall> nearest;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyInfo& info = world.Info(id);
-    if (info.is_static || info.shape.type != engine::ShapeType::kCircle) continue;
+    if (engine::HasInfiniteMass(info) || info.shape.type != engine::ShapeType::kCircle) continue;
     const double gap = engine::Length(p - world.State(id).position) - info.shape.radius;
     if (!nearest || gap < nearest->gap) nearest = NearBall{id, gap};
   }
@@ -39,7 +40,7 @@ std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p) 
 
 std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double max_impulse) {
   const std::optional<ClickHit> hit = ResolveClick(world, p, max_impulse);
-  if (hit) world.ApplyLinearImpulse(hit->body, hit->impulse);
+  if (hit) world.ApplyLinearImpulseToCenter(hit->body, hit->impulse);
   return hit;
 }
 

@@ -58,7 +58,7 @@ std::string MissLine(const MissedClick& miss, const std::vector<std::string>& id
   line += ": no ball there";
   if (miss.nearest) {
     std::snprintf(text, sizeof text, "; nearest \"%s\", %.3g m beyond its rim",
-                  ids[*miss.nearest].c_str(), miss.gap);
+                  ids[miss.nearest->index].c_str(), miss.gap);
     line += text;
   }
   return line;

@@ -282,7 +282,7 @@ engine::SpringDef ReadSpring(const Json& spring, const std::string& path,
     if (bodies[it->second].def.is_static) {
       throw SceneError{key(k), "body " + Quote(id) + " is static: anchor the spring with \"anchor_b\" instead"};
     }
-    return static_cast<engine::BodyId>(it->second);
+    return engine::BodyId{static_cast<engine::BodyIndex>(it->second)};  // bodies take slots in scene order
   };
   engine::SpringDef def;
   if (!Find(spring, "a")) throw SceneError{path, "needs \"a\", the id of the body it pulls"};
@@ -302,7 +302,7 @@ engine::SpringDef ReadSpring(const Json& spring, const std::string& path,
   if (const Json* v = Find(spring, "damping")) def.damping = ReadNonNegative(*v, key("damping"));
   // The rest length defaults to the distance between the attachment points as placed.
   auto world_point = [&](engine::BodyId id, engine::Vec2 local) {
-    const engine::BodyDef& b = bodies[id].def;
+    const engine::BodyDef& b = bodies[id.index].def;
     return b.position + engine::Rotate(engine::MakeRot(b.angle), local);
   };
   const engine::Vec2 pa = world_point(def.body_a, def.local_a);

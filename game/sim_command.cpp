@@ -27,10 +27,10 @@ void DumpStep(std::FILE* out, const Session& session, const std::vector<std::str
   const std::int64_t step = session.StepIndex();
   // Time as step·dt rather than a running sum, so it carries no accumulated rounding.
   const double time = static_cast<double>(step) * world.Def().dt;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     std::fprintf(out, "%" PRId64 ",%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time,
-                 ids[id].c_str(), s.position.x, s.position.y,
+                 ids[id.index].c_str(), s.position.x, s.position.y,
                  s.velocity.x, s.velocity.y, s.angle, s.angular_velocity);
   }
 }

@@ -19,7 +19,7 @@ TEST_CASE("every solver benchmark scene builds and steps 10 times to finite figu
       const std::vector<solver_bench::Figure> figures = scene.measure(world, 10);
       REQUIRE(world.StepCount() == 10);
       bool finite = true;
-      for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+      for (const engine::BodyId id : world.BodyIds()) {
         const engine::BodyState& s = world.State(id);
         finite = finite && engine::IsFinite(s.position) && engine::IsFinite(s.velocity);
       }

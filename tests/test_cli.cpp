@@ -83,7 +83,7 @@ std::uint64_t Bits(double d) {
 // bytes).
 std::string HashByHand(const engine::World& world) {
   std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     for (double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
       const std::uint64_t bits = Bits(v);
@@ -456,7 +456,7 @@ TEST_CASE("ballbox sim --dump: header, scene order, step 0, --dump-every spacing
       CHECK(f[0] == std::to_string(step));
       CHECK(Bits(std::strtod(f[1].c_str(), nullptr)) == Bits(static_cast<double>(step) * scene.world.dt));
       CHECK(f[2] == scene.bodies[id].id);
-      const engine::BodyState& s = session.World().State(id);
+      const engine::BodyState& s = session.World().State({static_cast<engine::BodyIndex>(id)});
       const double expected[] = {s.position.x, s.position.y, s.velocity.x,
                                  s.velocity.y, s.angle,      s.angular_velocity};
       for (int k = 0; k < 6; ++k) CHECK(Bits(std::strtod(f[3 + k].c_str(), nullptr)) == Bits(expected[k]));

@@ -35,9 +35,9 @@ TEST_CASE("a click changes the ball's velocity by J/m", "[click]") {
   world.CreateBody(WithMass(Circle({0, 0}, 0.5, {1, 1}), 2.0));
   const auto hit = game::ApplyClick(world, {0, -0.25}, 10);  // d = r/2 below the centre
   REQUIRE(hit);
-  CHECK(hit->body == 0);
-  CHECK(world.State(0).velocity.x == 1.0);
-  CHECK(world.State(0).velocity.y == Approx(1.0 + 10 * 0.5 / 2.0).epsilon(1e-14));
+  CHECK(hit->body == engine::BodyId{0});
+  CHECK(world.State({0}).velocity.x == 1.0);
+  CHECK(world.State({0}).velocity.y == Approx(1.0 + 10 * 0.5 / 2.0).epsilon(1e-14));
 }
 
 TEST_CASE("a click outside every ball, on a box or on a static ball does nothing", "[click]") {
@@ -48,7 +48,7 @@ TEST_CASE("a click outside every ball, on a box or on a static ball does nothing
   CHECK_FALSE(game::ApplyClick(world, {0.5000001, 0}, 10));
   CHECK_FALSE(game::ApplyClick(world, {3.1, 0.1}, 10));
   CHECK_FALSE(game::ApplyClick(world, {6.1, 0.1}, 10));
-  for (engine::BodyId id = 0; id < 3; ++id) CHECK(world.State(id).velocity == Vec2{});
+  for (engine::BodyId id{0}; id.index < 3; ++id.index) CHECK(world.State(id).velocity == Vec2{});
   // Exactly on the rim still hits, with the full impulse.
   const auto hit = game::ApplyClick(world, {0.5, 0}, 10);
   REQUIRE(hit);
@@ -62,9 +62,9 @@ TEST_CASE("overlapping balls: the last in scene order takes the click", "[click]
   world.CreateBody(Static(Circle({0.25, 0}, 1.0)));  // static: skipped, not a shield
   const auto hit = game::ApplyClick(world, {0.25, 0}, 10);
   REQUIRE(hit);
-  CHECK(hit->body == 1);
-  CHECK(world.State(0).velocity == Vec2{});
-  CHECK(world.State(1).velocity.x > 0);
+  CHECK(hit->body == engine::BodyId{1});
+  CHECK(world.State({0}).velocity == Vec2{});
+  CHECK(world.State({1}).velocity.x > 0);
 }
 
 TEST_CASE("pixels map to the world through the camera", "[click][camera]") {
@@ -97,10 +97,10 @@ TEST_CASE("a pixel click in a script hits the ball under that pixel, before its 
   const game::InputEvent click{3, game::EventKind::kClickPixel, {450, 200}};
   game::Session session(scene, {click}, 800, 600);
   for (int i = 0; i < 3; ++i) session.Step();
-  CHECK(session.World().State(0).velocity == Vec2{});  // steps 0, 1, 2: not yet
+  CHECK(session.World().State({0}).velocity == Vec2{});  // steps 0, 1, 2: not yet
   session.Step();                                      // applied before step 3 is simulated
-  CHECK(session.World().State(0).velocity.x == Approx(1.0).epsilon(1e-14));
-  CHECK(session.World().State(0).position.x == Approx(1.0 + scene.world.dt).epsilon(1e-14));
+  CHECK(session.World().State({0}).velocity.x == Approx(1.0).epsilon(1e-14));
+  CHECK(session.World().State({0}).position.x == Approx(1.0 + scene.world.dt).epsilon(1e-14));
 }
 
 TEST_CASE("without a scene camera, the fit shows every body inside the image", "[camera]") {

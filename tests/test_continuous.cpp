@@ -33,7 +33,7 @@ bool PassesWall(double speed, double phase, bool continuous) {
   const int steps = static_cast<int>(std::ceil(3.0 / (speed * def.dt))) + 3;
   for (int i = 0; i < steps; ++i) {
     world.Step();
-    if (world.State(1).position.x > 0.5 * kWall) return true;  // past the middle: through
+    if (world.State({1}).position.x > 0.5 * kWall) return true;  // past the middle: through
   }
   return false;
 }
@@ -86,9 +86,9 @@ TEST_CASE("a bullet does not pass a thin dynamic box, even with continuous colli
     for (int i = 0; i < 120; ++i) {
       world.Step();
       INFO("speed " << speed << ", step " << i);
-      REQUIRE(world.State(0).position.x < world.State(1).position.x);
+      REQUIRE(world.State({0}).position.x < world.State({1}).position.x);
     }
-    CHECK(world.State(1).velocity.x > 0);  // it was hit and pushed
+    CHECK(world.State({1}).velocity.x > 0);  // it was hit and pushed
   }
 }
 
@@ -105,18 +105,18 @@ TEST_CASE("a fast ball bouncing in a closed box stays inside for 10 s", "[contin
   const double r = 0.1;
   world.CreateBody(WithMaterial(Circle({0.3, -0.2}, r, {300.0 * std::cos(0.7), 300.0 * std::sin(0.7)}), 1.0, 0));
   int bounces = 0;
-  double previous_vx = world.State(4).velocity.x;
+  double previous_vx = world.State({4}).velocity.x;
   for (int i = 0; i < 600; ++i) {
     world.Step();
-    const Vec2 p = world.State(4).position;
+    const Vec2 p = world.State({4}).position;
     INFO("step " << i << " at (" << p.x << ", " << p.y << ")");
     REQUIRE(std::abs(p.x) <= half - r + 1e-6);
     REQUIRE(std::abs(p.y) <= half - r + 1e-6);
-    if ((world.State(4).velocity.x > 0) != (previous_vx > 0)) ++bounces;
-    previous_vx = world.State(4).velocity.x;
+    if ((world.State({4}).velocity.x > 0) != (previous_vx > 0)) ++bounces;
+    previous_vx = world.State({4}).velocity.x;
   }
   CHECK(bounces > 100);  // it really did fly: ~300 m/s·10 s / 10 m
-  CHECK(engine::Length(world.State(4).velocity) == Approx(300.0).epsilon(1e-9));  // e = 1 keeps speed
+  CHECK(engine::Length(world.State({4}).velocity) == Approx(300.0).epsilon(1e-9));  // e = 1 keeps speed
 }
 
 TEST_CASE("continuous collision changes nothing in a scene without fast bodies", "[continuous][skip]") {
@@ -146,20 +146,20 @@ TEST_CASE("ray cast: circles, boxes, turned boxes, the nearest hit", "[continuou
   // Along +x the circle comes first: entered at x = 4, 4 m of a 20 m ray.
   auto hit = world.RayCast({0, 0}, {20, 0});
   REQUIRE(hit);
-  CHECK(hit->body == 0);
+  CHECK(hit->body == engine::BodyId{0});
   CHECK(hit->fraction == Approx(0.2).epsilon(1e-12));
   CHECK(hit->point.x == Approx(4.0).epsilon(1e-12));
   CHECK(hit->normal.x == Approx(-1.0).epsilon(1e-12));
   // Above the circle, the box's left face at x = 9.
   hit = world.RayCast({0, 1.5}, {20, 1.5});
   REQUIRE(hit);
-  CHECK(hit->body == 1);
+  CHECK(hit->body == engine::BodyId{1});
   CHECK(hit->point.x == Approx(9.0).epsilon(1e-12));
   CHECK(hit->normal.x == Approx(-1.0).margin(1e-12));
   // Straight down onto the diamond's top corner at y = 5 + √½.
   hit = world.RayCast({0, 10}, {0, 0});
   REQUIRE(hit);
-  CHECK(hit->body == 2);
+  CHECK(hit->body == engine::BodyId{2});
   CHECK(hit->point.y == Approx(5.0 + std::sqrt(0.5)).epsilon(1e-12));
   // Missing everything, and starting inside a body, are no hits.
   CHECK_FALSE(world.RayCast({0, -3}, {20, -3}));

@@ -58,7 +58,7 @@ TEST_CASE("events: hits and misses are counted; a miss keeps its step, point and
   const game::MissedClick& near = log.Misses()[0];
   CHECK(near.event.step == 3);
   REQUIRE(near.nearest);
-  CHECK(*near.nearest == 0);
+  CHECK(*near.nearest == engine::BodyId{0});
   // The ball moved after its click: its centre at the step of the miss decides the gap.
   CHECK(near.gap > 0.0);
   const game::MissedClick& pixel = log.Misses()[1];

@@ -103,7 +103,7 @@ TEST_CASE("follow camera: starts on the body, keeps a steady mover centred, smoo
   CHECK(camera.View().center.y == 4.0);
   // The ball stops dead (as against a wall): the centre does not jump, it eases over.
   const double before = camera.View().center.x;
-  world.ApplyLinearImpulse(id, {-2.0 * 3.14159265358979323846 * 0.25, 0});  // mass π·0.5², v = 2
+  world.ApplyLinearImpulseToCenter(id, {-2.0 * 3.14159265358979323846 * 0.25, 0});  // mass π·0.5², v = 2
   world.Step();
   camera.Advance(world);
   CHECK(std::abs(world.State(id).velocity.x) < 1e-12);

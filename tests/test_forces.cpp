@@ -32,12 +32,12 @@ const char* Name(Integrator integrator) {
   return "?";
 }
 
-engine::SpringDef Spring(engine::BodyId a, Vec2 local_a, std::optional<engine::BodyId> b, Vec2 local_b,
+engine::SpringDef Spring(engine::BodyIndex a, Vec2 local_a, std::optional<engine::BodyIndex> b, Vec2 local_b,
                          double rest_length, double stiffness, double damping) {
   engine::SpringDef s;
-  s.body_a = a;
+  s.body_a = {a};
   s.local_a = local_a;
-  s.body_b = b;
+  if (b) s.body_b = engine::BodyId{*b};
   s.local_b = local_b;
   s.rest_length = rest_length;
   s.stiffness = stiffness;
@@ -48,7 +48,7 @@ engine::SpringDef Spring(engine::BodyId a, Vec2 local_a, std::optional<engine::B
 // Σ r × m·v + I·ω about the origin.
 double AngularMomentum(const engine::World& world) {
   double total = 0.0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     const engine::BodyInfo& info = world.Info(id);
     total += info.mass * engine::Cross(s.position, s.velocity) + info.inertia * s.angular_velocity;
@@ -94,7 +94,7 @@ MomentumRun RunCluster(engine::World world, int steps) {
   for (int step = 0; step < steps; ++step) {
     world.Step();
     run.max_relative_error = std::max(run.max_relative_error, std::abs(AngularMomentum(world) - l0) / std::abs(l0));
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       run.max_spin = std::max(run.max_spin, std::abs(world.State(id).angular_velocity));
     }
     run.contacts = run.contacts || !world.Contacts().empty();
@@ -134,7 +134,7 @@ TEST_CASE("a spring attached at the centre makes no rotation", "[forces]") {
         bool still = true;
         for (int step = 0; step < 600; ++step) {
           world.Step();
-          for (engine::BodyId id = 0; id < 2; ++id) {
+          for (engine::BodyId id{0}; id.index < 2; ++id.index) {
             still = still && world.State(id).angle == 0.0 && world.State(id).angular_velocity == 0.0;
           }
         }
@@ -201,12 +201,12 @@ TEST_CASE("explicit Euler changes angular momentum by exactly h·Σ m·v_n × v_
   std::vector<Vec2> before(n);
   double largest_change = 0.0;
   for (int step = 0; step < 1200; ++step) {
-    for (engine::BodyId id = 0; id < n; ++id) before[id] = world.State(id).velocity;
+    for (engine::BodyId id{0}; id.index < n; ++id.index) before[id.index] = world.State(id).velocity;
     const double l_before = AngularMomentum(world);
     world.Step();
     double predicted = 0.0;
-    for (engine::BodyId id = 0; id < n; ++id) {
-      predicted += h * world.Info(id).mass * engine::Cross(before[id], world.State(id).velocity);
+    for (engine::BodyId id{0}; id.index < n; ++id.index) {
+      predicted += h * world.Info(id).mass * engine::Cross(before[id.index], world.State(id).velocity);
     }
     const double change = AngularMomentum(world) - l_before;
     largest_change = std::max(largest_change, std::abs(change));
@@ -421,11 +421,11 @@ TEST_CASE("a spring wakes the sleeping body at its other end", "[forces]") {
   world.CreateBody(testing::Static(testing::Box({0, -0.5}, {20, 1})));
   const engine::BodyId a = world.CreateBody(testing::WithMass(testing::Box({-2, 0.5}, {1, 1}), 1.0));
   const engine::BodyId b = world.CreateBody(testing::WithMass(testing::Box({2, 0.5}, {1, 1}), 1.0));
-  world.AddSpring(Spring(a, {0, 0}, b, {0, 0}, 4.0, 50.0, 1.0));
+  world.AddSpring(Spring(a.index, {0, 0}, b.index, {0, 0}, 4.0, 50.0, 1.0));
   for (int step = 0; step < 120; ++step) world.Step();
   REQUIRE_FALSE(world.IsAwake(a));
   REQUIRE_FALSE(world.IsAwake(b));
-  world.ApplyLinearImpulse(b, {5, 0});
+  world.ApplyLinearImpulseToCenter(b, {5, 0});
   world.Step();
   CHECK(world.IsAwake(a));
   for (int step = 0; step < 119; ++step) world.Step();
@@ -444,8 +444,8 @@ TEST_CASE("a body sinking at a steady speed below the sleep speed keeps sinking"
   const double terminal = std::sqrt(0.01 * 9.8 / c);
   REQUIRE(terminal < def.sleep_speed);
   for (int step = 0; step < 120; ++step) world.Step();
-  CHECK(world.IsAwake(0));
-  CHECK(world.State(0).velocity.y == Approx(-terminal).epsilon(1e-6));
+  CHECK(world.IsAwake({0}));
+  CHECK(world.State({0}).velocity.y == Approx(-terminal).epsilon(1e-6));
 }
 
 TEST_CASE("quadratic drag on a light body in water settles at its terminal speed", "[forces]") {
@@ -464,6 +464,6 @@ TEST_CASE("quadratic drag on a light body in water settles at its terminal speed
     const double c = 0.5 * 1000.0 * 0.47 * 0.5;
     const double terminal = std::sqrt(0.01 * 9.8 / c);
     for (int step = 0; step < 120; ++step) world.Step();
-    CHECK(world.State(0).velocity.y == Approx(-terminal).epsilon(0.01));
+    CHECK(world.State({0}).velocity.y == Approx(-terminal).epsilon(0.01));
   }
 }

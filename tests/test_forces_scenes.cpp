@@ -20,15 +20,15 @@ game::Scene Load(const std::string& name) {
 
 engine::BodyId Find(const game::Scene& scene, const std::string& id) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].id == id) return static_cast<engine::BodyId>(i);
+    if (scene.bodies[i].id == id) return {static_cast<engine::BodyIndex>(i)};
   }
   FAIL("no body " << id);
-  return 0;
+  return {};
 }
 
 // Quadratic drag on a circle, c = ½·ρ·C_d·2r (C_d of a circle: 0.47 unless the scene says).
 double DragConstant(const game::Scene& scene, engine::BodyId id) {
-  const engine::BodyDef& def = scene.bodies[id].def;
+  const engine::BodyDef& def = scene.bodies[id.index].def;
   const double drag_coefficient = def.drag_coefficient >= 0.0 ? def.drag_coefficient : 0.47;
   return 0.5 * scene.world.fluid_density * drag_coefficient * 2.0 * def.shape.radius;
 }
@@ -44,7 +44,7 @@ TEST_CASE("terminal_velocity_air: a 1 kg and a 10 g ball approach √(m·g/c)", 
   const double g = -scene.world.gravity.y;
   for (const char* id : {"heavy", "light"}) {
     const engine::BodyId body = Find(scene, id);
-    const double terminal = std::sqrt(scene.bodies[body].def.mass * g / DragConstant(scene, body));
+    const double terminal = std::sqrt(scene.bodies[body.index].def.mass * g / DragConstant(scene, body));
     INFO(id << ": v_t = " << terminal);
     // √(1·9.8/0.0564) and √(0.01·9.8/0.0564): 13.18 and 1.318 m/s.
     CHECK(terminal == Approx(std::string(id) == "heavy" ? 13.1818 : 1.31818).epsilon(1e-4));
@@ -58,7 +58,7 @@ TEST_CASE("terminal_velocity_air: a 1 kg and a 10 g ball approach √(m·g/c)", 
     const double t = step * scene.world.dt;
     for (const char* id : {"heavy", "light"}) {
       const engine::BodyId body = Find(scene, id);
-      const double terminal = std::sqrt(scene.bodies[body].def.mass * g / DragConstant(scene, body));
+      const double terminal = std::sqrt(scene.bodies[body.index].def.mass * g / DragConstant(scene, body));
       worst = std::max(worst, std::abs(-world.State(body).velocity.y - FallSpeed(terminal, g, t)));
     }
   }
@@ -110,7 +110,7 @@ TEST_CASE("spring_pendulum: the plank swings, turns and comes to rest where stat
   // At rest the spring hangs straight down from its anchor, stretched by m·g/k, and the plank's
   // centre hangs straight below the corner it is held by.
   const engine::SpringDef& spring = scene.springs[0];
-  const double m = scene.bodies[plank].def.mass, g = -scene.world.gravity.y;
+  const double m = scene.bodies[plank.index].def.mass, g = -scene.world.gravity.y;
   const engine::Vec2 corner = spring.local_b - engine::Vec2{0, spring.rest_length + m * g / spring.stiffness};
   const double arm = engine::Length(spring.local_a);
   const engine::Vec2 centre = corner - engine::Vec2{0, arm};
@@ -166,7 +166,7 @@ TEST_CASE("ramp: accuracy.md S10, a box slides, a box sticks and a ball rolls", 
   CHECK(engine::Length(world.State(crate).position - crate_start) <= 1e-3);  // S10: 1 mm over 2 s
   // Everything ends up on the ground between the ramp and the wall.
   for (int step = 0; step < 600; ++step) world.Step();
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     if (world.Info(id).is_static || id == crate) continue;
     CHECK(world.State(id).position.y == Approx(0.3).margin(0.01));
     CHECK(world.State(id).position.x < 6.5);
@@ -180,7 +180,7 @@ TEST_CASE("ramp: the ball rolls without slipping at a = ⅔·g·sin θ", "[force
   engine::World world = game::BuildWorld(scene);
   const double g = -scene.world.gravity.y;
   const engine::BodyId wheel = Find(scene, "wheel");
-  const double r = scene.bodies[wheel].def.shape.radius;
+  const double r = scene.bodies[wheel.index].def.shape.radius;
   for (int step = 0; step < 6; ++step) world.Step();
   const double start = DownhillSpeed(world.State(wheel));
   double worst_slip = 0.0;

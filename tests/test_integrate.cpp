@@ -37,7 +37,7 @@ TEST_CASE("free fall matches each integrator's discrete closed form", "[integrat
     for (int step = 1; step <= 120; ++step) {
       world.Step();
       const int n = step * c.substeps;
-      const engine::BodyState& s = world.State(0);
+      const engine::BodyState& s = world.State({0});
       const double y = p0.y + n * h * v0.y + g * h * h * (n * (n + c.k)) / 2.0;
       INFO("k = " << c.k << ", substeps " << c.substeps << ", step " << step);
       REQUIRE(s.position.x == Approx(p0.x + n * h * v0.x).epsilon(1e-13));
@@ -48,8 +48,8 @@ TEST_CASE("free fall matches each integrator's discrete closed form", "[integrat
     // (accuracy.md S1: 0.1635 m after 2 s at 60 Hz with g = 9.81; a quarter with 4 substeps).
     const double t = 120 * dt;
     const double exact = p0.y + v0.y * t + 0.5 * g * t * t;
-    CHECK(world.State(0).position.y - exact == Approx(c.k * 0.5 * g * t * h).epsilon(1e-9));
-    CHECK(std::abs(world.State(0).position.y - exact) == Approx(0.1635 / c.substeps).margin(5e-5));
+    CHECK(world.State({0}).position.y - exact == Approx(c.k * 0.5 * g * t * h).epsilon(1e-9));
+    CHECK(std::abs(world.State({0}).position.y - exact) == Approx(0.1635 / c.substeps).margin(5e-5));
   }
 }
 
@@ -59,8 +59,8 @@ TEST_CASE("a static body never moves, whatever hits it or is applied to it", "[i
   const auto post = world.CreateBody(testing::Static(testing::Circle({0, 1}, 0.5)));
   world.CreateBody(testing::WithMass(testing::Box({0.2, 3}, {1, 1}, {0, -30}), 1000));
   world.CreateBody(testing::Circle({-1, 4}, 0.3, {5, -20}));
-  world.ApplyLinearImpulse(floor, {100, 100});
-  world.ApplyLinearImpulse(post, {-100, 100});
+  world.ApplyLinearImpulseToCenter(floor, {100, 100});
+  world.ApplyLinearImpulseToCenter(post, {-100, 100});
   for (int i = 0; i < 300; ++i) {
     world.Step();
     for (auto id : {floor, post}) {

@@ -82,7 +82,7 @@ engine::World SpringWorld(Integrator integrator, double stiffness, double dampin
   if (body_damping) body.linear_damping = damping;
   world.CreateBody(body);
   engine::SpringDef spring;
-  spring.body_a = 0;
+  spring.body_a = {0};
   spring.local_b = {0, 0};
   spring.stiffness = stiffness;
   spring.damping = body_damping ? 0.0 : damping;
@@ -100,7 +100,7 @@ TEST_CASE("S1 projectile: exact for Verlet, midpoint and RK4, off by ±½·g·t�
     engine::World world(FreeWorld(m.integrator, h, {0, -kG}));
     world.CreateBody(Ball({0, 0}, {10, 10}, 1.0));
     for (int step = 0; step < 120; ++step) world.Step();
-    const engine::BodyState& s = world.State(0);
+    const engine::BodyState& s = world.State({0});
     const double x = 10.0 * t, y = 10.0 * t - 0.5 * kG * t * t;
     // Constant acceleration is a polynomial of degree 2: second-order methods integrate it exactly.
     double expected_dy = 0.0;
@@ -133,9 +133,9 @@ TEST_CASE("free motion is the same under either solver with one substep", "[inte
       w->CreateBody(box);
       w->CreateBody(Ball({5, 0}, {0, 1}, 1.0));
       engine::SpringDef spring;
-      spring.body_a = 0;
+      spring.body_a = {0};
       spring.local_a = {0.5, 0.25};
-      spring.body_b = 1;
+      spring.body_b = engine::BodyId{1};
       spring.rest_length = 4.0;
       spring.stiffness = 10.0;
       spring.damping = 0.5;
@@ -173,7 +173,7 @@ TEST_CASE("S2 undamped spring: energy error per method against the calibration",
     double energy_error = 0.0, position_error = 0.0;
     for (int step = 1; step <= 600; ++step) {
       world.Step();
-      const engine::BodyState& s = world.State(0);
+      const engine::BodyState& s = world.State({0});
       const double energy = 0.5 * engine::Dot(s.velocity, s.velocity) + 0.5 * k * engine::Dot(s.position, s.position);
       energy_error = std::max(energy_error, std::abs(energy - e0) / e0);
       const double x = std::cos(omega * step * h);
@@ -189,7 +189,7 @@ TEST_CASE("S2 undamped spring: energy error per method against the calibration",
   double worst = 0.0;
   for (int step = 0; step < 600; ++step) {
     euler.Step();
-    const engine::BodyState& s = euler.State(0);
+    const engine::BodyState& s = euler.State({0});
     worst = std::max(worst, std::abs(0.5 * s.velocity.x * s.velocity.x + 0.5 * k * s.position.x * s.position.x - e0) / e0);
   }
   CHECK(worst == Approx((z / 2) / (1 - z / 2)).epsilon(0.01));
@@ -221,7 +221,7 @@ TEST_CASE("S2 over 1000 s: the symplectic pair is bounded, the others follow the
     double first = 0.0, last = 0.0, relative = 0.0;
     for (int step = 1; step <= steps; ++step) {
       world.Step();
-      const engine::BodyState& s = world.State(0);
+      const engine::BodyState& s = world.State({0});
       const double energy = 0.5 * s.velocity.x * s.velocity.x + 0.5 * k * s.position.x * s.position.x;
       relative = (energy - e0) / e0;
       if (step <= 600) first = std::max(first, std::abs(relative));
@@ -255,7 +255,7 @@ TEST_CASE("S2: explicit Euler gains energy every step at every step size", "[int
     bool always_grows = true;
     for (int step = 0; step < 1000; ++step) {
       world.Step();
-      const engine::BodyState& s = world.State(0);
+      const engine::BodyState& s = world.State({0});
       const double energy = 0.5 * s.velocity.x * s.velocity.x + 0.5 * k * s.position.x * s.position.x;
       always_grows = always_grows && energy > previous;
       previous = energy;
@@ -286,7 +286,7 @@ TEST_CASE("S3 damped spring: position error per method against the calibration",
         const double t = step * h;
         const double x = std::exp(-zeta * omega * t) *
                          (std::cos(omega_d * t) + (zeta * omega / omega_d) * std::sin(omega_d * t));
-        error = std::max({error, std::abs(world.State(0).position.x - x), std::abs(world.State(0).position.y)});
+        error = std::max({error, std::abs(world.State({0}).position.x - x), std::abs(world.State({0}).position.y)});
       }
       CheckCalibrated(spring_damping ? "S3 l-infinity position (spring damping)"
                                      : "S3 l-infinity position (linear damping)",
@@ -311,7 +311,7 @@ double LinearDragError(Integrator integrator, int steps_per_second) {
     world.Step();
     const double t = step * h;
     const double y = -terminal * t + tau * terminal * (1 - std::exp(-t / tau));
-    error = std::max(error, std::abs(world.State(0).position.y - y));
+    error = std::max(error, std::abs(world.State({0}).position.y - y));
   }
   return error;
 }
@@ -362,14 +362,14 @@ TEST_CASE("S5 quadratic drag from rest: error per method and the terminal speed"
       world.Step();
       const double t = step * h;
       const double y = -(terminal * terminal / kG) * std::log(std::cosh(kG * t / terminal));
-      error = std::max(error, std::abs(world.State(0).position.y - y));
+      error = std::max(error, std::abs(world.State({0}).position.y - y));
     }
     CheckCalibrated("S5 l-infinity of y over 5 s", e.integrator, error, e.value, e.pass);
     // Every Runge-Kutta method keeps the ODE's equilibrium c·v² = m·g as its fixed point; by 30 s
     // the tanh transient is e^(−2gt/v_t) ≈ 1e-18.
     for (int step = 300; step < 1800; ++step) world.Step();
     INFO(Name(e.integrator));
-    CHECK(std::abs(-world.State(0).velocity.y - terminal) <= 1e-6 * terminal);
+    CHECK(std::abs(-world.State({0}).velocity.y - terminal) <= 1e-6 * terminal);
   }
 }
 
@@ -403,8 +403,8 @@ KeplerErrors Kepler(Integrator integrator, double mass_a, double mass_b, int orb
   const int steps = 1000 * orbits;
   for (int step = 1; step <= steps; ++step) {
     world.Step();
-    const Vec2 r = world.State(1).position - world.State(0).position;
-    const Vec2 v = world.State(1).velocity - world.State(0).velocity;
+    const Vec2 r = world.State({1}).position - world.State({0}).position;
+    const Vec2 v = world.State({1}).velocity - world.State({0}).velocity;
     const double energy = std::abs(0.5 * engine::Dot(v, v) - 1.0 / engine::Length(r) - e0) / std::abs(e0);
     out.energy = std::max(out.energy, energy);
     out.momentum = std::max(out.momentum, std::abs(engine::Cross(r, v) - l0) / l0);

@@ -107,7 +107,7 @@ TEST_CASE("limits: a radius or box side below 1e-9 m is refused (fuzz: a side of
   REQUIRE(smallest.HasValue());
   engine::World world = game::BuildWorld(smallest.Value());
   world.Step();
-  CHECK(engine::IsFinite(world.State(0).position));
+  CHECK(engine::IsFinite(world.State({0}).position));
 }
 
 TEST_CASE("limits: values right at the limits load and simulate to finite numbers",
@@ -117,7 +117,7 @@ TEST_CASE("limits: values right at the limits load and simulate to finite number
   CHECK(scene.Value().bodies[0].def.mass == game::kMinBodyMass);
   engine::World world = game::BuildWorld(scene.Value());
   for (int step = 0; step < 10; ++step) world.Step();
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     INFO("body " << id);
     CHECK(std::isfinite(s.position.x));

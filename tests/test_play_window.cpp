@@ -213,8 +213,8 @@ TEST_CASE("play window: an xdotool click hits a ball, and the recording replays 
   REQUIRE(input.HasValue());
   game::Session aim(input.Value().scene, input.Value().events, kWidth, kHeight);
   for (std::int64_t i = 0; i < kClickStep; ++i) aim.Step();
-  engine::BodyId heavy = 0;
-  while (input.Value().scene.bodies[heavy].id != "heavy_ball") ++heavy;
+  engine::BodyId heavy{0};
+  while (input.Value().scene.bodies[heavy.index].id != "heavy_ball") ++heavy.index;
   const engine::Vec2 centre = aim.World().State(heavy).position;
   const double radius = aim.World().Info(heavy).shape.radius;
   const engine::Vec2 pixel = render::WorldToPixel(aim.Camera(), kWidth, kHeight,

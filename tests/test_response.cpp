@@ -17,7 +17,7 @@ namespace {
 
 engine::Vec2 Momentum(const engine::World& world) {
   engine::Vec2 p;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     p += world.Info(id).mass * world.State(id).velocity;
   }
   return p;
@@ -38,14 +38,14 @@ TEST_CASE("head-on collision of masses 1 and 3 follows the collision law", "[res
   // v1' = ((m1 − e·m2)·v1 + (1+e)·m2·v2)/(m1 + m2), v2' likewise (accuracy.md S8).
   SECTION("elastic: -5 and 1 m/s, energy kept") {
     engine::World world = HeadOn(1.0);
-    CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
-    CHECK(world.State(1).velocity.x == Approx(1.0).epsilon(1e-12));
+    CHECK(world.State({0}).velocity.x == Approx(-5.0).epsilon(1e-12));
+    CHECK(world.State({1}).velocity.x == Approx(1.0).epsilon(1e-12));
     CHECK(testing::LinearKineticEnergy(world) == Approx(14.0).epsilon(1e-12));
   }
   SECTION("e = 0.5: -2.75 and 0.25 m/s, loses ½·μ·(1 − e²)·Δv² = 10.125 J") {
     engine::World world = HeadOn(0.5);
-    CHECK(world.State(0).velocity.x == Approx(-2.75).epsilon(1e-12));
-    CHECK(world.State(1).velocity.x == Approx(0.25).epsilon(1e-12));
+    CHECK(world.State({0}).velocity.x == Approx(-2.75).epsilon(1e-12));
+    CHECK(world.State({1}).velocity.x == Approx(0.25).epsilon(1e-12));
     CHECK(14.0 - testing::LinearKineticEnergy(world) == Approx(10.125).epsilon(1e-12));
   }
   SECTION("the pair uses the larger restitution") {
@@ -53,7 +53,7 @@ TEST_CASE("head-on collision of masses 1 and 3 follows the collision law", "[res
     world.CreateBody(WithMaterial(WithMass(Circle({0, 0}, 0.5, {4, 0}), 1), 1.0, 0));
     world.CreateBody(WithMaterial(WithMass(Circle({1, 0}, 0.5, {-2, 0}), 3), 0.0, 0));
     world.Step();
-    CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
+    CHECK(world.State({0}).velocity.x == Approx(-5.0).epsilon(1e-12));
   }
 }
 
@@ -65,10 +65,10 @@ TEST_CASE("bodies already separating get no impulse, touching at rest neither", 
   world.CreateBody(Circle({6, 0}, 0.5));  // touching, both at rest: zero relative velocity
   world.Step();
   CHECK(world.Contacts().size() == 2);
-  CHECK(world.State(0).velocity == engine::Vec2{-1, 0});
-  CHECK(world.State(1).velocity == engine::Vec2{1, 0});
-  CHECK(world.State(2).velocity == engine::Vec2{});
-  CHECK(world.State(3).velocity == engine::Vec2{});
+  CHECK(world.State({0}).velocity == engine::Vec2{-1, 0});
+  CHECK(world.State({1}).velocity == engine::Vec2{1, 0});
+  CHECK(world.State({2}).velocity == engine::Vec2{});
+  CHECK(world.State({3}).velocity == engine::Vec2{});
 }
 
 TEST_CASE("momentum is conserved in collisions without gravity", "[response]") {
@@ -103,12 +103,12 @@ TEST_CASE("sliding friction decelerates at the pair's geometric-mean mu times g"
   const double mu = std::sqrt(0.8 * 0.2);  // 0.4
   for (int n = 1; n <= 60; ++n) {
     world.Step();
-    REQUIRE(world.State(1).velocity.x == Approx(5.0 - mu * 10.0 * n * def.dt).epsilon(1e-12));
+    REQUIRE(world.State({1}).velocity.x == Approx(5.0 - mu * 10.0 * n * def.dt).epsilon(1e-12));
   }
   // Stopping distance v²/(2μg) = 3.125 m, within one step's travel (accuracy.md S11).
   for (int n = 0; n < 120; ++n) world.Step();
-  CHECK(world.State(1).velocity.x == 0.0);
-  CHECK(world.State(1).position.x == Approx(25.0 / (2 * mu * 10.0)).margin(5.0 * def.dt));
+  CHECK(world.State({1}).velocity.x == 0.0);
+  CHECK(world.State({1}).position.x == Approx(25.0 / (2 * mu * 10.0)).margin(5.0 * def.dt));
 }
 
 TEST_CASE("a box resting on the floor stays within 1 mm over 10 s", "[response]") {
@@ -118,9 +118,9 @@ TEST_CASE("a box resting on the floor stays within 1 mm over 10 s", "[response]"
   world.CreateBody(WithMass(Box({3, 1}, {2, 2}), 50));
   for (int i = 0; i < 600; ++i) {
     world.Step();
-    REQUIRE(std::abs(world.State(1).position.y - 0.5) <= 1e-3);
-    REQUIRE(std::abs(world.State(2).position.y - 1.0) <= 1e-3);
-    REQUIRE(world.State(1).position.x == 0.0);
+    REQUIRE(std::abs(world.State({1}).position.y - 0.5) <= 1e-3);
+    REQUIRE(std::abs(world.State({2}).position.y - 1.0) <= 1e-3);
+    REQUIRE(world.State({1}).position.x == 0.0);
   }
 }
 
@@ -143,7 +143,7 @@ std::vector<double> FlightEnergies(double dt, int bounces) {
     world.Step();
     const bool touching = !world.Contacts().empty();
     if (in_contact && !touching) {
-      const engine::BodyState& s = world.State(1);
+      const engine::BodyState& s = world.State({1});
       energies.push_back(0.5 * engine::LengthSquared(s.velocity) + g * (s.position.y - r));
     }
     in_contact = touching;

@@ -21,11 +21,11 @@ namespace {
 
 // The first non-finite number in the world, named by body, or "" when all are finite.
 std::string FirstNonFinite(const engine::World& world) {
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     for (double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
       if (!std::isfinite(v)) {
-        return "body " + std::to_string(id) + " after step " + std::to_string(world.StepCount());
+        return "body " + std::to_string(id.index) + " after step " + std::to_string(world.StepCount());
       }
     }
   }
@@ -121,11 +121,11 @@ TEST_CASE("extreme: 1 mm and 1 km bodies together stay finite and do not fall th
   engine::World world = game::BuildWorld(ParseOrFail(json));
   StepFinite(world, 600);  // 10 s
   // Resting things may sink by the solver's slop (5 mm), never through what holds them.
-  CHECK(Bottom(world, 1) > -0.01);
-  for (engine::BodyId id = 2; id < world.BodyCount(); ++id) {
+  CHECK(Bottom(world, {1}) > -0.01);
+  for (engine::BodyId id{2}; id.index < world.BodyCount(); ++id.index) {
     INFO("body " << id << " at y = " << world.State(id).position.y);
-    const bool on_slab = (id - 2) % 3 == 2;
-    const double support = on_slab ? world.BodyBounds(1).upper.y : 0.0;
+    const bool on_slab = (id.index - 2) % 3 == 2;
+    const double support = on_slab ? world.BodyBounds({1}).upper.y : 0.0;
     CHECK(Bottom(world, id) > support - 0.01);
     CHECK(std::abs(world.State(id).velocity.y) < 0.1);
   }
@@ -142,9 +142,9 @@ TEST_CASE("extreme: a ball at 10 000 m/s stays finite and does not pass through 
       {"id": "ball", "shape": "circle", "radius": 0.5, "position": [0, 0], "velocity": [10000, 0],
        "restitution": 0.5, "bullet": )") + bullet + "}]}"));
     StepFinite(world, 120);
-    CHECK(world.State(1).position.x < 1000.0 - 0.5);
-    CHECK(world.State(1).velocity.x < 0.0);  // it bounced back
-    CHECK(world.State(1).velocity.x > -10000.0);
+    CHECK(world.State({1}).position.x < 1000.0 - 0.5);
+    CHECK(world.State({1}).velocity.x < 0.0);  // it bounced back
+    CHECK(world.State({1}).velocity.x > -10000.0);
   }
 }
 
@@ -157,8 +157,8 @@ TEST_CASE("extreme: a mass ratio of 10⁶ in a stack and in a collision stays fi
       {"id": "heavy", "shape": "box", "size": [4, 1], "position": [0, 1.5], "mass": 1e6}]})"));
     StepFinite(world, 600);
     // Neither sinks more than the slop into what holds it.
-    CHECK(Bottom(world, 1) > -0.01);
-    CHECK(Bottom(world, 2) > world.BodyBounds(1).upper.y - 0.01);
+    CHECK(Bottom(world, {1}) > -0.01);
+    CHECK(Bottom(world, {2}) > world.BodyBounds({1}).upper.y - 0.01);
   }
   SECTION("a 1 kg ball hits a resting 10⁶ kg ball, and the other way round") {
     // No sleep: the heavy ball's 2·10⁻⁵ m/s would count as resting and be put to sleep.
@@ -171,11 +171,11 @@ TEST_CASE("extreme: a mass ratio of 10⁶ in a stack and in a collision stays fi
       {"id": "light2", "shape": "circle", "radius": 0.5, "position": [3, 5], "mass": 1, "restitution": 1}]})"));
     StepFinite(world, 120);
     // Elastic: the light ball comes back at ~10 m/s, the heavy one barely moves (2·10/10⁶ m/s).
-    CHECK(world.State(0).velocity.x == Approx(-10.0).epsilon(0.01));
-    CHECK(world.State(1).velocity.x == Approx(2e-5).epsilon(0.05));
+    CHECK(world.State({0}).velocity.x == Approx(-10.0).epsilon(0.01));
+    CHECK(world.State({1}).velocity.x == Approx(2e-5).epsilon(0.05));
     // The heavy one runs on at ~10 m/s and sends the light one off at ~20 m/s.
-    CHECK(world.State(2).velocity.x == Approx(10.0).epsilon(0.01));
-    CHECK(world.State(3).velocity.x == Approx(20.0).epsilon(0.01));
+    CHECK(world.State({2}).velocity.x == Approx(10.0).epsilon(0.01));
+    CHECK(world.State({3}).velocity.x == Approx(20.0).epsilon(0.01));
   }
 }
 
@@ -198,28 +198,28 @@ TEST_CASE("extreme: the default scene at dt 1/1000 s and 1/10 s stays finite and
     int crossings = 0;
     for (int i = 0; i < steps; ++i) {
       std::vector<engine::Vec2> before;
-      for (engine::BodyId id = 0; id < world.BodyCount(); ++id) before.push_back(world.State(id).position);
+      for (const engine::BodyId id : world.BodyIds()) before.push_back(world.State(id).position);
       session.Step();
       if (!FirstNonFinite(world).empty()) RequireFinite(world);
       // A click may throw a ball over a wall (14 m high), never through a wall or the floor.
       // At 1/10 s a crowded body can be pushed deep into the floor for a step (then recovers),
       // so "through" is a centre past the middle of a wall (x = ±9.5) or of the floor (y = −0.5).
-      for (engine::BodyId id = 4; id < world.BodyCount(); ++id) {
+      for (engine::BodyId id{4}; id.index < world.BodyCount(); ++id.index) {
         const engine::Vec2 p = world.State(id).position;
-        const bool left_the_box = std::abs(before[id].x) < 9.5 && std::abs(p.x) >= 9.5;
-        const bool through = (left_the_box && std::min(before[id].y, p.y) < 14.0) ||
+        const bool left_the_box = std::abs(before[id.index].x) < 9.5 && std::abs(p.x) >= 9.5;
+        const bool through = (left_the_box && std::min(before[id.index].y, p.y) < 14.0) ||
                              (std::abs(p.x) < 9.5 && p.y < -0.5);
         if (through) {
           ++crossings;
-          INFO(scene.bodies[id].id << " from " << before[id].x << ", " << before[id].y << " to " << p.x
+          INFO(scene.bodies[id.index].id << " from " << before[id.index].x << ", " << before[id.index].y << " to " << p.x
                                    << ", " << p.y << " at step " << world.StepCount());
           CHECK_FALSE(through);
         }
       }
     }
     CHECK(crossings == 0);
-    for (engine::BodyId id = 4; id < world.BodyCount(); ++id) {
-      INFO(scene.bodies[id].id << " ends at " << world.State(id).position.x << ", " << world.State(id).position.y);
+    for (engine::BodyId id{4}; id.index < world.BodyCount(); ++id.index) {
+      INFO(scene.bodies[id.index].id << " ends at " << world.State(id).position.x << ", " << world.State(id).position.y);
       if (std::abs(world.State(id).position.x) < 9.0) CHECK(Bottom(world, id) > -0.05);
     }
   }
@@ -285,7 +285,7 @@ TEST_CASE("extreme: 4000 bodies at one point step in memory linear in their coun
   AddSpiralPile(world, kBodies);
   auto extent = [&] {
     double low = 0.0, high = 0.0;
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       low = std::min(low, world.State(id).position.x);
       high = std::max(high, world.State(id).position.x);
     }
@@ -297,12 +297,12 @@ TEST_CASE("extreme: 4000 bodies at one point step in memory linear in their coun
   std::size_t first_crowd = 0;
   for (int step = 0; step < kSteps; ++step) {
     std::vector<engine::Vec2> before;
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) before.push_back(world.State(id).position);
+    for (const engine::BodyId id : world.BodyIds()) before.push_back(world.State(id).position);
     StepFinite(world, 1);
     if (step == 0) first_crowd = world.CrowdedBodyCount();
     peak_heap = std::max(peak_heap, soak::HeapBytesInUse());
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-      fastest = std::max(fastest, Length(world.State(id).position - before[id]));
+    for (const engine::BodyId id : world.BodyIds()) {
+      fastest = std::max(fastest, Length(world.State(id).position - before[id.index]));
       fastest_real = std::max(fastest_real, Length(world.State(id).velocity));
     }
   }

@@ -115,7 +115,7 @@ engine::World OnRamp(double theta, engine::BodyDef body, double half_height, dou
 }
 
 double SpeedAlongSlope(const engine::World& world, double theta) {
-  return -engine::Dot(world.State(1).velocity, {std::cos(theta), std::sin(theta)});
+  return -engine::Dot(world.State({1}).velocity, {std::cos(theta), std::sin(theta)});
 }
 
 }  // namespace
@@ -130,16 +130,16 @@ TEST_CASE("a block slides down a 30° incline at g(sin θ − μ cos θ)", "[rot
   const double expected = 9.8 * (std::sin(theta) - mu * std::cos(theta));  // 3.203 m/s²
   INFO("measured " << a << " m/s², expected " << expected);
   CHECK(a == Approx(expected).epsilon(0.01));
-  CHECK(std::abs(world.State(1).angle - theta) < 1e-3);  // it slides, it does not tumble
+  CHECK(std::abs(world.State({1}).angle - theta) < 1e-3);  // it slides, it does not tumble
 }
 
 TEST_CASE("a block on an incline with tan θ ≤ μ stays put", "[rotation][incline]") {
   const double theta = kPi / 6, mu = 0.6;  // tan 30° = 0.577 < 0.6
   engine::World world = OnRamp(theta, Box({}, {1, 1}), 0.5, mu);
-  const Vec2 start = world.State(1).position;
+  const Vec2 start = world.State({1}).position;
   for (int i = 0; i < 120; ++i) world.Step();
-  INFO("moved " << engine::Length(world.State(1).position - start) << " m");
-  CHECK(engine::Length(world.State(1).position - start) <= 1e-3);
+  INFO("moved " << engine::Length(world.State({1}).position - start) << " m");
+  CHECK(engine::Length(world.State({1}).position - start) <= 1e-3);
 }
 
 TEST_CASE("a disc rolls down a 30° incline at ⅔·g·sin θ without slipping", "[rotation][incline]") {
@@ -154,7 +154,7 @@ TEST_CASE("a disc rolls down a 30° incline at ⅔·g·sin θ without slipping",
   CHECK((v1 - v0) / 1.0 == Approx(expected).epsilon(0.01));
   // Rolling: the contact point is at rest, v = ω·r (rolling down to the left turns it
   // counter-clockwise: ω positive).
-  CHECK(std::abs(v1 - world.State(1).angular_velocity * r) <= 1e-3 * v1);
+  CHECK(std::abs(v1 - world.State({1}).angular_velocity * r) <= 1e-3 * v1);
 }
 
 TEST_CASE("rotating stacks meet the solver's thresholds", "[rotation][stability]") {
@@ -165,11 +165,11 @@ TEST_CASE("rotating stacks meet the solver's thresholds", "[rotation][stability]
     engine::World world(def);
     add(world);
     std::vector<Vec2> start;
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) start.push_back(world.State(id).position);
+    for (const engine::BodyId id : world.BodyIds()) start.push_back(world.State(id).position);
     for (int i = 0; i < 600; ++i) world.Step();
     double drift = 0, turn = 0;
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-      drift = std::max(drift, engine::Length(world.State(id).position - start[id]));
+    for (const engine::BodyId id : world.BodyIds()) {
+      drift = std::max(drift, engine::Length(world.State(id).position - start[id.index]));
       turn = std::max(turn, std::abs(world.State(id).angle));
     }
     return std::pair{drift, turn};
@@ -197,7 +197,7 @@ engine::WorldDef TurningWorld() {
 double Energy(const engine::World& world) {
   const double g = -world.Def().gravity.y;
   double e = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyInfo& info = world.Info(id);
     const engine::BodyState& s = world.State(id);
     e += 0.5 * info.mass * engine::LengthSquared(s.velocity) +
@@ -236,7 +236,7 @@ TEST_CASE("a heavy box on a column of light ones stands with rotation on (1000:1
     for (int i = 0; i < 600; ++i) {
       world.Step();
       sank = std::max(sank, y0 - world.State(heavy).position.y);
-      for (engine::BodyId id = 1; id < world.BodyCount(); ++id) {
+      for (engine::BodyId id{1}; id.index < world.BodyCount(); ++id.index) {
         slid = std::max(slid, std::abs(world.State(id).position.x));
         turned = std::max(turned, std::abs(world.State(id).angle));
       }
@@ -257,11 +257,11 @@ TEST_CASE("a 20×20 box on two 1×1 boxes stands with rotation on (400:1)", "[ro
   world.CreateBody(stress::Box({9.5, 0.5}, {1, 1}));
   world.CreateBody(stress::Box({0, 11}, {20, 20}));
   for (int i = 0; i < 600; ++i) world.Step();
-  INFO("sank " << 11 - world.State(3).position.y << " m; legs at " << world.State(1).position.x << ", "
-               << world.State(2).position.x);
-  CHECK(11 - world.State(3).position.y <= 2 * world.Def().linear_slop);
-  CHECK(world.State(1).position.x == Approx(-9.5).margin(1e-3));
-  CHECK(world.State(2).position.x == Approx(9.5).margin(1e-3));
+  INFO("sank " << 11 - world.State({3}).position.y << " m; legs at " << world.State({1}).position.x << ", "
+               << world.State({2}).position.x);
+  CHECK(11 - world.State({3}).position.y <= 2 * world.Def().linear_slop);
+  CHECK(world.State({1}).position.x == Approx(-9.5).margin(1e-3));
+  CHECK(world.State({2}).position.x == Approx(9.5).margin(1e-3));
 }
 
 TEST_CASE("a heavy box on a light column stands while its centre is over the column and topples once past it",
@@ -271,13 +271,13 @@ TEST_CASE("a heavy box on a light column stands while its centre is over the col
   for (double offset : {0.3, 0.45}) {
     engine::World world = HeavyColumn(1000, offset);
     for (int i = 0; i < 600; ++i) world.Step();
-    INFO("offset " << offset << ": heavy box at y " << world.State(4).position.y);
-    CHECK(world.State(4).position.y == Approx(3.5).margin(0.01));
+    INFO("offset " << offset << ": heavy box at y " << world.State({4}).position.y);
+    CHECK(world.State({4}).position.y == Approx(3.5).margin(0.01));
   }
   engine::World world = HeavyColumn(1000, 0.6);
   for (int i = 0; i < 600; ++i) world.Step();
-  INFO("offset 0.6: heavy box at y " << world.State(4).position.y);
-  CHECK(world.State(4).position.y < 1.0);  // on the ground (0.5 when flat)
+  INFO("offset 0.6: heavy box at y " << world.State({4}).position.y);
+  CHECK(world.State({4}).position.y < 1.0);  // on the ground (0.5 when flat)
 }
 
 TEST_CASE("turning bodies with 1000:1 mass ratios never gain energy", "[rotation][stability]") {
@@ -298,7 +298,7 @@ TEST_CASE("turning bodies with 1000:1 mass ratios never gain energy", "[rotation
   check(HeavyColumn(1000, 0.0, 0.5), "heavy box dropped 0.5 m");
   {
     engine::World world = HeavyColumn(1000);
-    world.ApplyLinearImpulse(4, {200, 0});  // 0.2 m/s along the column's top
+    world.ApplyLinearImpulseToCenter({4}, {200, 0});  // 0.2 m/s along the column's top
     check(std::move(world), "heavy box shoved");
   }
   engine::World pile(TurningWorld());
@@ -362,7 +362,7 @@ TEST_CASE("S12: a 2×2 box dropped from y = 4 rests on the ground after 90 steps
   world.CreateBody(Static(Box({0, -10}, {100, 20})));
   world.CreateBody(Box({0, 4}, {2, 2}));
   for (int i = 0; i < 90; ++i) world.Step();
-  const engine::BodyState& s = world.State(1);
+  const engine::BodyState& s = world.State({1});
   INFO("(" << s.position.x << ", " << s.position.y << "), angle " << s.angle);
   CHECK(std::abs(s.position.x) < 0.01);
   CHECK(std::abs(s.position.y - 1.0) < 0.01);

@@ -472,12 +472,12 @@ TEST_CASE("scene defaults: density 1 gives mass = area in the built world", "[sc
   const game::Scene scene = RequireScene(DataPath("scene_defaults.json"));
   const engine::World world = game::BuildWorld(scene);
   REQUIRE(world.BodyCount() == 3);
-  CHECK(world.Info(0).mass == Approx(kPi * 0.5 * 0.5).epsilon(1e-14));
-  CHECK(world.Info(0).inv_mass == Approx(1.0 / (kPi * 0.25)).epsilon(1e-14));
-  CHECK(world.Info(1).mass == Approx(2.0 * 3.0).epsilon(1e-14));
-  CHECK(world.Info(2).inv_mass == 0.0);  // static: infinite mass
-  CHECK(world.Info(2).is_static);
-  CHECK(world.State(0).position.y == 1.0);
+  CHECK(world.Info({0}).mass == Approx(kPi * 0.5 * 0.5).epsilon(1e-14));
+  CHECK(world.Info({0}).inv_mass == Approx(1.0 / (kPi * 0.25)).epsilon(1e-14));
+  CHECK(world.Info({1}).mass == Approx(2.0 * 3.0).epsilon(1e-14));
+  CHECK(world.Info({2}).inv_mass == 0.0);  // static: infinite mass
+  CHECK(world.Info({2}).is_static);
+  CHECK(world.State({0}).position.y == 1.0);
 }
 
 TEST_CASE("scene with every documented and extra key reads each value", "[scene]") {
@@ -539,10 +539,10 @@ TEST_CASE("scene colours #rgb and #rrggbb decode to bytes", "[scene]") {
 TEST_CASE("scene with every key builds a world with the given masses", "[scene]") {
   const engine::World world = game::BuildWorld(RequireScene(DataPath("scene_every_key.json")));
   REQUIRE(world.BodyCount() == 3);
-  CHECK(world.Info(0).mass == Approx(4.0 * kPi * 0.7 * 0.7).epsilon(1e-14));
-  CHECK(world.Info(1).mass == 2.0);
-  CHECK(world.Info(1).inv_mass == 0.5);
-  CHECK(world.Info(2).inv_mass == 0.0);
+  CHECK(world.Info({0}).mass == Approx(4.0 * kPi * 0.7 * 0.7).epsilon(1e-14));
+  CHECK(world.Info({1}).mass == 2.0);
+  CHECK(world.Info({1}).inv_mass == 0.5);
+  CHECK(world.Info({2}).inv_mass == 0.0);
   CHECK(world.Def().dt == 0.01);
 }
 

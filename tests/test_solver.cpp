@@ -34,7 +34,7 @@ std::vector<double> BounceApexes(double e, double h0, int bounces, engine::World
   bool flying_up = false;
   for (int i = 0; i < 120 / def.dt && static_cast<int>(apexes.size()) < bounces; ++i) {
     world.Step();
-    const engine::BodyState& s = world.State(1);
+    const engine::BodyState& s = world.State({1});
     if (previous_vy <= 0 && s.velocity.y > 0) flying_up = true, highest = 0;  // a bounce
     highest = std::max(highest, s.position.y - r);
     if (flying_up && s.velocity.y <= 0) {
@@ -149,9 +149,9 @@ TEST_CASE("a bouncing ball comes to rest and stays quiet (restitution threshold)
   // e = 0.8 from 1 m: impacts slower than 1 m/s stop bouncing; long before 10 s it rests.
   for (int i = 0; i < 60; ++i) {
     world.Step();
-    REQUIRE(std::abs(world.State(1).velocity.y) < 1e-6);
+    REQUIRE(std::abs(world.State({1}).velocity.y) < 1e-6);
     // A soft contact settles a hair past the slop it leaves alone (0.07 mm here).
-    REQUIRE(std::abs(world.State(1).position.y - 0.5) < def.linear_slop + 5e-4);
+    REQUIRE(std::abs(world.State({1}).position.y - 0.5) < def.linear_slop + 5e-4);
   }
 }
 
@@ -166,15 +166,15 @@ TEST_CASE("Newton's cradle: the last ball leaves at the striker's speed", "[solv
     double momentum_before = v0;
     for (int i = 0; i < 120; ++i) world.Step();
     INFO("gap " << gap);
-    CHECK(world.State(5).velocity.x == Approx(v0).epsilon(0.01));
+    CHECK(world.State({5}).velocity.x == Approx(v0).epsilon(0.01));
     double momentum = 0, energy = 0;
-    for (engine::BodyId id = 0; id < 6; ++id) {
-      if (id < 5) CHECK(std::abs(world.State(id).velocity.x) < 0.01 * v0);
+    for (engine::BodyId id{0}; id.index < 6; ++id.index) {
+      if (id.index < 5) CHECK(std::abs(world.State(id).velocity.x) < 0.01 * v0);
       CHECK(world.State(id).velocity.y == 0.0);
       momentum += world.Info(id).mass * world.State(id).velocity.x;
       energy += 0.5 * world.Info(id).mass * world.State(id).velocity.x * world.State(id).velocity.x;
     }
-    const double mass = world.Info(0).mass;
+    const double mass = world.Info({0}).mass;
     CHECK(momentum == Approx(mass * momentum_before).epsilon(1e-12));
     CHECK(energy == Approx(0.5 * mass * v0 * v0).epsilon(0.01));
   }
@@ -185,8 +185,8 @@ TEST_CASE("soft step: head-on collision of masses 1 and 3 follows the collision 
   world.CreateBody(WithMaterial(WithMass(Circle({0, 0}, 0.5, {4, 0}), 1), 1.0, 0));
   world.CreateBody(WithMaterial(WithMass(Circle({1, 0}, 0.5, {-2, 0}), 3), 1.0, 0));
   world.Step();
-  CHECK(world.State(0).velocity.x == Approx(-5.0).epsilon(1e-12));
-  CHECK(world.State(1).velocity.x == Approx(1.0).epsilon(1e-12));
+  CHECK(world.State({0}).velocity.x == Approx(-5.0).epsilon(1e-12));
+  CHECK(world.State({1}).velocity.x == Approx(1.0).epsilon(1e-12));
 }
 
 TEST_CASE("a sliding box stops after v²/(2μg) within v·dt, then stays put", "[solver][friction]") {
@@ -199,13 +199,13 @@ TEST_CASE("a sliding box stops after v²/(2μg) within v·dt, then stays put", "
     const double v0 = 10, mu = 0.5;
     world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}, {v0, 0}), 0, 0.5));
     for (int i = 0; i < 180; ++i) world.Step();
-    const double stop = world.State(1).position.x;
+    const double stop = world.State({1}).position.x;
     INFO("solver " << static_cast<int>(solver) << ": stopped at " << stop << " m, v²/(2μg) = "
                    << v0 * v0 / (2 * mu * 9.81));
     CHECK(std::abs(stop - v0 * v0 / (2 * mu * 9.81)) <= v0 * def.dt);
     for (int i = 0; i < 120; ++i) world.Step();  // 2 s more: no creep
-    CHECK(std::abs(world.State(1).position.x - stop) <= 1e-6);
-    CHECK(world.State(1).velocity.x == 0.0);
+    CHECK(std::abs(world.State({1}).position.x - stop) <= 1e-6);
+    CHECK(world.State({1}).velocity.x == 0.0);
   }
 }
 
@@ -225,7 +225,7 @@ TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][
       world.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
       for (int i = 0; i < 120; ++i) world.Step();
       INFO("integrator " << static_cast<int>(integrator) << ", solver " << static_cast<int>(solver));
-      CHECK(std::abs(world.State(1).position.x) <= 1e-9);
+      CHECK(std::abs(world.State({1}).position.x) <= 1e-9);
     }
   }
 
@@ -236,7 +236,7 @@ TEST_CASE("a box pushed sideways with less than μmg does not creep", "[solver][
   sliding.CreateBody(WithMaterial(Static(Box({0, -0.5}, {200, 1})), 0, mu));
   sliding.CreateBody(WithMaterial(Box({0, 0.5}, {1, 1}), 0, mu));
   for (int i = 0; i < 60; ++i) sliding.Step();
-  CHECK(sliding.State(1).velocity.x == Approx(0.1 * mu * g * 1.0).epsilon(1e-9));
+  CHECK(sliding.State({1}).velocity.x == Approx(0.1 * mu * g * 1.0).epsilon(1e-9));
 }
 
 TEST_CASE("a box resting on the floor stays on it with every integrator, not hovering", "[solver][integrators]") {
@@ -253,9 +253,9 @@ TEST_CASE("a box resting on the floor stays on it with every integrator, not hov
     double highest = 0.5, lowest = 0.5, fastest = 0;
     for (int i = 0; i < 120; ++i) {
       world.Step();
-      highest = std::max(highest, world.State(1).position.y);
-      lowest = std::min(lowest, world.State(1).position.y);
-      fastest = std::max(fastest, engine::Length(world.State(1).velocity));
+      highest = std::max(highest, world.State({1}).position.y);
+      lowest = std::min(lowest, world.State({1}).position.y);
+      fastest = std::max(fastest, engine::Length(world.State({1}).velocity));
     }
     INFO("integrator " << static_cast<int>(integrator) << ": y in [" << lowest << ", " << highest
                        << "], fastest " << fastest << " m/s");
@@ -272,14 +272,14 @@ TEST_CASE("resting bodies fall asleep after half a second and stop costing work"
   int first_asleep = -1;
   for (int i = 1; i <= 60 && first_asleep < 0; ++i) {
     world.Step();
-    if (!world.IsAwake(1)) first_asleep = i;
+    if (!world.IsAwake({1})) first_asleep = i;
   }
   // Resting from the start, they sleep once 0.5 s (30 steps) of rest have been counted.
   CHECK(first_asleep == 30);
-  for (engine::BodyId id = 1; id < 4; ++id) CHECK_FALSE(world.IsAwake(id));
+  for (engine::BodyId id{1}; id.index < 4; ++id.index) CHECK_FALSE(world.IsAwake(id));
   world.Step();
   CHECK(world.Contacts().empty());  // nothing left to collide or solve
-  for (engine::BodyId id = 1; id < 4; ++id) CHECK(world.State(id).position.y == 0.5 + (id - 1));
+  for (engine::BodyId id{1}; id.index < 4; ++id.index) CHECK(world.State(id).position.y == 0.5 + (id.index - 1));
 }
 
 TEST_CASE("a sleeping stack wakes when something lands on it, and a click wakes a body", "[solver][sleep]") {
@@ -288,21 +288,21 @@ TEST_CASE("a sleeping stack wakes when something lands on it, and a click wakes 
   for (int i = 0; i < 3; ++i) world.CreateBody(Box({0, 0.5 + i}, {1, 1}));
   world.CreateBody(Box({8, 0.5}, {1, 1}));  // a separate island
   for (int i = 0; i < 40; ++i) world.Step();
-  REQUIRE_FALSE(world.IsAwake(1));
+  REQUIRE_FALSE(world.IsAwake({1}));
   const engine::BodyId ball = world.CreateBody(Circle({0, 6}, 0.5));
   bool woke = false;
   for (int i = 0; i < 90 && !woke; ++i) {
     world.Step();
-    woke = world.IsAwake(1) && world.IsAwake(2) && world.IsAwake(3);
+    woke = world.IsAwake({1}) && world.IsAwake({2}) && world.IsAwake({3});
   }
   CHECK(woke);                      // the whole island, down to the bottom box
-  CHECK_FALSE(world.IsAwake(4));    // but not the box standing apart
+  CHECK_FALSE(world.IsAwake({4}));    // but not the box standing apart
   CHECK(world.State(ball).position.y > 3.0);  // the ball rests on the stack, not in it
 
-  world.ApplyLinearImpulse(4, {1, 0});
-  CHECK(world.IsAwake(4));
+  world.ApplyLinearImpulseToCenter({4}, {1, 0});
+  CHECK(world.IsAwake({4}));
   world.Step();
-  CHECK(world.State(4).position.x > 8.0);
+  CHECK(world.State({4}).position.x > 8.0);
 }
 
 TEST_CASE("with sleeping off, nothing sleeps", "[solver][sleep]") {
@@ -312,6 +312,6 @@ TEST_CASE("with sleeping off, nothing sleeps", "[solver][sleep]") {
   world.CreateBody(Static(Box({0, -0.5}, {20, 1})));
   world.CreateBody(Box({0, 0.5}, {1, 1}));
   for (int i = 0; i < 120; ++i) world.Step();
-  CHECK(world.IsAwake(1));
+  CHECK(world.IsAwake({1}));
   CHECK(world.Contacts().size() == 1);
 }

@@ -24,7 +24,7 @@ namespace {
 
 double KineticEnergy(const engine::World& world) {
   double e = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyInfo& info = world.Info(id);
     const engine::BodyState& s = world.State(id);
     e += 0.5 * info.mass * engine::LengthSquared(s.velocity) +
@@ -202,7 +202,7 @@ TEST_CASE("with gravity, the packed grid never gets above its starting energy", 
       engine::World world = ConfinedGrid(substeps, pitch, 0.6, 25, {0, -g});
       auto energy = [&] {
         double e = KineticEnergy(world);
-        for (engine::BodyId id = 0; id < world.BodyCount(); ++id) e += world.Info(id).mass * g * world.State(id).position.y;
+        for (const engine::BodyId id : world.BodyIds()) e += world.Info(id).mass * g * world.State(id).position.y;
         return e;
       };
       const double start = energy();

@@ -19,11 +19,11 @@ engine::WorldDef AwakeWorld() {
 // The largest distance any dynamic body ends from where it started, over `steps` steps.
 double MaxDrift(engine::World& world, int steps) {
   std::vector<engine::Vec2> start;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) start.push_back(world.State(id).position);
+  for (const engine::BodyId id : world.BodyIds()) start.push_back(world.State(id).position);
   for (int i = 0; i < steps; ++i) world.Step();
   double drift = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
-    drift = std::max(drift, engine::Length(world.State(id).position - start[id]));
+  for (const engine::BodyId id : world.BodyIds()) {
+    drift = std::max(drift, engine::Length(world.State(id).position - start[id.index]));
   }
   return drift;
 }
@@ -61,9 +61,9 @@ TEST_CASE("a pyramid of base 20 dropped into place settles where it should, with
   stress::AddPyramid(world, 20, 0.0, 0.02);
   for (int i = 0; i < 600; ++i) world.Step();
   double worst = 0, fastest = 0;
-  engine::BodyId id = 1;
+  engine::BodyId id{1};
   for (int row = 0; row < 20; ++row) {
-    for (int i = 0; i < 20 - row; ++i, ++id) {
+    for (int i = 0; i < 20 - row; ++i, ++id.index) {
       const engine::Vec2 expected{(i - 0.5 * (19 - row)), 0.5 + row};
       worst = std::max(worst, engine::Length(world.State(id).position - expected));
       fastest = std::max(fastest, engine::Length(world.State(id).velocity));
@@ -102,7 +102,7 @@ TEST_CASE("boxes placed 25% overlapped separate within 1 s, without flying apart
   double fastest = 0;
   for (int i = 1; i <= 60; ++i) {
     world.Step();
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       const double limit = 3.0 + g * i * world.Def().dt;  // push-out speed plus free fall
       fastest = std::max(fastest, engine::Length(world.State(id).velocity));
       REQUIRE(engine::Length(world.State(id).velocity) <= limit);
@@ -119,7 +119,7 @@ TEST_CASE("2000 circles poured into a box: none escapes, no NaN, overlap < 1 cm 
   stress::AddCirclePour(world, 2000, 0.25, width);
   for (int i = 0; i < 600; ++i) world.Step();
   const double worst_overlap = MaxOverlap(world);
-  for (engine::BodyId id = 4; id < world.BodyCount(); ++id) {
+  for (engine::BodyId id{4}; id.index < world.BodyCount(); ++id.index) {
     const engine::Vec2 p = world.State(id).position;
     REQUIRE(engine::IsFinite(p));
     REQUIRE(std::abs(p.x) < 0.5 * width);
@@ -138,7 +138,7 @@ TEST_CASE("energy never increases in a closed scene with restitution < 1", "[sta
   const double g = -world.Def().gravity.y;
   auto energy = [&] {
     double e = 0;
-    for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+    for (const engine::BodyId id : world.BodyIds()) {
       const engine::BodyInfo& info = world.Info(id);
       const engine::BodyState& s = world.State(id);
       e += 0.5 * info.mass * engine::LengthSquared(s.velocity) + info.mass * g * s.position.y;

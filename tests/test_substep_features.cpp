@@ -140,12 +140,12 @@ TEST_CASE("block solver: a wide box resting on its face with rotation on stays l
     def.substep_features = features;
     engine::World world(def);
     world.CreateBody(Static(Box({0, -0.5}, {10, 1})));
-    engine::BodyId top = 0;
+    engine::BodyId top{0};
     for (int i = 0; i < 5; ++i) top = world.CreateBody(Box({0, 0.25 + 0.5 * i}, {2, 0.5}));
     double turned = 0.0;
     for (int i = 0; i < 600; ++i) {
       world.Step();
-      for (engine::BodyId id = 1; id <= top; ++id) turned = std::max(turned, std::abs(world.State(id).angle));
+      for (engine::BodyId id{1}; id.index <= top.index; ++id.index) turned = std::max(turned, std::abs(world.State(id).angle));
     }
     return turned;
   };
@@ -177,7 +177,7 @@ TEST_CASE("colour order: off, the contacts are solved in pair order, which chang
   double overlap = 0.0;
   for (const engine::Contact& c : by_pair.Contacts()) overlap = std::max(overlap, c.manifold.points[0].depth);
   bool contained = true;
-  for (engine::BodyId id = 4; id < by_pair.BodyCount(); ++id) {
+  for (engine::BodyId id{4}; id.index < by_pair.BodyCount(); ++id.index) {
     const engine::Vec2 p = by_pair.State(id).position;
     contained = contained && std::abs(p.x) < 5 && p.y > 0 && p.y < 20;
   }

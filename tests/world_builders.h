@@ -49,7 +49,7 @@ inline engine::WorldDef NoGravity() {
 /// J, of the bodies' motion along (rotation not counted).
 inline double LinearKineticEnergy(const engine::World& world) {
   double e = 0;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     e += 0.5 * world.Info(id).mass * engine::LengthSquared(world.State(id).velocity);
   }
   return e;

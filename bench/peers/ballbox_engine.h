@@ -63,9 +63,9 @@ class BallboxEngine : public PhysicsEngine {
 
   void Read(std::vector<State>& out) const override {
     out.resize(world_->BodyCount());
-    for (engine::BodyId id = 0; id < world_->BodyCount(); ++id) {
+    for (const engine::BodyId id : world_->BodyIds()) {
       const engine::BodyState& s = world_->State(id);
-      out[id] = {s.position, s.velocity, s.angle, s.angular_velocity};
+      out[id.index] = {s.position, s.velocity, s.angle, s.angular_velocity};
     }
   }
 

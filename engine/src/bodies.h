@@ -1,11 +1,15 @@
-// The bodies' storage: what every step writes, what it only reads, and counts the step's skips
-// read. Indexed by BodyId (scene order). Internal to the engine.
+// The bodies' storage: one slot per body, what every step writes, what it only reads, and the
+// embedder's per-body settings. Slots of destroyed bodies wait on a free list for the next body;
+// each slot's generation tells a live id from a stale one. Internal to the engine.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/body.h"
+#include "engine/ids.h"
 
 namespace engine::detail {
 
@@ -13,8 +17,35 @@ struct Bodies {
   std::vector<BodyState> states;
   std::vector<BodyInfo> infos;
   std::vector<Vec2> start_positions;  ///< each body's centre when the current step began
+  std::vector<std::uint32_t> generations;
+  std::vector<std::uint8_t> alive;    ///< 0: the slot is free
+  std::vector<std::uint8_t> enabled;  ///< 0: disabled or free: not simulated at all
+  std::vector<Filter> filters;
+  std::vector<std::uint64_t> user_data;
+  /// Forces and torques the embedder applied since the last step (cleared by each step).
+  std::vector<Vec2> applied_forces;
+  std::vector<double> applied_torques;
+  std::vector<BodyIndex> free_slots;  ///< a stack: the last freed slot is reused first
+  std::vector<BodyId> live_ids;       ///< the live bodies, in slot order
+
   std::size_t damped = 0;             ///< bodies with linear or angular damping
   std::size_t turnable = 0;           ///< bodies free to turn (finite inertia)
+  std::size_t inactive = 0;           ///< slots not simulated: disabled bodies and free slots
+  std::size_t filtered = 0;           ///< bodies whose filter is not the default
+  std::size_t sensors = 0;
+  bool forces_applied = false;        ///< some applied force or torque waits for the step
+
+  /// A slot for a new body (a free one, else a new one at the end), its generation kept.
+  BodyIndex Allocate();
+  /// Frees the slot and makes every id of it stale.
+  void Free(BodyIndex index);
+  bool IsLive(BodyId id) const {
+    return id.index < alive.size() && alive[id.index] && generations[id.index] == id.generation;
+  }
+  BodyId IdOf(BodyIndex index) const { return {index, generations[index]}; }
+  /// Adds or removes the body's share of the counts above.
+  void Count(BodyIndex index, int sign);
+  void ClearAppliedForces();
 
   void MarkStepStart() {
     start_positions.resize(states.size());

@@ -81,20 +81,44 @@ PairQuota QuotaOf(const Shape& shape, bool is_static) {
   return {is_static ? kInfinity : 2.0 * std::min(h.x, h.y), static_cast<std::uint32_t>(quota), 4.0 * h.x * h.y};
 }
 
-void CandidatePairs::Find(const WorldDef& def, bool speculative, std::span<const BodyState> states,
-                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> awake) {
-  const std::size_t n = states.size();
+void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& bodies,
+                          std::span<const std::uint8_t> awake) {
+  const std::size_t n = bodies.states.size();
   bounds_.resize(n);
   margins_.resize(n);
-  for (BodyId id = 0; id < n; ++id) {
-    margins_[id] = speculative ? SpeculativeMargin(def, states[id], infos[id], awake[id] != 0) : 0.0;
+  for (BodyIndex id = 0; id < n; ++id) {
+    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id], awake[id] != 0) : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
-    const AABB b = BodyBounds(infos[id].shape, states[id]);
+    const AABB b = BodyBounds(bodies.infos[id].shape, bodies.states[id]);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.
-  broad_phase_.FindPairs(def.broad_phase, bounds_, &pairs_,
-                         def.pair_budget ? std::span<const PairQuota>(quotas_) : std::span<const PairQuota>());
+  const auto quotas = def.pair_budget ? std::span<const PairQuota>(quotas_) : std::span<const PairQuota>();
+  packed_ = bodies.inactive != 0;
+  if (!packed_) {
+    broad_phase_.FindPairs(def.broad_phase, bounds_, &pairs_, quotas);
+  } else {
+    FindAmongEnabled(def, bodies.enabled, quotas);
+  }
+  if (bodies.filtered > 0) {
+    std::erase_if(pairs_, [&](BodyPair p) { return !ShouldCollide(bodies.filters[p.a], bodies.filters[p.b]); });
+  }
+}
+
+void CandidatePairs::FindAmongEnabled(const WorldDef& def, std::span<const std::uint8_t> enabled,
+                                      std::span<const PairQuota> quotas) {
+  packed_slots_.clear();
+  packed_bounds_.clear();
+  packed_quotas_.clear();
+  for (BodyIndex id = 0; id < enabled.size(); ++id) {
+    if (!enabled[id]) continue;
+    packed_slots_.push_back(id);
+    packed_bounds_.push_back(bounds_[id]);
+    if (!quotas.empty()) packed_quotas_.push_back(quotas[id]);
+  }
+  broad_phase_.FindPairs(def.broad_phase, packed_bounds_, &pairs_, packed_quotas_);
+  // Slots grow with the packed index, so the pairs stay sorted.
+  for (BodyPair& p : pairs_) p = {packed_slots_[p.a], packed_slots_[p.b]};
 }
 
 }  // namespace engine::detail

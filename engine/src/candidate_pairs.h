@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "bodies.h"
 #include "body_pair.h"
 #include "broad_phase/broad_phase.h"
 #include "engine/body.h"
@@ -23,26 +24,39 @@ PairQuota QuotaOf(const Shape& shape, bool is_static);
 
 class CandidatePairs {
  public:
-  /// A new body's quota; call once per body, in id order.
-  void AddBody(const Shape& shape, bool is_static) { quotas_.push_back(QuotaOf(shape, is_static)); }
+  /// The quota of a body just placed in slot `index` (a new slot is the next one).
+  void Place(BodyIndex index, const Shape& shape, bool is_static) {
+    if (index == quotas_.size()) quotas_.emplace_back();
+    quotas_[index] = QuotaOf(shape, is_static);
+  }
 
-  /// Finds the pairs of bodies whose grown bounds overlap, sorted by (a, b). `speculative`: the
-  /// solver takes contacts up to a margin apart (else only real overlap).
-  void Find(const WorldDef& def, bool speculative, std::span<const BodyState> states,
-            std::span<const BodyInfo> infos, std::span<const std::uint8_t> awake);
+  /// Finds the pairs of enabled bodies whose grown bounds overlap and whose filters let them
+  /// collide, sorted by (a, b). `speculative`: the solver takes contacts up to a margin apart
+  /// (else only real overlap).
+  void Find(const WorldDef& def, bool speculative, const Bodies& bodies, std::span<const std::uint8_t> awake);
 
   std::vector<BodyPair>& Pairs() { return pairs_; }
   /// Per body, how far it may reach within this step, m: two bodies closer than the sum of
   /// their margins get a (speculative) contact.
   std::span<const double> Margins() const { return margins_; }
-  /// The pair budget's account of the last Find.
+  /// The pair budget's account of the last Find (its bodies are the broad phase's, packed when
+  /// some slot was not simulated: CrowdedSlot turns them into slots).
   const PairCollector& Budget() const { return broad_phase_.LastCollector(); }
+  BodyIndex CrowdedSlot(std::uint32_t body) const { return packed_ ? packed_slots_[body] : body; }
 
  private:
+  void FindAmongEnabled(const WorldDef& def, std::span<const std::uint8_t> enabled,
+                        std::span<const PairQuota> quotas);
+
   std::vector<PairQuota> quotas_;
   std::vector<double> margins_;
   std::vector<AABB> bounds_;
   std::vector<BodyPair> pairs_;
+  // With some slots not simulated, the broad phase sees only the enabled bodies, packed:
+  bool packed_ = false;
+  std::vector<BodyIndex> packed_slots_;  ///< the slot of each packed body
+  std::vector<AABB> packed_bounds_;
+  std::vector<PairQuota> packed_quotas_;
   BroadPhase broad_phase_;  ///< every structure, so the choice can change between steps
 };
 

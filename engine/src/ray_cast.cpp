@@ -56,7 +56,8 @@ std::optional<RayHit> World::RayCast(Vec2 from, Vec2 to) const {
   std::optional<RayHit> best;
   double best_t = std::numeric_limits<double>::infinity();
   const Vec2 d = to - from;
-  for (BodyId id = 0; id < impl_->bodies.states.size(); ++id) {
+  for (BodyIndex id = 0; id < impl_->bodies.states.size(); ++id) {
+    if (!impl_->bodies.enabled[id]) continue;
     const Shape& shape = impl_->bodies.infos[id].shape;
     const BodyState& s = impl_->bodies.states[id];
     double t;
@@ -71,7 +72,7 @@ std::optional<RayHit> World::RayCast(Vec2 from, Vec2 to) const {
     }
     if (hit && t < best_t) {
       best_t = t;
-      best = RayHit{id, from + t * d, normal, t};
+      best = RayHit{impl_->bodies.IdOf(id), from + t * d, normal, t};
     }
   }
   return best;

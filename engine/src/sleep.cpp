@@ -9,7 +9,7 @@
 
 namespace engine::detail {
 
-void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
+void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> springs,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep) {
   const std::size_t n = states.size();
@@ -27,7 +27,7 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> s
   }
   const double speed_squared = def.sleep_speed * def.sleep_speed;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!sleep.awake[i]) continue;
+    if (sleep.awake[i] != kAwake) continue;
     const bool resting = LengthSquared(states[i].velocity) <= speed_squared &&
                          states[i].angular_velocity * states[i].angular_velocity <= speed_squared &&
                          (held[i] || accelerations[i] == Vec2{});
@@ -39,22 +39,22 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> s
   UnionFind islands;
   islands.Reset(n);
   for (const Contact& c : contacts) {
-    if (infos[c.a].is_static || infos[c.b].is_static || !touching(c)) continue;
+    if (HasInfiniteMass(infos[c.a]) || HasInfiniteMass(infos[c.b]) || !touching(c)) continue;
     islands.Join(c.a, c.b);
   }
-  for (const SpringDef& spring : springs) {
-    if (spring.body_b && !infos[spring.body_a].is_static && !infos[*spring.body_b].is_static) {
+  for (const Spring& spring : springs) {
+    if (spring.body_b && !HasInfiniteMass(infos[spring.body_a]) && !HasInfiniteMass(infos[*spring.body_b])) {
       islands.Join(spring.body_a, *spring.body_b);
     }
   }
   std::vector<double> island_rest(n, def.time_to_sleep);
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!sleep.awake[i]) continue;
+    if (sleep.awake[i] != kAwake) continue;
     const std::uint32_t root = islands.Find(i);
     island_rest[root] = std::min(island_rest[root], sleep.rest_time[i]);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!sleep.awake[i]) continue;
+    if (sleep.awake[i] != kAwake) continue;
     const std::uint32_t root = islands.Find(i);
     // Half a step of tolerance: thirty sixtieths add up to a hair under 0.5.
     if (island_rest[root] < def.time_to_sleep - 0.5 * def.dt) continue;
@@ -65,29 +65,35 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> s
   }
 }
 
-void WakeIsland(BodyId body, std::span<const BodyInfo> infos, SleepState sleep) {
-  if (sleep.awake[body] || infos[body].is_static) return;
+Wakefulness WakefulnessOf(const BodyInfo& info, const BodyState& state) {
+  if (info.is_static) return kResting;
+  if (!info.is_kinematic) return kAwake;
+  return state.velocity == Vec2{} && state.angular_velocity == 0.0 ? kResting : kKinematicMoving;
+}
+
+void WakeIsland(BodyIndex body, std::span<const BodyInfo> infos, SleepState sleep) {
+  if (sleep.awake[body] || HasInfiniteMass(infos[body]) || sleep.island[body] == kNoBody) return;
   const std::uint32_t island = sleep.island[body];
   for (std::size_t i = 0; i < infos.size(); ++i) {
-    if (!sleep.awake[i] && !infos[i].is_static && sleep.island[i] == island) {
-      sleep.awake[i] = 1;
+    if (!sleep.awake[i] && !HasInfiniteMass(infos[i]) && sleep.island[i] == island) {
+      sleep.awake[i] = kAwake;
       sleep.rest_time[i] = 0.0;
     }
   }
 }
 
-void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const SpringDef> springs,
+void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
                         std::span<const BodyInfo> infos, SleepState sleep) {
   for (const BodyPair& p : *pairs) {
-    if (sleep.awake[p.a] != sleep.awake[p.b]) {
-      const BodyId sleeper = sleep.awake[p.a] ? p.b : p.a;
-      if (!infos[sleeper].is_static) WakeIsland(sleeper, infos, sleep);
+    if ((sleep.awake[p.a] != 0) != (sleep.awake[p.b] != 0)) {
+      const BodyIndex sleeper = sleep.awake[p.a] ? p.b : p.a;
+      WakeIsland(sleeper, infos, sleep);
     }
   }
-  for (const SpringDef& spring : springs) {
-    if (!spring.body_b || sleep.awake[spring.body_a] == sleep.awake[*spring.body_b]) continue;
-    const BodyId sleeper = sleep.awake[spring.body_a] ? *spring.body_b : spring.body_a;
-    if (!infos[sleeper].is_static) WakeIsland(sleeper, infos, sleep);
+  for (const Spring& spring : springs) {
+    if (!spring.body_b || (sleep.awake[spring.body_a] != 0) == (sleep.awake[*spring.body_b] != 0)) continue;
+    const BodyIndex sleeper = sleep.awake[spring.body_a] ? *spring.body_b : spring.body_a;
+    WakeIsland(sleeper, infos, sleep);
   }
   std::erase_if(*pairs, [&](BodyPair p) { return !sleep.awake[p.a] && !sleep.awake[p.b]; });
 }

@@ -8,14 +8,15 @@
 
 #include "engine/body.h"
 #include "engine/contact.h"
-#include "engine/spring.h"
+#include "forces/springs.h"
 #include "engine/world_def.h"
 #include "body_pair.h"
+#include "wakefulness.h"
 
 namespace engine::detail {
 
-/// Per body: `rest_time`, s it has moved slower than the sleep speed; `awake`, 0 for sleeping
-/// and static bodies; `island`, while asleep, the smallest body id of its island.
+/// Per body: `rest_time`, s it has moved slower than the sleep speed; `awake`, a Wakefulness;
+/// `island`, while asleep, the smallest body slot of its island (kNoBody while disabled).
 struct SleepState {
   std::span<double> rest_time;
   std::span<std::uint8_t> awake;
@@ -30,10 +31,16 @@ struct SleepTable {
   std::vector<Vec2> accelerations;  ///< scratch: the free accelerations the rest test reads
   std::vector<double> angular_accelerations;
 
-  void AddBody(bool is_static) {
-    rest_time.push_back(0.0);
-    awake.push_back(is_static ? 0 : 1);
-    island.push_back(0);
+  /// Sets the slot's entry for a body just placed or changed there.
+  void Place(BodyIndex index, Wakefulness wakefulness, bool enabled) {
+    if (index == awake.size()) {
+      rest_time.push_back(0.0);
+      awake.push_back(0);
+      island.push_back(0);
+    }
+    rest_time[index] = 0.0;
+    awake[index] = enabled ? wakefulness : kResting;
+    island[index] = enabled ? index : kNoBody;
   }
   SleepState View() { return {rest_time, awake, island}; }
 };
@@ -41,18 +48,23 @@ struct SleepTable {
 /// Before the narrow phase: a moving body that reaches a sleeping one, through a candidate pair
 /// or an acting spring, wakes the sleeper's whole island; then the pairs where nothing moves
 /// (static with static, or with a sleeping body) are dropped: they need no contact.
-void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const SpringDef> springs,
+void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
                         std::span<const BodyInfo> infos, SleepState sleep);
 
 /// After a step: counts resting time (slow, and held by a contact or pushed by no force:
 /// `accelerations` are each body's free accelerations) and puts to sleep every island (bodies
 /// linked by touching contacts or `springs`, the ones that act, static bodies excluded) whose
 /// bodies have all rested for `time_to_sleep`.
-void UpdateSleep(std::span<const Contact> contacts, std::span<const SpringDef> springs,
+void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> springs,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep);
 
-/// Wakes the sleeping island `body` belongs to (nothing if it is awake or static).
-void WakeIsland(BodyId body, std::span<const BodyInfo> infos, SleepState sleep);
+/// How a body of this kind and velocity starts out: dynamic bodies awake, kinematic ones moving
+/// while they have a velocity, static ones resting.
+Wakefulness WakefulnessOf(const BodyInfo& info, const BodyState& state);
+
+/// Wakes the sleeping island `body` belongs to (nothing if it is awake, static, kinematic or
+/// disabled).
+void WakeIsland(BodyIndex body, std::span<const BodyInfo> infos, SleepState sleep);
 
 }  // namespace engine::detail

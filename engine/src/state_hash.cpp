@@ -1,5 +1,5 @@
 // The state hash of the contract: FNV-1a 64 over the little-endian IEEE-754 bytes of
-// x, y, vx, vy, angle, ω of every body in scene order.
+// x, y, vx, vy, angle, ω of every live body in slot (scene) order.
 #include <bit>
 #include <cstdint>
 
@@ -24,7 +24,8 @@ void HashDouble(double value, std::uint64_t* hash) {
 
 std::uint64_t World::StateHash() const {
   std::uint64_t hash = kFnvOffset;
-  for (const BodyState& s : impl_->bodies.states) {
+  for (const BodyId id : impl_->bodies.live_ids) {
+    const BodyState& s = impl_->bodies.states[id.index];
     HashDouble(s.position.x, &hash);
     HashDouble(s.position.y, &hash);
     HashDouble(s.velocity.x, &hash);

@@ -6,7 +6,7 @@
 namespace engine::detail {
 
 std::optional<NumericFault> FindNonFinite(std::span<const BodyState> states, std::int64_t step) {
-  for (BodyId id = 0; id < states.size(); ++id) {
+  for (BodyIndex id = 0; id < states.size(); ++id) {
     const BodyState& s = states[id];
     const char* what = !IsFinite(s.position)                ? "position"
                        : !IsFinite(s.velocity)              ? "velocity"

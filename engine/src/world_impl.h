@@ -7,10 +7,12 @@
 
 #include "bodies.h"
 #include "candidate_pairs.h"
+#include "contact_events.h"
 #include "engine/world.h"
 #include "forces/force_model.h"
 #include "forces/springs.h"
 #include "integrate.h"
+#include "sensor_overlaps.h"
 #include "narrow_phase/narrow_phase.h"
 #include "sleep.h"
 #include "solver/sequential_impulse_solver.h"
@@ -31,6 +33,18 @@ struct World::Impl {
   bool SpeculativeContacts() const;
   void UpdateSleep();
 
+  /// The live body `id` names; a stale or unknown id stops the program, naming `call`.
+  BodyIndex Slot(BodyId id, const char* call) const;
+  /// Wakes the body's island, or for a static or kinematic body the islands touching it.
+  void WakeAround(BodyIndex index);
+  /// Takes the body out of the simulation (destroyed or disabled): its contacts, sensor
+  /// overlaps and springs stop; what it held up wakes.
+  void Withdraw(BodyIndex index);
+  /// After a kinematic body's velocity changes: it moves (is integrated) only while it has one.
+  void UpdateKinematicMotion(BodyIndex index);
+  /// The springs that act: those with something to pull, between enabled bodies.
+  void RebuildActingSprings();
+
   WorldDef def;                       ///< with the automatic settings filled in
   detail::Bodies bodies;
   detail::SleepTable sleep;
@@ -39,6 +53,9 @@ struct World::Impl {
   detail::NarrowPhase narrow_phase;   ///< this step's contacts
   detail::FreeMotion free_motion;     ///< the integrators' scratch
   detail::AnyContactSolver solver;    ///< the one WorldDef::solver chose
+  detail::ContactEvents contact_events;
+  detail::SensorOverlaps sensors;
+  StepEvents events;                  ///< the last step's
   std::int64_t step_count = 0;
   std::optional<NumericFault> fault;
 };

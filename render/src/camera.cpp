@@ -33,8 +33,8 @@ Camera FitCamera(const engine::World& world, int image_width, int image_height) 
   // A tenth of the larger side as margin on every side keeps bodies clear of the image edge.
   constexpr double kMarginFraction = 0.1;
   if (world.BodyCount() == 0) return Camera{};
-  engine::AABB all = world.BodyBounds(0);
-  for (engine::BodyId id = 1; id < world.BodyCount(); ++id) {
+  engine::AABB all = world.BodyBounds(world.BodyIds().front());
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::AABB b = world.BodyBounds(id);
     all.lower = {std::min(all.lower.x, b.lower.x), std::min(all.lower.y, b.lower.y)};
     all.upper = {std::max(all.upper.x, b.upper.x), std::max(all.upper.y, b.upper.y)};

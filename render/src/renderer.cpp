@@ -268,7 +268,7 @@ void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
   const bool rotation = world.Def().rotation;
 
   gl.instances.clear();
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& state = world.State(id);
     const engine::Shape& shape = world.Info(id).shape;
     const double angle = rotation ? state.angle : 0.0;
@@ -285,7 +285,7 @@ void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
     }
     instance.rotation[0] = static_cast<float>(std::cos(angle));
     instance.rotation[1] = static_cast<float>(std::sin(angle));
-    const Color color = colors[id];
+    const Color color = colors[id.index];
     instance.color[0] = color.r;
     instance.color[1] = color.g;
     instance.color[2] = color.b;

@@ -2,6 +2,9 @@
 // reads (BodyInfo).
 #pragma once
 
+#include <cstdint>
+
+#include "engine/filter.h"
 #include "engine/math.h"
 #include "engine/shape.h"
 
@@ -16,6 +19,14 @@ struct BodyDef {
   double mass = 0.0;              ///< kg; 0 means density × area
   double density = 1.0;           ///< kg/m², used when mass is 0
   bool is_static = false;         ///< infinite mass: never moves
+  /// Infinite mass, but moves at its own velocity (set here or with the World setters): it
+  /// pushes dynamic bodies and is never pushed, feels no force. Not static at the same time.
+  bool is_kinematic = false;
+  /// Reports overlaps (World::Events().sensor_begin/end) and collides with nothing.
+  bool is_sensor = false;
+  bool enabled = true;            ///< a disabled body stays where it is and meets nothing
+  Filter filter;                  ///< which bodies it collides with
+  std::uint64_t user_data = 0;    ///< the embedder's own, never read by the engine
   double restitution = 0.2;
   double friction = 0.3;
   bool fixed_rotation = false;
@@ -38,18 +49,23 @@ struct BodyState {
 /// What a step only reads.
 struct BodyInfo {
   Shape shape;
-  double mass = 0.0;      ///< kg; 0 for static bodies
-  double inv_mass = 0.0;  ///< 1/kg; 0 for static bodies, so impulses never move them
-  double inertia = 0.0;      ///< kg·m² about the centre; 0 for static bodies
-  double inv_inertia = 0.0;  ///< 0 for static bodies, fixed rotation, or a world without rotation
+  double mass = 0.0;      ///< kg; 0 for static and kinematic bodies
+  double inv_mass = 0.0;  ///< 1/kg; 0 for static and kinematic bodies, so impulses never move them
+  double inertia = 0.0;      ///< kg·m² about the centre; 0 for static and kinematic bodies
+  double inv_inertia = 0.0;  ///< 0 for static and kinematic bodies, fixed rotation, or no rotation
   double linear_damping = 0.0;
   double angular_damping = 0.0;
   double drag_coefficient = 0.0;
   double restitution = 0.0;
   double friction = 0.0;
   bool is_static = false;
+  bool is_kinematic = false;
+  bool is_sensor = false;
   bool fixed_rotation = false;
   bool bullet = false;
 };
+
+/// Static and kinematic bodies: no impulse or force moves them.
+constexpr bool HasInfiniteMass(const BodyInfo& info) { return info.is_static || info.is_kinematic; }
 
 }  // namespace engine

@@ -25,8 +25,8 @@ struct Manifold {
 };
 
 struct Contact {
-  BodyId a;  ///< a < b
-  BodyId b;
+  BodyIndex a;  ///< the lower slot (World::IdAt gives the id)
+  BodyIndex b;
   Manifold manifold;   ///< normal points from a to b
   double restitution;  ///< the larger of the pair's
   double friction;     ///< the geometric mean of the pair's

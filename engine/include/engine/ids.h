@@ -2,10 +2,23 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 namespace engine {
 
-/// A body's index in creation (scene) order.
-using BodyId = std::uint32_t;
+/// A body's slot in the world's arrays. Bodies are stepped, dumped and hashed in slot order; a
+/// world whose bodies were never destroyed has them in creation (scene) order, slot 0 first.
+using BodyIndex = std::uint32_t;
+inline constexpr BodyIndex kNoBody = std::numeric_limits<BodyIndex>::max();
+
+/// A handle to a body: its slot and the slot's generation, which goes up each time a body in
+/// that slot is destroyed. An id kept after its body was destroyed is stale: the world detects
+/// it (World::IsValid) even once the slot holds another body. A fresh world's bodies have
+/// generation 0, so `BodyId{3}` is the fourth body created.
+struct BodyId {
+  BodyIndex index = kNoBody;
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(BodyId, BodyId) = default;
+};
 
 }  // namespace engine

@@ -12,7 +12,7 @@ namespace engine {
 /// A damped spring from a point fixed on body A to a point fixed on body B, or to a fixed world
 /// point when there is no body B. Attached off the centre, it makes torque.
 struct SpringDef {
-  BodyId body_a = 0;
+  BodyId body_a;
   Vec2 local_a;                   ///< attachment in A's frame, m
   std::optional<BodyId> body_b;   ///< none: anchored to the world
   Vec2 local_b;                   ///< attachment in B's frame, or the world anchor point, m

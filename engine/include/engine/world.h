@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/events.h"
+#include "engine/filter.h"
 #include "engine/ids.h"
 #include "engine/math.h"
 #include "engine/queries.h"
@@ -27,8 +29,17 @@ class World {
   World& operator=(World&&) noexcept;
   ~World();
 
-  /// Preconditions: positive finite size and mass (or density) for dynamic bodies, finite state.
+  // Every call that takes a BodyId requires a live one (IsValid): a stale or made-up id stops
+  // the program with a message naming the call, never reads another body.
+
+  /// Preconditions: positive finite size and mass (or density) for dynamic bodies, finite state,
+  /// not both static and kinematic. Takes the slot of the last destroyed body, if any.
   BodyId CreateBody(const BodyDef& def);
+  /// Removes the body, its contacts (with end events after the next step) and its springs; the
+  /// bodies it held up wake. Its id, and every copy of it, goes stale.
+  void DestroyBody(BodyId id);
+  /// Whether `id` names a body that exists now.
+  bool IsValid(BodyId id) const;
 
   /// Advances the world by one fixed step of `Def().dt`. Does nothing once a fault is recorded.
   void Step();
@@ -36,24 +47,52 @@ class World {
   /// The first non-finite state a step produced, checked at the end of every step; once set,
   /// the world stops stepping so the fault goes no further.
   const std::optional<NumericFault>& Fault() const;
+  /// The contact and sensor events of the last step.
+  const StepEvents& Events() const;
 
-  /// Changes a dynamic body's velocity by impulse / mass (N·s, applied at the centre); static
-  /// bodies ignore it.
-  void ApplyLinearImpulse(BodyId id, Vec2 impulse);
+  // Moving bodies by hand, between steps. Each wakes the body (and, for a static or kinematic
+  // body, the bodies touching it); on a static body only the placement setters act.
+
+  void SetPosition(BodyId id, Vec2 position);
+  void SetAngle(BodyId id, double angle);
+  void SetLinearVelocity(BodyId id, Vec2 velocity);
+  void SetAngularVelocity(BodyId id, double angular_velocity);
+  /// Adds a force (N) acting at a world point through the next step; off the centre it also
+  /// makes a torque. Dynamic bodies only feel forces; others ignore them.
+  void ApplyForce(BodyId id, Vec2 force, Vec2 point);
+  void ApplyForceToCenter(BodyId id, Vec2 force);
+  void ApplyTorque(BodyId id, double torque);
+  /// Changes a dynamic body's velocity at once by impulse / mass (N·s) and, applied at a world
+  /// point off the centre, its angular velocity too; static and kinematic bodies ignore it.
+  void ApplyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point);
+  void ApplyLinearImpulseToCenter(BodyId id, Vec2 impulse);
+  void ApplyAngularImpulse(BodyId id, double impulse);
+
+  /// A disabled body keeps its state but is not simulated: no forces, no contacts, no springs.
+  void SetEnabled(BodyId id, bool enabled);
+  bool IsEnabled(BodyId id) const;
+  void SetFilter(BodyId id, const Filter& filter);
+  const Filter& GetFilter(BodyId id) const;
+  void SetUserData(BodyId id, std::uint64_t user_data);
+  std::uint64_t UserData(BodyId id) const;
 
   /// Adds a spring (preconditions: existing bodies, finite non-negative parameters). Springs act
   /// from the next step on.
   void AddSpring(const SpringDef& def);
   const std::vector<SpringDef>& Springs() const;
 
+  /// The live bodies, in slot order: the order bodies are stepped, dumped and hashed in.
+  std::span<const BodyId> BodyIds() const;
   std::size_t BodyCount() const;
+  /// The live body in slot `index` (contacts and faults name bodies by slot).
+  BodyId IdAt(BodyIndex index) const;
   const BodyState& State(BodyId id) const;
   const BodyInfo& Info(BodyId id) const;
   AABB BodyBounds(BodyId id) const;
   /// The settings, with the automatic ones (0 substeps or iterations) filled in.
   const WorldDef& Def() const;
   std::int64_t StepCount() const;
-  /// The contacts found in the last step, in body-pair order (with the substep solver these
+  /// The contacts found in the last step, in body-slot-pair order (with the substep solver these
   /// include speculative ones, with a gap: negative depth).
   const std::vector<Contact>& Contacts() const;
   /// Bodies the pair budget found in a crowd in the last step, and the pairs it left out there;
@@ -63,7 +102,7 @@ class World {
   /// The most pairs charged to one body in the last step, against quotas of 16 and up (a measure
   /// of how far a scene is from the budget; 0 with the budget off).
   std::uint32_t MostChargedPairs() const;
-  /// False while the body sleeps (and always for static bodies).
+  /// False while the body sleeps (and always for static, disabled and resting kinematic bodies).
   bool IsAwake(BodyId id) const;
 
   /// The first body a ray from `from` to `to` hits (static or dynamic), or nothing.

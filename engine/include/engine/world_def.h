@@ -77,6 +77,9 @@ struct WorldDef {
   /// quadratic in a pile's size (for tests that compare the two).
   bool pair_budget = true;
   SubstepFeatures substep_features;     ///< all on; off only to measure what one buys
+  /// Contact begin and end events after each step (World::Events); false: none, at no cost.
+  bool contact_events = true;
+  double hit_speed = 1.0;               ///< m/s: a contact that begins this fast is also a hit
 };
 
 }  // namespace engine

@@ -37,17 +37,23 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
                           std::span<double> angular) const {
   const std::size_t n = states.size();
   for (std::size_t i = 0; i < n; ++i) {
-    linear[i] = moving[i] ? def.gravity : Vec2{};
+    linear[i] = moving[i] == kAwake ? def.gravity : Vec2{};
     angular[i] = 0.0;
   }
 
   for (std::size_t i = 0; i < n && (damping || def.fluid_density != 0.0); ++i) {
-    if (!moving[i]) continue;
+    if (moving[i] != kAwake) continue;
     const BodyInfo& info = infos[i];
     const BodyState& s = states[i];
     if (info.linear_damping != 0.0) linear[i] -= info.linear_damping * s.velocity;
     if (rotation && info.angular_damping != 0.0) angular[i] -= info.angular_damping * s.angular_velocity;
     if (def.fluid_density != 0.0) linear[i] -= QuadraticDragRate(info, s) * s.velocity;
+  }
+
+  for (std::size_t i = 0; i < applied_forces.size(); ++i) {
+    if (moving[i] != kAwake) continue;
+    linear[i] += infos[i].inv_mass * applied_forces[i];
+    if (rotation) angular[i] += infos[i].inv_inertia * applied_torques[i];
   }
 
   if (def.gravitational_constant != 0.0) {
@@ -60,13 +66,13 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
         const double r2 = LengthSquared(d);
         if (r2 == 0.0) continue;
         const Vec2 pull = (def.gravitational_constant / (r2 * std::sqrt(r2))) * d;
-        if (moving[i]) linear[i] += infos[j].mass * pull;
-        if (moving[j]) linear[j] -= infos[i].mass * pull;
+        if (moving[i] == kAwake) linear[i] += infos[j].mass * pull;
+        if (moving[j] == kAwake) linear[j] -= infos[i].mass * pull;
       }
     }
   }
 
-  for (const SpringDef& spring : springs) {
+  for (const Spring& spring : springs) {
     const BodyState& a = states[spring.body_a];
     const Vec2 ra = Rotate(MakeRot(a.angle), spring.local_a);
     const Vec2 pa = a.position + ra;
@@ -86,11 +92,11 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
     const double tension = spring.stiffness * (length - spring.rest_length) + spring.damping * Dot(vb - va, dir);
     const Vec2 force = tension * dir;
     const BodyInfo& ia = infos[spring.body_a];
-    if (moving[spring.body_a]) {
+    if (moving[spring.body_a] == kAwake) {
       linear[spring.body_a] += ia.inv_mass * force;
       angular[spring.body_a] += ia.inv_inertia * Cross(ra, force);
     }
-    if (spring.body_b && moving[*spring.body_b]) {
+    if (spring.body_b && moving[*spring.body_b] == kAwake) {
       const BodyInfo& ib = infos[*spring.body_b];
       linear[*spring.body_b] -= ib.inv_mass * force;
       angular[*spring.body_b] -= ib.inv_inertia * Cross(rb, force);

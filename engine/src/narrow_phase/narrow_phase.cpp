@@ -64,6 +64,15 @@ namespace {
 
 }  // namespace
 
+bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b) {
+  Manifold m;
+  if (!CollideBodies(ia, a, ib, b, 0.0, &m)) return false;
+  for (int i = 0; i < m.point_count; ++i) {
+    if (m.points[i].depth >= 0.0) return true;
+  }
+  return false;
+}
+
 void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                          std::span<const BodyInfo> infos, std::span<const double> margins) {
   previous_contacts_.swap(contacts_);
@@ -83,6 +92,5 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
     contacts_.push_back(contact);
   }
 }
-
 
 }  // namespace engine::detail

@@ -8,14 +8,24 @@
 #include "body_pair.h"
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "engine/ids.h"
 
 namespace engine::detail {
+
+/// Whether two bodies' shapes overlap or touch (what a sensor reports).
+bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b);
 
 class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body.
   void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
               std::span<const BodyInfo> infos, std::span<const double> margins);
+
+  /// Forgets the body's contacts (destroyed or disabled), so none warm-starts a body that takes
+  /// its slot.
+  void RemoveBody(BodyIndex index) {
+    std::erase_if(contacts_, [&](const Contact& c) { return c.a == index || c.b == index; });
+  }
 
   std::vector<Contact>& Contacts() { return contacts_; }
   const std::vector<Contact>& Contacts() const { return contacts_; }

@@ -16,12 +16,12 @@ void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo>
   // First the colour of each contact (kept in `slot` for now) and how many take each one.
   std::array<std::uint32_t, kColours + 1> first{};
   for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const BodyId a = contacts[i].a, b = contacts[i].b;
+    const BodyIndex a = contacts[i].a, b = contacts[i].b;
     // A body with every colour taken shares the last one: that only costs parallelism.
     const int colour = std::min(std::countr_one(taken[a] | taken[b]), kColours - 1);
     const std::uint64_t bit = std::uint64_t{1} << colour;
-    if (!infos[a].is_static) taken[a] |= bit;
-    if (!infos[b].is_static) taken[b] |= bit;
+    if (!HasInfiniteMass(infos[a])) taken[a] |= bit;
+    if (!HasInfiniteMass(infos[b])) taken[b] |= bit;
     (*slot)[i] = static_cast<std::uint32_t>(colour);
     ++first[colour + 1];
   }

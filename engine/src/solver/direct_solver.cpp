@@ -62,7 +62,7 @@ double Coupling(const SubstepConstraint& ci, const Jacobian& ji, const SubstepCo
                 const Jacobian& jj) {
   double k = 0.0;
   // The body is A (sign −1) or B (+1) of row i; it adds where it is also A or B of row j.
-  auto add = [&](BodyId body, double sign, double arm, double inv_mass, double inv_inertia) {
+  auto add = [&](BodyIndex body, double sign, double arm, double inv_mass, double inv_inertia) {
     if (body == cj.a) k -= sign * (inv_mass * Dot(ji.d, jj.d) + inv_inertia * arm * jj.ra);
     if (body == cj.b) k += sign * (inv_mass * Dot(ji.d, jj.d) + inv_inertia * arm * jj.rb);
   };

@@ -21,8 +21,8 @@ struct ImpulsePoint {
 
 /// The solver's working state for one contact.
 struct ImpulseConstraint {
-  BodyId a;
-  BodyId b;
+  BodyIndex a;
+  BodyIndex b;
   Vec2 normal;
   double inv_mass_sum;
   double friction;

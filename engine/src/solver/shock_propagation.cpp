@@ -36,7 +36,7 @@ std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo
   std::uint32_t* queue = s->queue.data();
   std::size_t tail = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (infos[i].is_static) level[i] = 0, queue[tail++] = i;
+    if (HasInfiniteMass(infos[i])) level[i] = 0, queue[tail++] = i;
   }
   for (std::size_t head = 0; head < tail; ++head) {
     const std::uint32_t body = queue[head];

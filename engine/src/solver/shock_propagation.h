@@ -19,8 +19,8 @@ namespace engine::detail {
 /// step and read every substep in order: the pass walks memory straight through instead of
 /// jumping about the constraints.
 struct ShockRow {
-  BodyId a;
-  BodyId b;
+  BodyIndex a;
+  BodyIndex b;
   Vec2 normal;             ///< from a to b
   double inv_mass_a;       ///< 0 when a is the lower body, held fixed
   double inv_mass_b;       ///< 0 when b is the lower body

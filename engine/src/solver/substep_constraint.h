@@ -26,8 +26,8 @@ struct SubstepPoint {
 /// it that cannot: all they read lies in the first two cache lines (the header and the first
 /// point's scalars); the angular fields come last.
 struct alignas(64) SubstepConstraint {
-  BodyId a;
-  BodyId b;
+  BodyIndex a;
+  BodyIndex b;
   int point_count;
   bool angular;           ///< either body can turn: points carry anchors and angular terms
   Vec2 normal;
@@ -45,8 +45,8 @@ struct alignas(64) SubstepConstraint {
 /// substep, and the bytes they read are most of their time. The field names are SubstepPoint's,
 /// so the passes read either alike.
 struct LinearConstraint {
-  BodyId a;
-  BodyId b;
+  BodyIndex a;
+  BodyIndex b;
   Vec2 normal;
   double inv_mass_a;
   double inv_mass_b;

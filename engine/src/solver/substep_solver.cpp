@@ -142,13 +142,13 @@ void SubstepSolver::FindLoadedBodies(const StepContext& context) {
   // every body counts as loaded: the warm start then goes on whole everywhere.
   const WorldDef& def = context.def;
   const bool all_loaded = def.gravity != Vec2{} || def.gravitational_constant != 0.0 ||
-                          !def.substep_features.energy_limit;
+                          !context.forces.applied_forces.empty() || !def.substep_features.energy_limit;
   const std::size_t n = context.states.size();
   loaded_.assign(all_loaded ? 0 : n, 0);
   warm_free_.resize(all_loaded ? 0 : n);
   warm_free_angular_.resize(all_loaded || !def.rotation ? 0 : n);
   if (all_loaded) return;
-  for (const SpringDef& spring : context.forces.springs) {
+  for (const Spring& spring : context.forces.springs) {
     loaded_[spring.body_a] = context.moving[spring.body_a];
     if (spring.body_b) loaded_[*spring.body_b] = context.moving[*spring.body_b];
   }

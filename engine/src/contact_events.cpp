@@ -1,0 +1,90 @@
+// Contact events: touching pairs after each step, merged against the last step's.
+#include "contact_events.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace engine::detail {
+
+namespace {
+
+// How fast the bodies close along the normal at the contact's points (the fastest), m/s.
+double ApproachSpeed(const Contact& c, std::span<const BodyState> states) {
+  const BodyState& a = states[c.a];
+  const BodyState& b = states[c.b];
+  double fastest = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < c.manifold.point_count; ++i) {
+    const Vec2 p = c.manifold.points[i].point;
+    const Vec2 va = a.velocity + Cross(a.angular_velocity, p - a.position);
+    const Vec2 vb = b.velocity + Cross(b.angular_velocity, p - b.position);
+    fastest = std::max(fastest, -Dot(vb - va, c.manifold.normal));
+  }
+  return fastest;
+}
+
+bool Touching(const Contact& c, double linear_slop) {
+  for (int i = 0; i < c.manifold.point_count; ++i) {
+    if (c.normal_impulse[i] > 0.0 || c.manifold.points[i].depth >= -linear_slop) return true;
+  }
+  return false;
+}
+
+ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodies) {
+  Vec2 point;
+  for (int i = 0; i < c.manifold.point_count; ++i) point += c.manifold.points[i].point;
+  point = point / static_cast<double>(c.manifold.point_count);
+  return {bodies.IdOf(c.a), bodies.IdOf(c.b), point, c.manifold.normal, approach};
+}
+
+}  // namespace
+
+void ContactEvents::MeasureApproach(std::span<const Contact> contacts, std::span<const BodyState> states) {
+  approach_.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) approach_[i] = ApproachSpeed(contacts[i], states);
+}
+
+void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodies,
+                           std::span<const std::uint8_t> awake, const WorldDef& def, StepEvents* events) {
+  previous_.swap(touching_);
+  touching_.clear();
+  events->contact_end.insert(events->contact_end.end(), removed_.begin(), removed_.end());
+  removed_.clear();
+  std::size_t j = 0;  // walks the last step's touching pairs, in the same order
+  // A pair gone from the contacts ended, unless neither body moved: sleeping bodies keep
+  // touching without a contact.
+  auto end_before = [&](BodyPair pair) {
+    for (; j < previous_.size() && previous_[j] < pair; ++j) {
+      const BodyPair old = previous_[j];
+      if (!awake[old.a] && !awake[old.b]) {
+        touching_.push_back(old);
+      } else {
+        events->contact_end.push_back({bodies.IdOf(old.a), bodies.IdOf(old.b)});
+      }
+    }
+  };
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    if (!Touching(c, def.linear_slop)) continue;
+    const BodyPair pair{c.a, c.b};
+    end_before(pair);
+    touching_.push_back(pair);
+    if (j < previous_.size() && previous_[j] == pair) {
+      ++j;
+      continue;
+    }
+    const ContactBeginEvent begin = BeginOf(c, approach_[i], bodies);
+    events->contact_begin.push_back(begin);
+    if (begin.approach_speed >= def.hit_speed) events->hits.push_back(begin);
+  }
+  end_before({kNoBody, kNoBody});
+}
+
+void ContactEvents::RemoveBody(BodyIndex index, const Bodies& bodies) {
+  std::erase_if(touching_, [&](BodyPair p) {
+    if (p.a != index && p.b != index) return false;
+    removed_.push_back({bodies.IdOf(p.a), bodies.IdOf(p.b)});
+    return true;
+  });
+}
+
+}  // namespace engine::detail

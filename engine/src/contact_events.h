@@ -1,0 +1,37 @@
+// Contact begin, end and hit events: which pairs touch after a step, against the last step.
+// Internal to the engine.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bodies.h"
+#include "body_pair.h"
+#include "engine/contact.h"
+#include "engine/events.h"
+#include "engine/world_def.h"
+
+namespace engine::detail {
+
+class ContactEvents {
+ public:
+  /// Before the solver, while the bodies still have the step's starting velocities: how fast
+  /// each contact closes, for the begin events' approach speed.
+  void MeasureApproach(std::span<const Contact> contacts, std::span<const BodyState> states);
+  /// After the solver: a contact touches if the solver pushed on it or its bodies were within
+  /// the linear slop; the touching pairs that are new begin, the ones gone end (`awake`: per
+  /// body, whether it moved this step; a pair of bodies at rest stays touching).
+  void Update(std::span<const Contact> contacts, const Bodies& bodies, std::span<const std::uint8_t> awake,
+              const WorldDef& def, StepEvents* events);
+  /// The body was destroyed or disabled: its touching contacts end, reported after the next step.
+  void RemoveBody(BodyIndex index, const Bodies& bodies);
+
+ private:
+  std::vector<double> approach_;         ///< per contact of this step, m/s
+  std::vector<BodyPair> touching_;       ///< after the last step, sorted
+  std::vector<BodyPair> previous_;
+  std::vector<ContactEndEvent> removed_;
+};
+
+}  // namespace engine::detail
