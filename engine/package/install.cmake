@@ -1,6 +1,7 @@
 # Install rules for the engine as a package: the archive, the public headers, the exported target
 # ballbox::engine with ballboxConfig.cmake and its version file, and ballbox.pc for pkg-config.
-# All in the component "engine": `cmake --install BUILD --component engine` needs only the engine built.
+# All in the component "engine", so `cmake --install BUILD --component engine` needs only the
+# engine built.
 set_target_properties(engine PROPERTIES
   OUTPUT_NAME ballbox_engine  # libballbox_engine.a: a bare libengine.a would be ambiguous in lib/
   EXPORT_NAME engine)         # ballbox:: + engine
