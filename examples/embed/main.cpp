@@ -12,6 +12,8 @@ namespace {
 
 constexpr double kFloorTop = 0.0;
 
+unsigned long long Hex(std::uint64_t hash) { return hash; }  // for printf's %llx
+
 bool Report(bool ok, const char* what) {
   std::printf("%s %s\n", ok ? "ok  " : "FAIL", what);
   return ok;
@@ -47,7 +49,7 @@ engine::World BuildWorld(double nudge = 0.0) {
 }
 
 // Semi-implicit Euler (the default integrator) from rest, n steps of h under g:
-// v_n = -g·n·h, y_n = y0 - g·h²·n(n+1)/2, which is the parabola y0 - g·t²/2 lowered by g·t·h/2.
+// v_n = -g·n·h, y_n = y0 - g·h²·n(n+1)/2: the parabola y0 - g·t²/2 lowered by g·t·h/2.
 // The substep solver (the default) integrates each step in Def().substeps substeps.
 bool CheckFreeFall() {
   engine::World world = BuildWorld();
@@ -79,7 +81,8 @@ bool CheckAtRest() {
   bool ok = true;
   for (engine::BodyId id = 2; id < world.BodyCount(); ++id) {
     const engine::Shape& shape = world.Info(id).shape;
-    const double half = shape.type == engine::ShapeType::kCircle ? shape.radius : shape.half_extents.y;
+    const bool circle = shape.type == engine::ShapeType::kCircle;
+    const double half = circle ? shape.radius : shape.half_extents.y;
     const engine::BodyState& s = world.State(id);
     const double gap = s.position.y - half - kFloorTop;
     const double speed = engine::Length(s.velocity);
@@ -95,9 +98,12 @@ std::uint64_t DocumentedHash(const engine::World& world) {
   std::uint64_t hash = 0xcbf29ce484222325ULL;
   for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
     const engine::BodyState& s = world.State(id);
-    for (double value : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
+    for (double value : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle,
+                         s.angular_velocity}) {
       const auto bits = std::bit_cast<std::uint64_t>(value);
-      for (int byte = 0; byte < 8; ++byte) hash = (hash ^ ((bits >> (8 * byte)) & 0xffu)) * 0x100000001b3ULL;
+      for (int byte = 0; byte < 8; ++byte) {
+        hash = (hash ^ ((bits >> (8 * byte)) & 0xffu)) * 0x100000001b3ULL;
+      }
     }
   }
   return hash;
@@ -106,19 +112,18 @@ std::uint64_t DocumentedHash(const engine::World& world) {
 bool CheckStateHash() {
   engine::World world = BuildWorld();
   for (int step = 0; step < 90; ++step) world.Step();
-  std::printf("     StateHash %016llx, recomputed %016llx\n",
-              static_cast<unsigned long long>(world.StateHash()),
-              static_cast<unsigned long long>(DocumentedHash(world)));
-  return Report(world.StateHash() == DocumentedHash(world), "StateHash is the documented FNV-1a of the states");
+  std::printf("     StateHash %016llx, recomputed %016llx\n", Hex(world.StateHash()),
+              Hex(DocumentedHash(world)));
+  return Report(world.StateHash() == DocumentedHash(world),
+                "StateHash is the documented FNV-1a of the states");
 }
 
 // Two worlds built alike give the same bits; a ball moved by 1 µm gives others.
 bool CheckDeterminism() {
   engine::World a = BuildWorld(), b = BuildWorld(), nudged = BuildWorld(1e-6);
   for (int step = 0; step < 300; ++step) a.Step(), b.Step(), nudged.Step();
-  std::printf("     after 300 steps: %016llx, %016llx; nudged %016llx\n",
-              static_cast<unsigned long long>(a.StateHash()), static_cast<unsigned long long>(b.StateHash()),
-              static_cast<unsigned long long>(nudged.StateHash()));
+  std::printf("     after 300 steps: %016llx, %016llx; nudged %016llx\n", Hex(a.StateHash()),
+              Hex(b.StateHash()), Hex(nudged.StateHash()));
   return Report(a.StateHash() == b.StateHash() && a.StateHash() != nudged.StateHash(),
                 "two worlds built alike step to the same bits");
 }
@@ -126,7 +131,8 @@ bool CheckDeterminism() {
 }  // namespace
 
 int main() {
-  std::vector<bool> results = {CheckFreeFall(), CheckAtRest(), CheckStateHash(), CheckDeterminism()};
+  const std::vector<bool> results = {CheckFreeFall(), CheckAtRest(), CheckStateHash(),
+                                     CheckDeterminism()};
   // SNAPSHOT CHECK GOES HERE (issue 15): once World::SaveSnapshot / RestoreSnapshot exist, build a
   // world, step it, save, step N more and note StateHash, restore, step N again, and require the
   // same StateHash. This engine version has no snapshot API, so nothing is checked yet.

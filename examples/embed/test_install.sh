@@ -22,4 +22,5 @@ pc="$(find "$prefix" -name ballbox.pc)"
 echo "--- embed (pkg-config)"
 PKG_CONFIG_PATH="$(dirname "$pc")" "$here/pkgconfig_check.sh"
 
-echo "test-install: passed (installed to a temporary prefix; find_package and pkg-config consumers built and ran)"
+echo "test-install: passed (engine installed to a temporary prefix;" \
+     "examples/embed built on it with find_package and with pkg-config, and ran)"
