@@ -1,8 +1,9 @@
 # Two commands do all set-up on a fresh Debian 12 machine:
 #   make run   installs missing packages, builds, renders the default scene to out/default/
 #   make test  installs missing packages, builds, runs every test through CTest
-# and the robustness checks CI runs too (docs/robustness.md):
+# and the further checks CI runs (docs/robustness.md, docs/embedding.md):
 #   make test-sanitize          the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make test-install           the engine installed to a temporary prefix, examples/embed built on it
 #   make fuzz [FUZZ_SECONDS=600] both libFuzzer targets for FUZZ_SECONDS each (default 60), with clang
 BUILD ?= build
 JOBS ?= $(shell nproc)
@@ -26,7 +27,7 @@ SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
                 LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp:print_suppressions=0 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-.PHONY: deps build run test test-sanitize fuzz clean
+.PHONY: deps build run test test-install test-sanitize fuzz clean
 
 deps:
 	@missing=""; for p in $(PACKAGES); do \
@@ -47,6 +48,13 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Only the engine is built (in the same tree as `make build`); the script installs its component
+# to a temporary prefix and builds examples/embed there with find_package and with pkg-config.
+test-install: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS) --target engine
+	examples/embed/test_install.sh $(BUILD)
 
 # A second build tree with the sanitizers in every object (benchmarks left out: not tests).
 test-sanitize: deps
