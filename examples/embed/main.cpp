@@ -54,7 +54,7 @@ engine::World BuildWorld(double nudge = 0.0) {
 bool CheckFreeFall() {
   engine::World world = BuildWorld();
   const engine::WorldDef& def = world.Def();
-  const double g = -def.gravity.y, y0 = world.State(1).position.y;
+  const double g = -def.gravity.y, y0 = world.State({1}).position.y;
   const double h = def.solver == engine::ContactSolver::kSubstep ? def.dt / def.substeps : def.dt;
   const int per_step = def.solver == engine::ContactSolver::kSubstep ? def.substeps : 1;
   double worst = 0.0;
@@ -62,13 +62,13 @@ bool CheckFreeFall() {
     world.Step();
     const double n = step * per_step;
     const double expected = y0 - g * h * h * n * (n + 1) / 2.0;
-    worst = std::fmax(worst, std::fabs(world.State(1).position.y - expected) / std::fabs(expected));
+    worst = std::fmax(worst, std::fabs(world.State({1}).position.y - expected) / std::fabs(expected));
   }
   const double t = 120 * def.dt;
-  const double below_parabola = (y0 - g * t * t / 2.0) - world.State(1).position.y;
+  const double below_parabola = (y0 - g * t * t / 2.0) - world.State({1}).position.y;
   std::printf("     free fall: y(%.0f s) = %.12f m, closed form within %.1e (relative); "
               "%.6f m below the parabola, g·t·h/2 = %.6f m\n",
-              t, world.State(1).position.y, worst, below_parabola, g * t * h / 2.0);
+              t, world.State({1}).position.y, worst, below_parabola, g * t * h / 2.0);
   return Report(worst < 1e-12 && std::fabs(below_parabola - g * t * h / 2.0) < 1e-9,
                 "a ball in free fall follows semi-implicit Euler's closed form");
 }
@@ -79,7 +79,7 @@ bool CheckAtRest() {
   engine::World world = BuildWorld();
   for (int step = 0; step < 600; ++step) world.Step();
   bool ok = true;
-  for (engine::BodyId id = 2; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds().subspan(2)) {
     const engine::Shape& shape = world.Info(id).shape;
     const bool circle = shape.type == engine::ShapeType::kCircle;
     const double half = circle ? shape.radius : shape.half_extents.y;
@@ -96,7 +96,7 @@ bool CheckAtRest() {
 // documents it, computed here from State().
 std::uint64_t DocumentedHash(const engine::World& world) {
   std::uint64_t hash = 0xcbf29ce484222325ULL;
-  for (engine::BodyId id = 0; id < world.BodyCount(); ++id) {
+  for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
     for (double value : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle,
                          s.angular_velocity}) {
