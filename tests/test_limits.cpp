@@ -119,7 +119,7 @@ TEST_CASE("limits: values right at the limits load and simulate to finite number
   for (int step = 0; step < 10; ++step) world.Step();
   for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
-    INFO("body " << id);
+    INFO("body " << id.index);
     CHECK(std::isfinite(s.position.x));
     CHECK(std::isfinite(s.position.y));
     CHECK(std::isfinite(s.velocity.x));
