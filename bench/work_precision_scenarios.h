@@ -84,6 +84,7 @@ inline engine::World SpringWorld(engine::Integrator integrator, double h, double
   engine::World world(Def(integrator, h, {0, 0}));
   world.CreateBody(Ball({1, 0}, {0, 0}, 1.0));
   engine::SpringDef spring;
+  spring.body_a = {0};
   spring.stiffness = 4 * kPi * kPi;
   spring.damping = damping;
   world.AddSpring(spring);
