@@ -29,6 +29,17 @@ inline engine::BodyDef Static(engine::BodyDef def) {
   return def;
 }
 
+inline engine::BodyDef Kinematic(engine::BodyDef def, engine::Vec2 velocity = {}) {
+  def.is_kinematic = true;
+  def.velocity = velocity;
+  return def;
+}
+
+inline engine::BodyDef Sensor(engine::BodyDef def) {
+  def.is_sensor = true;
+  return def;
+}
+
 inline engine::BodyDef WithMass(engine::BodyDef def, double mass) {
   def.mass = mass;
   return def;
@@ -44,6 +55,22 @@ inline engine::WorldDef NoGravity() {
   engine::WorldDef def;
   def.gravity = {0, 0};
   return def;
+}
+
+inline void StepTimes(engine::World& world, int steps) {
+  for (int i = 0; i < steps; ++i) world.Step();
+}
+
+/// Semi-implicit Euler's free fall after n steps of h from rest-or-v0 under acceleration g, in
+/// closed form: v_n = v0 + n·g·h, x_n = x0 + n·v0·h + g·h²·n(n+1)/2 (the exact parabola's
+/// x0 + v0·t + g·t²/2 plus g·t·h/2, since each step moves with the velocity at its end).
+struct FreeFall {
+  double position;
+  double velocity;
+};
+inline FreeFall SemiImplicitFall(double x0, double v0, double g, double h, long long n) {
+  const double nn = static_cast<double>(n);
+  return {x0 + nn * v0 * h + g * h * h * nn * (nn + 1.0) / 2.0, v0 + nn * g * h};
 }
 
 /// J, of the bodies' motion along (rotation not counted).

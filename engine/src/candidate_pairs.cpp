@@ -15,10 +15,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // safety factor is the same half).
 constexpr double kFastFraction = 0.5;
 
-// Speculative contacts start this far apart (Box2D's 4 × linear slop), so a body coming to
-// rest is caught a little before it touches.
-constexpr double kSpeculativeSlops = 4.0;
-
 // The pair budget (PairCollector, docs/limits.md): a body keeps every pair charged to it, that
 // is every pair with a body at least as wide as itself, up to its quota. Solid circles or
 // squares of one size can give a body at most 8 such pairs (a 3 by 3 block: the diagonal ones

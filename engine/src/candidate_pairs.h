@@ -16,6 +16,10 @@
 
 namespace engine::detail {
 
+/// Speculative contacts start this many linear slops apart (Box2D's 4), so a body coming to rest
+/// is caught a little before it touches; each resting body's bounds grow by half of it.
+inline constexpr double kSpeculativeSlops = 4.0;
+
 /// The body's bounding box where it stands (turned boxes included).
 AABB BodyBounds(const Shape& shape, const BodyState& state);
 

@@ -46,18 +46,30 @@ BodyIndex World::Impl::Slot(BodyId id, const char* call) const {
 }
 
 void World::Impl::WakeAround(BodyIndex index) {
-  const BodyInfo& info = bodies.infos[index];
-  if (!HasInfiniteMass(info)) {
-    detail::WakeIsland(index, bodies.infos, sleep.View());
-    return;
-  }
-  for (const Contact& c : narrow_phase.Contacts()) {
-    if (c.a == index || c.b == index) detail::WakeIsland(c.a == index ? c.b : c.a, bodies.infos, sleep.View());
+  if (HasInfiniteMass(bodies.infos[index])) return WakeTouching(index);
+  detail::WakeIsland(index, bodies.infos, sleep.View());
+}
+
+void World::Impl::WakeTouching(BodyIndex index) {
+  detail::WakeIsland(index, bodies.infos, sleep.View());
+  if (!bodies.enabled[index]) return;  // it meets nothing
+  // A sleeping pair has no contact to follow (the step drops pairs where nothing moves), so the
+  // sleepers are found by their bounds: within the reach at which two resting bodies get a
+  // contact (candidate_pairs.cpp), so whatever rests on the body or under it.
+  const double reach = detail::kSpeculativeSlops * def.linear_slop;
+  const AABB b = detail::BodyBounds(bodies.infos[index].shape, bodies.states[index]);
+  const AABB near{b.lower - Vec2{reach, reach}, b.upper + Vec2{reach, reach}};
+  const detail::SleepState view = sleep.View();
+  for (BodyIndex i = 0; i < bodies.states.size(); ++i) {
+    if (view.awake[i] || view.island[i] == kNoBody || HasInfiniteMass(bodies.infos[i])) continue;
+    if (Overlaps(near, detail::BodyBounds(bodies.infos[i].shape, bodies.states[i]))) {
+      detail::WakeIsland(i, bodies.infos, view);
+    }
   }
 }
 
 void World::Impl::Withdraw(BodyIndex index) {
-  WakeAround(index);
+  WakeTouching(index);
   narrow_phase.RemoveBody(index);
   contact_events.RemoveBody(index, bodies);
   sensors.RemoveBody(index, bodies);
@@ -119,7 +131,10 @@ void World::SetEnabled(BodyId id, bool enabled) {
   if (!enabled) w.Withdraw(index);
   w.bodies.enabled[index] = enabled ? 1 : 0;
   w.bodies.Count(index, +1);
-  if (enabled) w.sleep.Place(index, detail::WakefulnessOf(w.bodies.infos[index], w.bodies.states[index]), true);
+  if (enabled) {
+    w.sleep.Place(index, detail::WakefulnessOf(w.bodies.infos[index], w.bodies.states[index]), true);
+    w.WakeTouching(index);  // sleepers where it reappears: nothing else would push them
+  }
   w.RebuildActingSprings();
 }
 
@@ -131,7 +146,7 @@ void World::SetFilter(BodyId id, const Filter& filter) {
   bodies.Count(index, -1);
   bodies.filters[index] = filter;
   bodies.Count(index, +1);
-  impl_->WakeAround(index);  // what it rested on may now let it fall through
+  impl_->WakeTouching(index);  // what it rested on, or what rested on it, may now fall through
 }
 
 const Filter& World::GetFilter(BodyId id) const { return impl_->bodies.filters[impl_->Slot(id, "GetFilter")]; }
@@ -145,15 +160,17 @@ std::uint64_t World::UserData(BodyId id) const { return impl_->bodies.user_data[
 void World::SetPosition(BodyId id, Vec2 position) {
   const BodyIndex index = impl_->Slot(id, "SetPosition");
   Require(IsFinite(position), "SetPosition: position must be finite");
+  impl_->WakeTouching(index);  // what rested on it, or under it, where it was
   impl_->bodies.states[index].position = position;
-  impl_->WakeAround(index);
+  impl_->WakeTouching(index);  // what it lands on or in
 }
 
 void World::SetAngle(BodyId id, double angle) {
   const BodyIndex index = impl_->Slot(id, "SetAngle");
   Require(std::isfinite(angle), "SetAngle: angle must be finite");
+  impl_->WakeTouching(index);
   impl_->bodies.states[index].angle = angle;
-  impl_->WakeAround(index);
+  impl_->WakeTouching(index);
 }
 
 void World::Impl::UpdateKinematicMotion(BodyIndex index) {

@@ -37,6 +37,9 @@ struct World::Impl {
   BodyIndex Slot(BodyId id, const char* call) const;
   /// Wakes the body's island, or for a static or kinematic body the islands touching it.
   void WakeAround(BodyIndex index);
+  /// Wakes the body's island and every sleeping island touching it (or within the reach of a
+  /// resting contact): for a body that moves by hand, goes, comes back or changes its filter.
+  void WakeTouching(BodyIndex index);
   /// Takes the body out of the simulation (destroyed or disabled): its contacts, sensor
   /// overlaps and springs stop; what it held up wakes.
   void Withdraw(BodyIndex index);
