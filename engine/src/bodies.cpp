@@ -92,6 +92,7 @@ void Bodies::Count(BodyIndex index, int sign) {
   add(inactive, !enabled[index]);
   add(filtered, !(filters[index] == Filter{}));
   add(sensors, info.is_sensor);
+  add(kinematic, info.is_kinematic);
 }
 
 void Bodies::ClearAppliedForces() {

@@ -33,6 +33,7 @@ struct Bodies {
   std::size_t inactive = 0;           ///< slots not simulated: disabled bodies and free slots
   std::size_t filtered = 0;           ///< bodies whose filter is not the default
   std::size_t sensors = 0;
+  std::size_t kinematic = 0;
   bool forces_applied = false;        ///< some applied force or torque waits for the step
 
   /// A slot for a new body (a free one, else a new one at the end), its generation kept.

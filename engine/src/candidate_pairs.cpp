@@ -99,6 +99,16 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
   if (bodies.filtered > 0) {
     std::erase_if(pairs_, [&](BodyPair p) { return !ShouldCollide(bodies.filters[p.a], bodies.filters[p.b]); });
   }
+  // A moving kinematic body meets static and kinematic bodies with nothing to solve (neither
+  // has mass): no contact, unless a sensor wants to see it. (Static pairs, resting, drop out
+  // with the sleepers.)
+  if (bodies.kinematic > 0) {
+    std::erase_if(pairs_, [&](BodyPair p) {
+      const BodyInfo& a = bodies.infos[p.a];
+      const BodyInfo& b = bodies.infos[p.b];
+      return HasInfiniteMass(a) && HasInfiniteMass(b) && !a.is_sensor && !b.is_sensor;
+    });
+  }
 }
 
 void CandidatePairs::FindAmongEnabled(const WorldDef& def, std::span<const std::uint8_t> enabled,

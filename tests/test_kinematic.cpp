@@ -1,0 +1,191 @@
+// Kinematic bodies: infinite mass that moves at its own velocity. They feel no force, are never
+// pushed, push and carry dynamic bodies, and at rest let what lies on them sleep. Each case runs
+// with both contact solvers, and with rotation on and off where turning could matter.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "engine/world.h"
+#include "world_builders.h"
+
+namespace {
+
+using engine::BodyId;
+using engine::ContactSolver;
+using engine::Vec2;
+using testing::Box;
+using testing::Circle;
+using testing::Kinematic;
+using testing::Static;
+
+struct Setup {
+  ContactSolver solver;
+  bool rotation;
+};
+
+constexpr Setup kSetups[] = {{ContactSolver::kSubstep, false},
+                             {ContactSolver::kSubstep, true},
+                             {ContactSolver::kSequentialImpulse, false},
+                             {ContactSolver::kSequentialImpulse, true}};
+
+std::string Name(const Setup& s) {
+  return std::string(s.solver == ContactSolver::kSubstep ? "substep" : "sequential impulse") +
+         (s.rotation ? ", rotation" : ", no rotation");
+}
+
+engine::WorldDef Def(const Setup& s) {
+  engine::WorldDef def;
+  def.solver = s.solver;
+  def.rotation = s.rotation;
+  return def;
+}
+
+engine::BodyDef Floor() { return Static(Box({0, -0.5}, {40, 1})); }
+
+}  // namespace
+
+TEST_CASE("kinematic: moves at its velocity exactly, x = x0 + v t, and feels no gravity", "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::World world(Def(setup));
+      engine::BodyDef def = Kinematic(Box({1, 5}, {2, 0.5}), {1.5, -0.5});
+      if (setup.rotation) def.angular_velocity = 0.7;
+      const BodyId body = world.CreateBody(def);
+      CHECK(world.Info(body).inv_mass == 0.0);
+      CHECK(world.IsAwake(body));  // it moves
+      const int steps = 90;
+      testing::StepTimes(world, steps);
+      const double t = steps * world.Def().dt;
+      const engine::BodyState& s = world.State(body);
+      CHECK(s.velocity == Vec2{1.5, -0.5});
+      CHECK(s.position.x == Approx(1 + 1.5 * t).epsilon(1e-12));  // 3.25 m after 1.5 s
+      CHECK(s.position.y == Approx(5 - 0.5 * t).epsilon(1e-12));  // 4.25 m
+      CHECK(s.angle == Approx(setup.rotation ? 0.7 * t : 0.0).margin(1e-12));
+    }
+  }
+}
+
+TEST_CASE("kinematic: a heavy body hitting it bounces off; it goes on at its own velocity",
+          "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::WorldDef def = Def(setup);
+      def.gravity = {0, 0};
+      engine::World world(def);
+      const BodyId wall = world.CreateBody(Kinematic(Box({0, 0}, {1, 2}), {1, 0}));
+      // 1000 kg hitting 0.3 m off the wall's centre line, so an unbalanced push would turn it.
+      const BodyId heavy = world.CreateBody(testing::WithMass(Box({4, 0.3}, {1, 1}, {-5, 0}), 1000.0));
+      testing::StepTimes(world, 120);
+      const engine::BodyState& w = world.State(wall);
+      CHECK(w.velocity == Vec2{1, 0});
+      CHECK(w.angular_velocity == 0.0);
+      CHECK(w.angle == 0.0);
+      CHECK(w.position.x == Approx(2.0).epsilon(1e-12));
+      CHECK(w.position.y == 0.0);
+      // Restitution 0.2 of the closing speed 6 m/s: it leaves at 1 + 0.2 · 6 = 2.2 m/s.
+      CHECK(world.State(heavy).velocity.x == Approx(2.2).margin(0.05));
+      CHECK(world.State(heavy).position.x > w.position.x + 0.99);
+    }
+  }
+}
+
+TEST_CASE("kinematic: a moving platform carries a box, which friction brings to its speed",
+          "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::World world(Def(setup));
+      const BodyId platform =
+          world.CreateBody(testing::WithMaterial(Kinematic(Box({0, 0}, {6, 0.5}), {1, 0}), 0.0, 0.5));
+      const BodyId box = world.CreateBody(testing::WithMaterial(Box({0, 0.75}, {1, 1}), 0.0, 0.5));
+      testing::StepTimes(world, 60);  // 1 s; friction μ g = 4.9 m/s² needs 0.2 s
+      const engine::BodyState& p = world.State(platform);
+      const engine::BodyState& b = world.State(box);
+      CHECK(p.position.x == Approx(1.0).epsilon(1e-12));
+      CHECK(p.position.y == 0.0);
+      CHECK(p.velocity == Vec2{1, 0});
+      CHECK(b.velocity.x == Approx(1.0).margin(1e-3));
+      CHECK(std::abs(b.velocity.y) < 1e-3);
+      CHECK(b.position.y == Approx(0.75).margin(0.01));
+      // The box slid back on the platform by v² / (2 μ g) = 0.102 m while it caught up.
+      CHECK(p.position.x - b.position.x == Approx(1.0 / (2 * 0.5 * 9.8)).margin(0.02));
+      CHECK(b.angle == Approx(0.0).margin(1e-3));
+    }
+  }
+}
+
+TEST_CASE("kinematic: a sweeping wall pushes boxes ahead of it along the floor", "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::World world(Def(setup));
+      world.CreateBody(Floor());
+      // 1 m tall, its bottom 2 cm over the floor, sweeping right at 1 m/s.
+      const BodyId wall = world.CreateBody(Kinematic(Box({-3, 0.52}, {0.2, 1}), {1, 0}));
+      const BodyId near = world.CreateBody(Box({0, 0.25}, {0.5, 0.5}));
+      const BodyId far = world.CreateBody(Box({1, 0.25}, {0.5, 0.5}));
+      testing::StepTimes(world, 360);  // 6 s: the wall's face goes from -2.9 to 3.1 m
+      REQUIRE_FALSE(world.Fault());
+      const engine::BodyState& w = world.State(wall);
+      CHECK(w.position.x == Approx(3.0).epsilon(1e-12));
+      CHECK(w.velocity == Vec2{1, 0});
+      // Friction slows the boxes, so the wall keeps them against its face: the near one touches
+      // it, the far one touches the near one, both at the wall's speed.
+      const engine::BodyState& n = world.State(near);
+      const engine::BodyState& f = world.State(far);
+      CHECK(n.position.x == Approx(3.1 + 0.25).margin(0.02));
+      CHECK(f.position.x == Approx(3.1 + 0.75).margin(0.04));
+      CHECK(n.velocity.x == Approx(1.0).margin(0.05));
+      CHECK(f.velocity.x == Approx(1.0).margin(0.05));
+      CHECK(n.position.y == Approx(0.25).margin(0.01));
+      CHECK(f.position.y == Approx(0.25).margin(0.01));
+    }
+  }
+}
+
+TEST_CASE("kinematic: one at rest lets a box on it sleep; set moving, it wakes the box and carries it",
+          "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::World world(Def(setup));
+      const BodyId platform = world.CreateBody(Kinematic(Box({0, 0}, {6, 0.5})));
+      const BodyId box = world.CreateBody(Box({0, 0.75}, {1, 1}));
+      CHECK_FALSE(world.IsAwake(platform));  // at rest it is not even integrated
+      testing::StepTimes(world, 120);  // 2 s; sleep comes after 0.5 s of rest
+      CHECK_FALSE(world.IsAwake(box));
+      CHECK(world.State(box).position.y == Approx(0.75).margin(0.01));
+      CHECK(world.State(platform).position == Vec2{0, 0});
+
+      world.SetLinearVelocity(platform, {1, 0});
+      CHECK(world.IsAwake(platform));
+      world.Step();
+      CHECK(world.IsAwake(box));
+      testing::StepTimes(world, 59);
+      CHECK(world.State(box).velocity.x == Approx(1.0).margin(1e-3));
+      world.SetLinearVelocity(platform, {0, 0});
+      CHECK_FALSE(world.IsAwake(platform));
+      testing::StepTimes(world, 120);
+      CHECK_FALSE(world.IsAwake(box));
+    }
+  }
+}
+
+TEST_CASE("kinematic: two kinematic bodies, or one and a static body, pass through each other",
+          "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    DYNAMIC_SECTION(Name(setup)) {
+      engine::World world(Def(setup));
+      world.CreateBody(Floor());
+      // Both sunk 0.1 m into the floor, crossing each other at t = 1 s.
+      const BodyId a = world.CreateBody(Kinematic(Box({-1, 0.4}, {1, 1}), {1, 0}));
+      const BodyId b = world.CreateBody(Kinematic(Circle({1, 0.4}, 0.5), {-1, 0}));
+      testing::StepTimes(world, 120);
+      REQUIRE_FALSE(world.Fault());
+      CHECK(world.State(a).position.x == Approx(1.0).epsilon(1e-12));
+      CHECK(world.State(b).position.x == Approx(-1.0).epsilon(1e-12));
+      CHECK(world.State(a).position.y == 0.4);
+      CHECK(world.State(a).velocity == Vec2{1, 0});
+      CHECK(world.State(b).velocity == Vec2{-1, 0});
+      CHECK(world.Contacts().empty());  // infinite mass against infinite mass: nothing to solve
+    }
+  }
+}
