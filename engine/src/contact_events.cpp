@@ -22,11 +22,19 @@ double ApproachSpeed(const Contact& c, std::span<const BodyState> states) {
   return fastest;
 }
 
-bool Touching(const Contact& c, double linear_slop) {
+// Whether the pair touched in this step: the contact solver pushed on it, or the bodies are
+// within the slop, or they bounced. A bounce (the substep solver's impact pass) leaves no
+// impulse on the contact and the bodies apart: they closed at `approach` when the step began,
+// near enough to meet within it, and now they part.
+bool Touching(const Contact& c, double approach, std::span<const BodyState> states, const WorldDef& def) {
+  double gap = std::numeric_limits<double>::infinity();
   for (int i = 0; i < c.manifold.point_count; ++i) {
-    if (c.normal_impulse[i] > 0.0 || c.manifold.points[i].depth >= -linear_slop) return true;
+    if (c.normal_impulse[i] > 0.0 || c.manifold.points[i].depth >= -def.linear_slop) return true;
+    gap = std::min(gap, -c.manifold.points[i].depth);
   }
-  return false;
+  if (!(approach > 0.0)) return false;
+  const double reach = approach * def.dt + 0.5 * Length(def.gravity) * def.dt * def.dt + def.linear_slop;
+  return gap <= reach && ApproachSpeed(c, states) < 0.0;
 }
 
 ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodies) {
@@ -64,7 +72,7 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
   };
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    if (!Touching(c, def.linear_slop)) continue;
+    if (!Touching(c, approach_[i], bodies.states, def)) continue;
     const BodyPair pair{c.a, c.b};
     end_before(pair);
     touching_.push_back(pair);
