@@ -57,7 +57,8 @@ detail::ForceModel World::Impl::Forces() const {
           .applied_forces = applied ? std::span<const Vec2>(bodies.applied_forces) : std::span<const Vec2>(),
           .applied_torques = applied ? std::span<const double>(bodies.applied_torques) : std::span<const double>(),
           .rotation = def.rotation,
-          .damping = bodies.damped > 0};
+          .damping = bodies.damped > 0,
+          .enabled = bodies.inactive > 0 ? std::span<const std::uint8_t>(bodies.enabled) : std::span<const std::uint8_t>()};
 }
 
 bool World::Impl::SpeculativeContacts() const {

@@ -57,11 +57,13 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
   }
 
   if (def.gravitational_constant != 0.0) {
-    // Every pair of dynamic bodies, in id order: a_i += G·m_j·(r_j − r_i)/|r|³.
+    // Every pair of dynamic bodies, in id order: a_i += G·m_j·(r_j − r_i)/|r|³. Disabled
+    // bodies and free slots pull nothing.
+    auto pulls = [&](std::size_t i) { return !infos[i].is_static && (enabled.empty() || enabled[i]); };
     for (std::size_t i = 0; i < n; ++i) {
-      if (infos[i].is_static) continue;
+      if (!pulls(i)) continue;
       for (std::size_t j = i + 1; j < n; ++j) {
-        if (infos[j].is_static) continue;
+        if (!pulls(j)) continue;
         const Vec2 d = states[j].position - states[i].position;
         const double r2 = LengthSquared(d);
         if (r2 == 0.0) continue;

@@ -24,6 +24,8 @@ struct ForceModel {
   std::span<const double> applied_torques;
   bool rotation;                         ///< torques turn into angular acceleration
   bool damping;                          ///< some body has linear or angular damping
+  /// Per body slot, 0 for a disabled body or a free slot (which pull nothing); empty: all enabled.
+  std::span<const std::uint8_t> enabled = {};
 
   /// Linear and angular acceleration of every body in `states` (zero for bodies not awake).
   void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
