@@ -21,16 +21,23 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> spri
   };
   // A slow body rests only when something holds it (a touching contact) or nothing pushes it:
   // a body sinking slowly through a fluid, or at the top of its arc, is moving, not resting.
+  // One that a moving kinematic body touches goes with it, however slowly: never at rest.
+  constexpr std::uint8_t kHeld = 1, kCarried = 2;
   std::vector<std::uint8_t> held(n, 0);
+  auto hold = [&](BodyIndex body, BodyIndex by) {
+    held[body] = std::max(held[body], sleep.awake[by] == kKinematicMoving ? kCarried : kHeld);
+  };
   for (const Contact& c : contacts) {
-    if (touching(c)) held[c.a] = held[c.b] = 1;
+    if (!touching(c)) continue;
+    hold(c.a, c.b);
+    hold(c.b, c.a);
   }
   const double speed_squared = def.sleep_speed * def.sleep_speed;
   for (std::size_t i = 0; i < n; ++i) {
     if (sleep.awake[i] != kAwake) continue;
     const bool resting = LengthSquared(states[i].velocity) <= speed_squared &&
                          states[i].angular_velocity * states[i].angular_velocity <= speed_squared &&
-                         (held[i] || accelerations[i] == Vec2{});
+                         held[i] != kCarried && (held[i] || accelerations[i] == Vec2{});
     sleep.rest_time[i] = resting ? sleep.rest_time[i] + def.dt : 0.0;
   }
 
