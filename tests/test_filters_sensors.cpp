@@ -217,3 +217,22 @@ TEST_CASE("sensors: a kinematic body sweeping through a sensor is reported in an
   CHECK(log.begins[0].step == Approx(75).margin(1));
   CHECK(log.ends[0].step == Approx(165).margin(1));
 }
+
+// Known problem, left for World::Step (not this branch's to change): Step updates the sensors
+// only while some sensor exists, so the ends of the last sensor's overlaps, queued when it is
+// destroyed, are never reported (and come out, stale, after a later sensor's first step). The
+// fix: also run SensorOverlaps::Update while ends are queued. Remove [!shouldfail] with it.
+TEST_CASE("sensors: destroying the last sensor ends its overlaps after the next step",
+          "[sensors][!shouldfail]") {
+  engine::World world(engine::WorldDef{});
+  world.CreateBody(Floor());
+  const BodyId sensor = world.CreateBody(Sensor(Static(Box({0, 0.51}, {2, 1}))));
+  const BodyId ball = world.CreateBody(Circle({0, 0.25}, 0.25));
+  world.Step();
+  REQUIRE(world.Events().sensor_begin.size() == 1);
+  world.DestroyBody(sensor);
+  world.Step();
+  REQUIRE(world.Events().sensor_end.size() == 1);
+  CHECK(world.Events().sensor_end[0].sensor == sensor);
+  CHECK(world.Events().sensor_end[0].visitor == ball);
+}
