@@ -114,6 +114,33 @@ TEST_CASE("kinematic: a moving platform carries a box, which friction brings to 
   }
 }
 
+TEST_CASE("kinematic: a lift moving up or down and sideways carries a stack of three boxes",
+          "[kinematic]") {
+  for (const Setup& setup : kSetups) {
+    for (const double vy : {1.0, -1.0}) {
+      DYNAMIC_SECTION(Name(setup) << ", vy " << vy) {
+        engine::World world(Def(setup));
+        const BodyId lift = world.CreateBody(Kinematic(Box({0, 0}, {4, 0.5}), {0.5, vy}));
+        BodyId boxes[3];
+        for (int i = 0; i < 3; ++i) boxes[i] = world.CreateBody(Box({0, 0.75 + i}, {1, 1}));
+        testing::StepTimes(world, 120);
+        CHECK(world.State(lift).position.y == Approx(2 * vy).epsilon(1e-12));
+        double below = world.State(lift).position.y + 0.25;  // the lift's top
+        for (const BodyId box : boxes) {
+          const engine::BodyState& s = world.State(box);
+          // Each box on the one below (within the slop: 5 mm with sequential impulses), at the
+          // lift's velocity, square.
+          CHECK(s.position.y - 0.5 - below == Approx(0.0).margin(0.006));
+          CHECK(s.velocity.x == Approx(0.5).margin(1e-3));
+          CHECK(s.velocity.y == Approx(vy).margin(0.015));
+          CHECK(s.angle == Approx(0.0).margin(1e-4));  // 1.6e-5 rad at most, substep with rotation
+          below = s.position.y + 0.5;
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("kinematic: a sweeping wall pushes boxes ahead of it along the floor", "[kinematic]") {
   for (const Setup& setup : kSetups) {
     DYNAMIC_SECTION(Name(setup)) {
