@@ -184,7 +184,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (!body.is_object()) throw SceneError{path, "must be an object"};
   RejectUnknownKeys(body, path,
                     {"id", "shape", "radius", "size", "position", "velocity", "angle",
-                     "angular_velocity", "mass", "density", "static", "restitution", "friction",
+                     "angular_velocity", "mass", "density", "static", "kinematic", "restitution", "friction",
                      "fixed_rotation", "bullet", "color", "linear_damping", "angular_damping",
                      "drag_coefficient"});
   SceneBody out;
@@ -225,9 +225,20 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   def.position = ReadVec2(*position, key("position"));
 
   if (const Json* v = Find(body, "static")) def.is_static = ReadBool(*v, key("static"));
+  if (const Json* v = Find(body, "kinematic")) def.is_kinematic = ReadBool(*v, key("kinematic"));
+  if (def.is_static && def.is_kinematic) {
+    throw SceneError{key("kinematic"), "a body cannot be both static and kinematic"};
+  }
   for (const char* moving_key : {"mass", "density", "velocity", "angular_velocity"}) {
     if (def.is_static && Find(body, moving_key)) {
       throw SceneError{key(moving_key), "a static body takes no mass, density or velocity"};
+    }
+  }
+  // A kinematic body moves at the velocity it is given and nothing pushes it: a mass would
+  // never be used.
+  for (const char* mass_key : {"mass", "density"}) {
+    if (def.is_kinematic && Find(body, mass_key)) {
+      throw SceneError{key(mass_key), "a kinematic body takes no mass or density (nothing pushes it)"};
     }
   }
   for (const char* angular_key : {"angle", "angular_velocity"}) {
@@ -245,7 +256,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (mass && density) throw SceneError{path, "give \"mass\" or \"density\", not both"};
   if (mass) def.mass = ReadPositive(*mass, key("mass"));
   if (density) def.density = ReadPositive(*density, key("density"));
-  if (!def.is_static) {
+  if (!def.is_static && !def.is_kinematic) {
     // The engine divides by the mass: one that underflows would make its inverse infinite.
     const double body_mass = mass ? def.mass : def.density * engine::ShapeArea(def.shape);
     if (!(body_mass >= kMinBodyMass)) {
@@ -263,7 +274,8 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (const Json* v = Find(body, "angular_damping")) def.angular_damping = ReadNonNegative(*v, key("angular_damping"));
   if (const Json* v = Find(body, "drag_coefficient")) def.drag_coefficient = ReadNonNegative(*v, key("drag_coefficient"));
 
-  out.color = def.is_static ? render::kStaticColor : render::PaletteColor(index);
+  // Bodies nothing can push (static or kinematic) are slate grey; the others take the palette.
+  out.color = def.is_static || def.is_kinematic ? render::kStaticColor : render::PaletteColor(index);
   if (const Json* v = Find(body, "color")) out.color = ReadColor(*v, key("color"));
   return out;
 }

@@ -369,6 +369,16 @@ TEST_CASE("ballbox sim: a bad scene is exit 2, one error line, nothing written",
   CHECK(IsEmptyDir(dir));
 }
 
+TEST_CASE("ballbox sim: a body both static and kinematic is exit 2, naming the key", "[cli][exe][kinematic]") {
+  const fs::path dir = ScratchDir("static_kinematic");
+  const std::string scene = DataPath("scene_static_kinematic.json");
+  const Run run = RunBallbox(dir, {"sim", scene, "--steps", "5", "--dump", (dir / "d.csv").string()});
+  CHECK(run.exit_code == 2);
+  CHECK(run.err == "error: " + scene + ": bodies[1].kinematic: a body cannot be both static and kinematic\n");
+  CHECK(run.out.empty());
+  CHECK(IsEmptyDir(dir));
+}
+
 TEST_CASE("ballbox sim: a bad script is exit 2, one error line, nothing written", "[cli][exe]") {
   const fs::path dir = ScratchDir("bad_script");
   const std::string script = DataPath("script_decreasing.txt");

@@ -55,6 +55,22 @@ TEST_CASE("a click outside every ball, on a box or on a static ball does nothing
   CHECK(hit->impulse.x == Approx(-10).epsilon(1e-14));
 }
 
+TEST_CASE("a click on a kinematic ball does nothing, even a moving one", "[click][kinematic]") {
+  engine::World world(testing::NoGravity());
+  world.CreateBody(testing::Kinematic(Circle({0, 0}, 0.5)));
+  world.CreateBody(testing::Kinematic(Circle({3, 0}, 0.5), {1, 0}));
+  CHECK_FALSE(game::ApplyClick(world, {0.25, 0}, 10));
+  CHECK_FALSE(game::ApplyClick(world, {3.25, 0}, 10));
+  CHECK(world.State({0}).velocity == Vec2{});
+  CHECK(world.State({1}).velocity == Vec2{1, 0});
+  // A dynamic ball under a kinematic one still takes the click meant for it.
+  const engine::BodyId ball = world.CreateBody(Circle({0.5, 0}, 0.5));
+  world.CreateBody(testing::Kinematic(Circle({0.5, 0}, 0.5)));  // on top, in scene order
+  const auto hit = game::ApplyClick(world, {0.25, 0}, 10);
+  REQUIRE(hit);
+  CHECK(hit->body == ball);
+}
+
 TEST_CASE("overlapping balls: the last in scene order takes the click", "[click]") {
   engine::World world(testing::NoGravity());
   world.CreateBody(Circle({0, 0}, 1.0));

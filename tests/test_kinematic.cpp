@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/world.h"
+#include "game/scene.h"
 #include "world_builders.h"
 
 namespace {
@@ -238,4 +239,56 @@ TEST_CASE("kinematic: two kinematic bodies, or one and a static body, pass throu
       CHECK(world.Contacts().empty());  // infinite mass against infinite mass: nothing to solve
     }
   }
+}
+
+TEST_CASE("kinematic: a ball on a spring from a moving kinematic body is towed along", "[kinematic]") {
+  engine::World world(engine::WorldDef{});
+  const BodyId hook = world.CreateBody(Kinematic(Box({0, 5}, {0.5, 0.5}), {1, 0}));
+  const BodyId ball = world.CreateBody(Circle({0, 4}, 0.25));
+  engine::SpringDef spring;
+  spring.body_a = ball;
+  spring.body_b = hook;
+  spring.rest_length = 1.0;
+  spring.stiffness = 100.0;
+  spring.damping = 5.0;
+  world.AddSpring(spring);
+  testing::StepTimes(world, 300);  // 5 s
+  CHECK(world.State(hook).velocity == Vec2{1, 0});  // the spring does not hold it back
+  CHECK(world.State(hook).position.x == Approx(5.0).epsilon(1e-12));
+  CHECK(world.State(hook).position.y == 5.0);
+  // The ball came 5 m along, swinging under the hook as a pendulum (the spring's damping acts
+  // along it only): the jerk of the start gives it an amplitude of 1 m/s · √(L/g) = 0.32 m.
+  const Vec2 below = world.State(hook).position - world.State(ball).position;
+  CHECK(std::abs(below.x) < 0.4);
+  CHECK(engine::Length(below) == Approx(1.0).margin(0.1));
+}
+
+TEST_CASE("kinematic: assets/scenes/kinematic_platform.json carries, lifts and sweeps for 10 s",
+          "[kinematic][scene]") {
+  const game::Expected<game::Scene> loaded =
+      game::LoadScene(std::string(BALLBOX_ASSETS) + "/scenes/kinematic_platform.json");
+  if (!loaded.HasValue()) FAIL(loaded.Error().message);
+  const game::Scene& scene = loaded.Value();
+  auto id = [&](const std::string& name) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].id == name) return BodyId{static_cast<engine::BodyIndex>(i)};
+    }
+    FAIL("no body " << name);
+    return BodyId{};
+  };
+  engine::World world = game::BuildWorld(scene);
+  testing::StepTimes(world, 600);
+  REQUIRE_FALSE(world.Fault());
+  // The carrier (0.8 m/s from x = -6) has its riders on it still, at its speed.
+  CHECK(world.State(id("carrier")).position.x == Approx(2.0).epsilon(1e-12));
+  for (const char* rider : {"rider_low", "rider_high"}) {
+    CHECK(world.State(id(rider)).velocity.x == Approx(0.8).margin(1e-3));
+    CHECK(world.State(id(rider)).position.x == Approx(2.0 - 0.54).margin(0.01));
+  }
+  // The lift has raised its box 3.5 m.
+  CHECK(world.State(id("lifted")).position.y == Approx(0.7 + 3.5).margin(0.01));
+  // The sweeper's face is at -5.35; the crates ride ahead of it, face to face.
+  CHECK(world.State(id("crate_a")).position.x == Approx(-5.35 + 0.4).margin(0.01));
+  CHECK(world.State(id("crate_b")).position.x == Approx(-5.35 + 1.2).margin(0.02));
+  CHECK(world.State(id("paddle")).angle == Approx(-12.0).epsilon(1e-12));
 }

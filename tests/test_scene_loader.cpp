@@ -327,6 +327,26 @@ TEST_CASE("scene static body with a velocity", "[scene]") {
                     "bodies[0].velocity: a static body takes no mass, density or velocity");
 }
 
+TEST_CASE("scene body both static and kinematic", "[scene][kinematic]") {
+  RequireSceneError("scene_static_kinematic.json", "bodies[1].kinematic: a body cannot be both static and kinematic");
+}
+
+TEST_CASE("scene kinematic body with a mass or a density", "[scene][kinematic]") {
+  RequireSceneError("scene_kinematic_mass.json",
+                    "bodies[0].mass: a kinematic body takes no mass or density (nothing pushes it)");
+  RequireSceneError("scene_kinematic_density.json",
+                    "bodies[0].density: a kinematic body takes no mass or density (nothing pushes it)");
+}
+
+TEST_CASE("scene kinematic that is not true or false", "[scene][kinematic]") {
+  RequireSceneError("scene_kinematic_bad_bool.json", "bodies[0].kinematic: must be true or false");
+}
+
+TEST_CASE("scene kinematic angular velocity without rotation", "[scene][kinematic]") {
+  RequireSceneError("scene_kinematic_angular_without_rotation.json",
+                    "bodies[0].angular_velocity: needs \"rotation\": true in the scene");
+}
+
 TEST_CASE("scene angle without rotation", "[scene]") {
   RequireSceneError("scene_angle_without_rotation.json",
                     "bodies[1].angle: needs \"rotation\": true in the scene");
@@ -526,6 +546,39 @@ TEST_CASE("scene with every key reads each body value", "[scene]") {
   CHECK(floor.is_static);
   CHECK(floor.restitution == 0.0);
   CHECK(floor.friction == 0.9);
+}
+
+TEST_CASE("scene kinematic bodies: read with their velocities, grey, moving at their own velocity",
+          "[scene][kinematic]") {
+  const game::Scene scene = RequireScene(DataPath("scene_kinematic.json"));
+  REQUIRE(scene.bodies.size() == 5);
+  const engine::BodyDef& platform = scene.bodies[1].def;
+  CHECK(platform.is_kinematic);
+  CHECK_FALSE(platform.is_static);
+  CHECK((platform.velocity.x == 1.5 && platform.velocity.y == 0.25));
+  CHECK(platform.angular_velocity == 0.5);
+  CHECK(scene.bodies[2].def.is_kinematic);
+  CHECK(scene.bodies[2].def.velocity.x == 0.0);
+  CHECK_FALSE(scene.bodies[0].def.is_kinematic);  // the default
+  CHECK_FALSE(scene.bodies[4].def.is_kinematic);  // given false
+  // Nothing pushes them, as nothing pushes a static body: the same grey, unless given a colour.
+  CHECK(scene.bodies[1].color == render::kStaticColor);
+  CHECK(scene.bodies[2].color == render::kStaticColor);
+  CHECK(SameColor(scene.bodies[3].color, 0xcc, 0x88, 0x44));
+  CHECK(scene.bodies[4].color == render::PaletteColor(4));
+
+  engine::World world = game::BuildWorld(scene);
+  CHECK(world.Info({1}).is_kinematic);
+  CHECK(world.Info({1}).inv_mass == 0.0);
+  CHECK(world.Info({1}).inv_inertia == 0.0);
+  for (int step = 0; step < 60; ++step) world.Step();
+  const engine::BodyState& s = world.State({1});
+  CHECK(s.position.x == Approx(-6 + 1.5).epsilon(1e-12));
+  CHECK(s.position.y == Approx(3 + 0.25).epsilon(1e-12));
+  CHECK(s.angle == Approx(0.5).epsilon(1e-12));
+  CHECK(world.State({2}).position.x == 6.0);  // at rest, it stays
+  CHECK(world.State({2}).position.y == 3.0);
+  CHECK(world.State({3}).position.y == Approx(7.0).epsilon(1e-12));  // no gravity on it
 }
 
 TEST_CASE("scene colours #rgb and #rrggbb decode to bytes", "[scene]") {
