@@ -218,6 +218,18 @@ TEST_CASE("sensors: a kinematic body sweeping through a sensor is reported in an
   CHECK(log.ends[0].step == Approx(165).margin(1));
 }
 
+TEST_CASE("sensors: a static body in a static sensor is a visitor too, reported once", "[sensors]") {
+  engine::World world(engine::WorldDef{});
+  const BodyId wall = world.CreateBody(Static(Box({0, 1}, {0.5, 2})));
+  const BodyId sensor = world.CreateBody(Sensor(Static(Box({0.5, 1}, {1, 1}))));  // over the wall's side
+  const SensorLog log = RecordSensors(world, 60);
+  REQUIRE(log.begins.size() == 1);
+  CHECK(log.begins[0].step == 1);
+  CHECK(log.begins[0].event.sensor == sensor);
+  CHECK(log.begins[0].event.visitor == wall);
+  CHECK(log.ends.empty());
+}
+
 // Known problem, left for World::Step (not this branch's to change): Step updates the sensors
 // only while some sensor exists, so the ends of the last sensor's overlaps, queued when it is
 // destroyed, are never reported (and come out, stale, after a later sensor's first step). The
