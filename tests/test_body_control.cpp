@@ -12,9 +12,8 @@ using engine::ContactSolver;
 using engine::Vec2;
 using testing::Box;
 using testing::Circle;
+using testing::Floor;
 using testing::Static;
-
-engine::BodyDef Floor() { return Static(Box({0, -0.5}, {20, 1})); }
 
 // A 1 m square of 2 kg: I = m (w² + h²) / 12 = 1/3 kg·m².
 engine::BodyDef UnitBox(Vec2 position) { return testing::WithMass(Box(position, {1, 1}), 2.0); }
@@ -36,7 +35,7 @@ int SubstepsOf(const engine::World& world) {
 
 TEST_CASE("control: SetLinearVelocity, then a step, gives the semi-implicit Euler step from it",
           "[control]") {
-  for (const ContactSolver solver : {ContactSolver::kSubstep, ContactSolver::kSequentialImpulse}) {
+  for (const ContactSolver solver : testing::kBothSolvers) {
     engine::WorldDef def;
     def.solver = solver;
     engine::World world(def);
@@ -61,7 +60,7 @@ TEST_CASE("control: SetLinearVelocity, then a step, gives the semi-implicit Eule
 }
 
 TEST_CASE("control: a force for one step changes the velocity by F dt / m, then is gone", "[control]") {
-  for (const ContactSolver solver : {ContactSolver::kSubstep, ContactSolver::kSequentialImpulse}) {
+  for (const ContactSolver solver : testing::kBothSolvers) {
     INFO("solver " << static_cast<int>(solver));
     engine::WorldDef def;
     def.solver = solver;
@@ -179,7 +178,7 @@ TEST_CASE("control: SetPosition wakes a sleeping body, which falls from its new 
 }
 
 TEST_CASE("control: moving a static shelf wakes the sleeping boxes on it, which fall", "[control]") {
-  for (const ContactSolver solver : {ContactSolver::kSubstep, ContactSolver::kSequentialImpulse}) {
+  for (const ContactSolver solver : testing::kBothSolvers) {
     INFO("solver " << static_cast<int>(solver));
     engine::WorldDef def;
     def.solver = solver;

@@ -16,12 +16,11 @@ using engine::BodyId;
 using engine::Vec2;
 using testing::Box;
 using testing::Circle;
+using testing::Floor;
 using testing::Static;
 
 constexpr double kG = 9.8;
 
-// A floor whose top is y = 0, 20 m wide.
-engine::BodyDef Floor() { return Static(Box({0, -0.5}, {20, 1})); }
 
 bool SameState(const engine::BodyState& a, const engine::BodyState& b) {
   return a.position == b.position && a.velocity == b.velocity && a.angle == b.angle &&
@@ -107,7 +106,7 @@ TEST_CASE("ids: BodyIds, BodyCount and the state hash skip destroyed bodies", "[
 
 TEST_CASE("destroy: the body under a sleeping stack goes and the stack wakes and falls",
           "[bodies][destroy]") {
-  for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
+  for (const engine::ContactSolver solver : testing::kBothSolvers) {
     DYNAMIC_SECTION("solver " << static_cast<int>(solver)) {
       engine::WorldDef def;
       def.solver = solver;
@@ -173,7 +172,7 @@ TEST_CASE("destroy: a body in the freed slot falls exactly as in a fresh world (
     // boxes on each other, solved by passes, keep part of it: with the narrow phase's contacts
     // of the destroyed boxes left in place, the new top box ends 4e-16 m lower after one step.
     for (const bool rotation : {false, true}) {
-      for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
+      for (const engine::ContactSolver solver : testing::kBothSolvers) {
         def.solver = solver;
         def.rotation = rotation;
         engine::World world(def);
@@ -209,12 +208,7 @@ TEST_CASE("destroy: the body's springs go with it", "[bodies][destroy]") {
   const BodyId anchor_ball = world.CreateBody(Circle({0, 5}, 0.25));
   const BodyId hanging = world.CreateBody(Circle({0, 3}, 0.25));
   const BodyId other = world.CreateBody(Circle({3, 5}, 0.25));
-  engine::SpringDef s;
-  s.body_a = hanging;
-  s.body_b = anchor_ball;
-  s.rest_length = 1.0;
-  s.stiffness = 50;
-  world.AddSpring(s);
+  world.AddSpring(testing::Spring(hanging, anchor_ball, 1.0, 50));
   engine::SpringDef fixed;  // the other ball hangs from a world point
   fixed.body_a = other;
   fixed.local_b = {3, 6};
@@ -267,7 +261,7 @@ TEST_CASE("destroy: a stale id passed to State() aborts, naming the call", "[bod
 
 TEST_CASE("enable: a disabled floor lets a ball through; enabled again, it holds the next one",
           "[bodies][enable]") {
-  for (const engine::ContactSolver solver : {engine::ContactSolver::kSubstep, engine::ContactSolver::kSequentialImpulse}) {
+  for (const engine::ContactSolver solver : testing::kBothSolvers) {
     DYNAMIC_SECTION("solver " << static_cast<int>(solver)) {
       engine::WorldDef def;
       def.solver = solver;

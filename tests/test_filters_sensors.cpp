@@ -13,12 +13,11 @@ using engine::Filter;
 using engine::Vec2;
 using testing::Box;
 using testing::Circle;
+using testing::Floor;
 using testing::Sensor;
 using testing::Static;
 
 constexpr double kG = 9.8;
-
-engine::BodyDef Floor() { return Static(Box({0, -0.5}, {20, 1})); }
 
 Filter Make(std::uint64_t category, std::uint64_t mask, std::int32_t group = 0) {
   Filter f;

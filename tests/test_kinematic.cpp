@@ -42,7 +42,7 @@ engine::WorldDef Def(const Setup& s) {
   return def;
 }
 
-engine::BodyDef Floor() { return Static(Box({0, -0.5}, {40, 1})); }
+engine::BodyDef Floor() { return testing::Floor(40); }
 
 }  // namespace
 
@@ -245,13 +245,7 @@ TEST_CASE("kinematic: a ball on a spring from a moving kinematic body is towed a
   engine::World world(engine::WorldDef{});
   const BodyId hook = world.CreateBody(Kinematic(Box({0, 5}, {0.5, 0.5}), {1, 0}));
   const BodyId ball = world.CreateBody(Circle({0, 4}, 0.25));
-  engine::SpringDef spring;
-  spring.body_a = ball;
-  spring.body_b = hook;
-  spring.rest_length = 1.0;
-  spring.stiffness = 100.0;
-  spring.damping = 5.0;
-  world.AddSpring(spring);
+  world.AddSpring(testing::Spring(ball, hook, 1.0, 100.0, 5.0));
   testing::StepTimes(world, 300);  // 5 s
   CHECK(world.State(hook).velocity == Vec2{1, 0});  // the spring does not hold it back
   CHECK(world.State(hook).position.x == Approx(5.0).epsilon(1e-12));

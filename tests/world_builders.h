@@ -51,6 +51,25 @@ inline engine::BodyDef WithMaterial(engine::BodyDef def, double restitution, dou
   return def;
 }
 
+/// Both contact solvers, for tests that hold for each.
+inline constexpr engine::ContactSolver kBothSolvers[] = {engine::ContactSolver::kSubstep,
+                                                         engine::ContactSolver::kSequentialImpulse};
+
+/// A static floor `width` m wide and 1 m thick whose top is y = 0.
+inline engine::BodyDef Floor(double width = 20.0) { return Static(Box({0, -0.5}, {width, 1})); }
+
+/// A spring between two bodies' centres.
+inline engine::SpringDef Spring(engine::BodyId a, engine::BodyId b, double rest_length, double stiffness,
+                                double damping = 0.0) {
+  engine::SpringDef spring;
+  spring.body_a = a;
+  spring.body_b = b;
+  spring.rest_length = rest_length;
+  spring.stiffness = stiffness;
+  spring.damping = damping;
+  return spring;
+}
+
 inline engine::WorldDef NoGravity() {
   engine::WorldDef def;
   def.gravity = {0, 0};
