@@ -2,6 +2,8 @@
 // naming the file and the key, and a value right at the limit is accepted.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <sys/wait.h>
 
 #include <cmath>

@@ -3,6 +3,8 @@
 // proportion to the scene; where the engine also owes physics (no tunnelling), that is checked.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

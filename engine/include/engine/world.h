@@ -16,6 +16,7 @@
 #include "engine/math.h"
 #include "engine/queries.h"
 #include "engine/shape.h"
+#include "engine/snapshot.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
 
@@ -110,6 +111,18 @@ class World {
 
   /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
   std::uint64_t StateHash() const;
+
+  /// The whole state as bytes: every body (destroyed slots and generations included), the
+  /// springs, the sleep timers, last step's contacts with their warm-start impulses, what the
+  /// events and the solver carry from step to step, the step count. A world made with the same
+  /// WorldDef that restores it steps on to the same bits as this one (docs/embedding.md).
+  std::vector<std::uint8_t> TakeSnapshot() const;
+  /// The same into `out` (its storage reused: no allocation once it is large enough).
+  void TakeSnapshot(std::vector<std::uint8_t>* out) const;
+  /// Replaces this world's state with a snapshot's. Refuses (and changes nothing) a snapshot of
+  /// a world with other settings, or one that is truncated or corrupt. The last step's events
+  /// are not part of a snapshot: Events() is empty after a restore.
+  RestoreResult RestoreSnapshot(std::span<const std::uint8_t> snapshot);
 
  private:
   struct Impl;  // engine/src/world_impl.h: the bodies, the step's stages and their scratch
