@@ -27,9 +27,11 @@ struct ClipEdge {
 int ClipToReferenceFace(const ClipEdge& reference, Vec2 normal, const ClipEdge& incident,
                         double margin, ContactPoint out[2]);
 
-/// Two directions this close (within 0.8°) count as the same: closest corners lined up with a
-/// face normal are two faces lined up, for which clipping gives the two points a stack needs.
-inline constexpr double kAlignedCos = 0.9999;
+/// Two unit directions whose dot product reaches this are the same up to rounding (within about
+/// 1.4e-6 rad). Closest corners lined up with a face normal that exactly are two equal faces
+/// stacked end to end, for which clipping gives the two points a stack needs; any visible tilt
+/// is a true corner contact, whose normal must follow the corners.
+inline constexpr double kAlignedCos = 1.0 - 1e-12;
 
 /// The edge of `incident` whose normal points most against `reference_normal` (ties: the lower).
 int IncidentEdge(const Polygon& incident, Vec2 reference_normal);
