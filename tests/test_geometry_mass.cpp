@@ -52,13 +52,13 @@ TEST_CASE("turn angle: the portable arctangent matches std::atan2", "[geometry]"
     const double y = rng.Uniform(-10, 10), x = rng.Uniform(-10, 10);
     worst = std::max(worst, std::abs(PortableAtan2(y, x) - std::atan2(y, x)));
   }
+  INFO("worst |error| " << worst);
   CHECK(worst < 2e-15);
   CHECK(PortableAtan2(0, 0) == 0.0);
   CHECK(PortableAtan2(0, -1) == Approx(kPiTest).epsilon(1e-16));
   CHECK(PortableAtan2(1, 0) == Approx(kPiTest / 2).epsilon(1e-16));
   CHECK(TurnAngle({1, 0}, {0, -1}) == Approx(1.5 * kPiTest).epsilon(1e-15));
   CHECK(TurnAngle({1, 0}, {-1, 0}) == Approx(kPiTest).epsilon(1e-16));
-  INFO("worst |error| " << worst);
 }
 
 TEST_CASE("mass: a right triangle by hand", "[geometry]") {
@@ -136,11 +136,11 @@ TEST_CASE("mass: a rounded irregular pentagon against grid integration", "[geome
   const Polygon p = MakePolygon(points, 0.3);
   const MassProperties exact = PolygonMass(p, 1.0);
   const MassProperties grid = GridIntegrate(p, 1.6, 1600);
+  INFO("exact " << exact.mass << " " << exact.inertia << ", grid " << grid.mass << " " << grid.inertia);
   CHECK(exact.mass == Approx(grid.mass).epsilon(1e-4));
   CHECK(exact.center.x == Approx(grid.center.x).margin(1e-4));
   CHECK(exact.center.y == Approx(grid.center.y).margin(1e-4));
   CHECK(exact.inertia == Approx(grid.inertia).epsilon(2e-4));
-  INFO("exact " << exact.mass << " " << exact.inertia << ", grid " << grid.mass << " " << grid.inertia);
 }
 
 TEST_CASE("mass: an L of two boxes by hand, placed and turned", "[geometry]") {

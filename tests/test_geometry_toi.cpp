@@ -37,10 +37,10 @@ TEST_CASE("toi: a dart at 2000 m/s against a 10 cm wall", "[geometry]") {
   // The tip reaches target separation after moving 10 − target.
   const ToiSettings settings;
   const double analytic = (10.0 - settings.target) / step;
+  INFO("t = " << toi.fraction << " (analytic " << analytic << "), iterations " << toi.iterations);
   CHECK(std::abs(toi.fraction - analytic) * step <= settings.tolerance);
   CHECK(std::abs(toi.separation - settings.target) <= settings.tolerance);
   CHECK(toi.iterations <= 3);
-  INFO("t = " << toi.fraction << " (analytic " << analytic << "), iterations " << toi.iterations);
 }
 
 TEST_CASE("toi: a spinning box against a wall matches a brute-force scan of the sweep", "[geometry]") {
@@ -66,10 +66,10 @@ TEST_CASE("toi: a spinning box against a wall matches a brute-force scan of the 
   const double earliest = first_within(settings.target + settings.tolerance);
   const double latest = first_within(settings.target);
   REQUIRE(latest < 1.0);
+  INFO("t = " << toi.fraction << " in [" << earliest << ", " << latest << "], iterations " << toi.iterations);
   CHECK(toi.fraction >= earliest - 1e-6);
   CHECK(toi.fraction <= latest + 1e-6);
   CHECK(separation(toi.fraction) == Approx(toi.separation).margin(1e-12));
-  INFO("t = " << toi.fraction << " in [" << earliest << ", " << latest << "], iterations " << toi.iterations);
   CHECK(toi.iterations < 20);
   // Capped at one iteration it fails, but the time it reports is still safe.
   ToiSettings capped = settings;
