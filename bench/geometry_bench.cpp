@@ -83,7 +83,7 @@ int main() {
   Manifold m;
 
   bench::PrintMachine(load);
-  std::printf("\n| call (%d random placements, about half touching) | ns/call |\n|---|---:|\n", kPlacements);
+  std::printf("\n| call (over %d random placements) | ns/call |\n|---|---:|\n", kPlacements);
   Row("CollideOrientedBoxes (existing)", NanosecondsPerCall([&](int i) { return engine::CollideOrientedBoxes(boxes_a[i], boxes_b[i], &m, margin) ? 1 : 0; }));
   Row("CollidePolygons, the same boxes", NanosecondsPerCall([&](int i) { return CollidePolygons(box, near_a[i], box, near_b[i], &m, margin) ? 1 : 0; }));
   Row("CollidePolygons, octagons", NanosecondsPerCall([&](int i) { return CollidePolygons(octagon, near_a[i], octagon, near_b[i], &m, margin) ? 1 : 0; }));

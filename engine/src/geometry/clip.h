@@ -1,6 +1,6 @@
-// Reference-face clipping shared by the polygon and chain colliders: the incident edge cut to
-// the reference face's extent, one contact point per surviving end (Catto, "Contact Manifolds",
-// GDC 2007; Box2D's b2ClipPolygons).
+// What the polygon and chain colliders share: reference-face clipping (the incident edge cut to
+// the reference face's extent, one contact point per surviving end; Catto, "Contact Manifolds",
+// GDC 2007; Box2D's b2ClipPolygons), the incident edge, feature ids, and the world manifold.
 #pragma once
 
 #include <cstdint>

@@ -27,7 +27,8 @@ MassProperties CapsuleMass(const Capsule& capsule, double density);
 /// disc sector at each vertex spanning the turn between its two edge normals (the sectors add
 /// up to one disc). Box2D v3's b2ComputePolygonMass approximates the rounded skin by pushing
 /// the vertices out instead; the sectors need their angles, which TurnAngle gives without libm.
-/// A two-vertex polygon is a capsule and agrees with CapsuleMass.
+/// A two-vertex polygon is a capsule and agrees with CapsuleMass; it needs a radius > 0 (a bare
+/// segment has no area).
 MassProperties PolygonMass(const Polygon& polygon, double density);
 
 /// The same mass placed in a parent frame: the centre moves, the inertia about it does not.
