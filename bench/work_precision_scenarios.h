@@ -82,9 +82,8 @@ inline engine::Vec2 FirstBody(const engine::World& world) { return world.State({
 // S2 and S3: m = 1 on a spring of rest length 0 to the origin, from x = 1 at rest.
 inline engine::World SpringWorld(engine::Integrator integrator, double h, double damping) {
   engine::World world(Def(integrator, h, {0, 0}));
-  world.CreateBody(Ball({1, 0}, {0, 0}, 1.0));
   engine::SpringDef spring;
-  spring.body_a = {0};
+  spring.body_a = world.CreateBody(Ball({1, 0}, {0, 0}, 1.0));
   spring.stiffness = 4 * kPi * kPi;
   spring.damping = damping;
   world.AddSpring(spring);

@@ -34,7 +34,10 @@ constexpr const char* kRunFlags =
     "  --size WxH       image size in pixels (default 800x600); any size shows at least what\n"
     "                   800x600 shows. Pixel clicks map through it unless the script has a\n"
     "                   `size W H` line\n"
-    "  --misses         list each click that hit no ball (step, where, the nearest ball)\n";
+    "  --misses         list each click that hit no ball (step, where, the nearest ball)\n"
+    "  --save-state FILE  at the end, write the whole simulation state to FILE\n"
+    "  --load-state FILE  start from a state saved from this scene (script events before its\n"
+    "                   step are skipped)\n";
 
 constexpr const char* kViewFlags =
     "  --camera X,Y,WIDTH  look at world point (X, Y) with WIDTH metres across an 800x600\n"
@@ -101,6 +104,7 @@ const FlagSpec kFlags[] = {
     {"--from", {"render"}, true},                 {"--hud", {"render"}, false},
     {"--camera", {"render", "play"}, true},       {"--follow", {"render", "play"}, true},
     {"--record", {"play"}, true},
+    {"--save-state", {"render", "sim", "play"}, true}, {"--load-state", {"render", "sim", "play"}, true},
 };
 
 const FlagSpec* FindFlag(const std::string& command, const std::string& flag) {
@@ -174,6 +178,8 @@ Status ApplyFlag(CommandLine& cl, RunOptions& run, const std::string& command,
   ViewOptions& view = command == "play" ? cl.play.view : cl.render.view;
   if (flag == "--script") {
     run.script_path = v;
+  } else if (flag == "--save-state" || flag == "--load-state") {
+    (flag == "--save-state" ? run.save_state_path : run.load_state_path) = v;
   } else if (flag == "--size") {
     if (!ParseSize(v, &run.width, &run.height)) {
       return Usage(command, "--size: expected WxH with whole numbers from 1 to " +

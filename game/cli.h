@@ -18,6 +18,8 @@ struct RunOptions {
   int width = 800;
   int height = 600;
   bool list_misses = false;  ///< --misses: a line for each click that hit no ball
+  std::optional<std::string> save_state_path = std::nullopt;  ///< --save-state FILE: the state at the end
+  std::optional<std::string> load_state_path = std::nullopt;  ///< --load-state FILE: the state to start from
 };
 
 /// What the picture shows, apart from the scene's camera. Pixel clicks in scripts keep mapping

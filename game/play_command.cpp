@@ -238,6 +238,9 @@ Status RunPlay(const PlayOptions& options) {
   PlayController controller(std::move(input.Value().scene), std::move(input.Value().events),
                             width, height, PlayLimits{stop_at.Value(), pause_at.Value()},
                             kMaxFrameSeconds, FilmView{options.view.camera, follow.Value()});
+  if (options.run.load_state_path) {
+    if (Status refused = controller.LoadState(*options.run.load_state_path)) return refused;
+  }
   std::string error;
   render::Window::Failure failure = render::Window::Failure::kNone;
   std::unique_ptr<render::Window> window =
@@ -265,6 +268,9 @@ Status RunPlay(const PlayOptions& options) {
   if (status) return status;
 
   const Session& session = controller.GetSession();
+  if (options.run.save_state_path) {
+    if (Status failed = session.SaveState(*options.run.save_state_path)) return failed;
+  }
   if (record) {
     std::fputs(RecordingHeader(options, controller).c_str(), record->Stream());
     std::fputs(FormatScript(controller.Recorded()).c_str(), record->Stream());

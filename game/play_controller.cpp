@@ -70,6 +70,15 @@ bool PlayController::StepOnce() {
   return true;
 }
 
+Status PlayController::LoadState(const std::string& path) {
+  if (Status refused = session_->LoadState(path)) return refused;
+  while (next_script_event_ < script_.size() && script_[next_script_event_].step < session_->StepIndex()) {
+    ++next_script_event_;
+  }
+  camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
+  return std::nullopt;
+}
+
 void PlayController::Restart() {
   session_ = std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width_,
                                        image_height_);

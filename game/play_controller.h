@@ -51,6 +51,9 @@ class PlayController {
   /// empty recording (the recording always describes the run since the last start). Paused or
   /// running stays as it was.
   void Restart();
+  /// Starts from the state saved in `path` (--load-state); the script's events before its step
+  /// are skipped.
+  Status LoadState(const std::string& path);
 
   bool Paused() const { return paused_; }
   /// The stop_at step is reached: the run is over.

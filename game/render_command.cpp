@@ -66,6 +66,9 @@ Status RunRender(const RenderOptions& options) {
   if (!follow.HasValue()) return follow.Error();
   Session session(input.Value().scene, std::move(input.Value().events), options.run.width,
                   options.run.height);
+  if (options.run.load_state_path) {
+    if (Status refused = session.LoadState(*options.run.load_state_path)) return refused;
+  }
 
   FrameSequenceOptions sequence;
   sequence.frames = options.frames;
@@ -85,6 +88,9 @@ Status RunRender(const RenderOptions& options) {
   sequence.view = {options.view.camera, follow.Value()};
   Expected<FrameSequenceStats> stats = RenderFrameSequence(session, sequence);
   if (!stats.HasValue()) return stats.Error();
+  if (options.run.save_state_path) {
+    if (Status failed = session.SaveState(*options.run.save_state_path)) return failed;
+  }
 
   const FrameSequenceStats& s = stats.Value();
   PrintEventSummary(session.SceneDef(), session.Events(), session.EventsLeft(), options.run.list_misses);

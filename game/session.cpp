@@ -2,6 +2,7 @@
 #include "game/session.h"
 
 #include "game/click.h"
+#include "game/saved_state.h"
 
 namespace game {
 
@@ -34,6 +35,14 @@ void Session::Step() {
   }
   world_.Step();
 }
+
+Status Session::LoadState(const std::string& path) {
+  if (Status failed = game::LoadState(path, scene_, &world_)) return failed;
+  while (next_event_ < events_.size() && events_[next_event_].step < StepIndex()) ++next_event_;
+  return std::nullopt;
+}
+
+Status Session::SaveState(const std::string& path) const { return game::SaveState(path, scene_, world_); }
 
 Status Session::Fault() const {
   const std::optional<engine::NumericFault>& fault = world_.Fault();

@@ -31,6 +31,12 @@ class Session {
   /// the script names (its `size` line), else at this session's image size.
   engine::Vec2 EventPoint(const InputEvent& event) const;
 
+  /// Starts from the state saved in `path` instead of the scene's initial one (bad input if it
+  /// was saved from another scene); the events before its step are skipped.
+  Status LoadState(const std::string& path);
+  /// Writes the current state to `path` (--save-state).
+  Status SaveState(const std::string& path) const;
+
   /// A failure naming the body and step where the simulation produced a non-finite number (exit
   /// code 1), or nothing. Once set, the world no longer steps.
   Status Fault() const;

@@ -42,6 +42,9 @@ Status RunSim(const SimOptions& options) {
   if (!input.HasValue()) return input.Error();
   Session session(input.Value().scene, std::move(input.Value().events), options.run.width,
                   options.run.height);
+  if (options.run.load_state_path) {
+    if (Status refused = session.LoadState(*options.run.load_state_path)) return refused;
+  }
 
   std::optional<AtomicOutputFile> dump;
   std::vector<std::string> ids;
@@ -65,6 +68,9 @@ Status RunSim(const SimOptions& options) {
 
   if (dump) {
     if (Status failed = dump->Commit()) return failed;
+  }
+  if (options.run.save_state_path) {
+    if (Status failed = session.SaveState(*options.run.save_state_path)) return failed;
   }
   std::printf("sim: %s, %zu bodies, %" PRId64 " steps in %.3f s\n", session.SceneDef().name.c_str(),
               session.World().BodyCount(), options.steps, seconds);

@@ -2,6 +2,8 @@
 // to a finite state and finite figures, so the benchmark cannot rot unnoticed. No timing here.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <cmath>
 
 #include "bench/solver_scenes.h"

@@ -1,6 +1,8 @@
 // The command line: ParseCommandLine in-process, then the ballbox binary end to end (exit codes, CSV dump).
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <sys/wait.h>
 
 #include <algorithm>

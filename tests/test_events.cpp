@@ -3,6 +3,8 @@
 // ended before.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>

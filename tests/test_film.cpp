@@ -2,6 +2,8 @@
 // lag), --from, --hud, the progress bar's ETA, and a run interrupted with Ctrl-C or killed.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <stb/stb_image.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -2,6 +2,8 @@
 // terminal velocity in air and water, and the rest position of a spring-hung plank.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <cmath>
 #include <string>
 

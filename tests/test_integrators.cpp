@@ -247,9 +247,8 @@ TEST_CASE("S2: explicit Euler gains energy every step at every step size", "[int
   for (double dt : {1.0 / 60.0, 1.0 / 600.0, 1.0 / 6000.0}) {
     INFO("h = " << dt);
     engine::World world(FreeWorld(Integrator::kExplicitEuler, dt, {0, 0}));
-    world.CreateBody(Ball({1, 0}, {0, 0}, 1.0));
     engine::SpringDef spring;
-    spring.body_a = {0};
+    spring.body_a = world.CreateBody(Ball({1, 0}, {0, 0}, 1.0));
     spring.stiffness = k;
     world.AddSpring(spring);
     double previous = 0.5 * k;

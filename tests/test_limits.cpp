@@ -2,6 +2,8 @@
 // naming the file and the key, and a value right at the limit is accepted.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <sys/wait.h>
 
 #include <cmath>
@@ -119,7 +121,7 @@ TEST_CASE("limits: values right at the limits load and simulate to finite number
   for (int step = 0; step < 10; ++step) world.Step();
   for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
-    INFO("body " << id.index);
+    INFO("body " << id);
     CHECK(std::isfinite(s.position.x));
     CHECK(std::isfinite(s.position.y));
     CHECK(std::isfinite(s.velocity.x));

@@ -3,6 +3,8 @@
 // mapping, the status line's font, and screenshots that never overwrite.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>

@@ -3,6 +3,8 @@
 // restart). Window tests are skipped, with a warning, where xvfb-run or xdotool is missing.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <stb/stb_image.h>
 #include <sys/wait.h>
 

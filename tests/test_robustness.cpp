@@ -3,6 +3,8 @@
 // proportion to the scene; where the engine also owes physics (no tunnelling), that is checked.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -123,7 +125,7 @@ TEST_CASE("extreme: 1 mm and 1 km bodies together stay finite and do not fall th
   // Resting things may sink by the solver's slop (5 mm), never through what holds them.
   CHECK(Bottom(world, {1}) > -0.01);
   for (engine::BodyId id{2}; id.index < world.BodyCount(); ++id.index) {
-    INFO("body " << id.index << " at y = " << world.State(id).position.y);
+    INFO("body " << id << " at y = " << world.State(id).position.y);
     const bool on_slab = (id.index - 2) % 3 == 2;
     const double support = on_slab ? world.BodyBounds({1}).upper.y : 0.0;
     CHECK(Bottom(world, id) > support - 0.01);

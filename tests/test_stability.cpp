@@ -2,6 +2,8 @@
 // circle pours, energy), on the axis-aligned game at 60 Hz with sleeping off.
 #include <catch2/catch.hpp>
 
+#include "print_ids.h"
+
 #include <cmath>
 #include <vector>
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/world.h"
+#include "print_ids.h"
 
 namespace testing {
 

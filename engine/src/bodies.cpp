@@ -56,6 +56,10 @@ BodyIndex Bodies::Allocate() {
     live_ids.insert(at, IdOf(index));
     return index;
   }
+  return AppendSlot();
+}
+
+BodyIndex Bodies::AppendSlot() {
   const auto index = static_cast<BodyIndex>(states.size());
   states.emplace_back();
   infos.emplace_back();
@@ -75,7 +79,11 @@ void Bodies::Free(BodyIndex index) {
   enabled[index] = 0;
   ++generations[index];
   ++inactive;
+  // A free slot holds nothing that acts: no mass to attract with, nothing to step (and the same
+  // in a world restored from a snapshot, which stores no more of the slot than its generation).
   states[index] = BodyState{};
+  infos[index] = BodyInfo{};
+  infos[index].is_static = true;
   applied_forces[index] = {};
   applied_torques[index] = 0.0;
   free_slots.push_back(index);

@@ -38,6 +38,8 @@ struct Bodies {
 
   /// A slot for a new body (a free one, else a new one at the end), its generation kept.
   BodyIndex Allocate();
+  /// A new slot at the end, live, generation 0 (snapshots rebuild the slots in order with it).
+  BodyIndex AppendSlot();
   /// Frees the slot and makes every id of it stale.
   void Free(BodyIndex index);
   bool IsLive(BodyId id) const {

@@ -11,6 +11,7 @@
 #include "engine/contact.h"
 #include "engine/events.h"
 #include "engine/world_def.h"
+#include "snapshot/byte_stream.h"
 
 namespace engine::detail {
 
@@ -26,6 +27,9 @@ class ContactEvents {
               const WorldDef& def, StepEvents* events);
   /// The body was destroyed or disabled: its touching contacts end, reported after the next step.
   void RemoveBody(BodyIndex index, const Bodies& bodies);
+  /// What carries over from step to step, for snapshots (snapshot/world_snapshot.cpp).
+  void Save(ByteWriter& out) const;
+  bool Load(ByteReader& in, const Bodies& bodies);
 
  private:
   std::vector<double> approach_;         ///< per contact of this step, m/s

@@ -8,6 +8,7 @@
 #include "bodies.h"
 #include "body_pair.h"
 #include "engine/events.h"
+#include "snapshot/byte_stream.h"
 
 namespace engine::detail {
 
@@ -21,6 +22,9 @@ class SensorOverlaps {
   void Update(const Bodies& bodies, StepEvents* events);
   /// The body was destroyed or disabled: its overlaps end, reported after the next step.
   void RemoveBody(BodyIndex index, const Bodies& bodies);
+  /// What carries over from step to step, for snapshots (snapshot/world_snapshot.cpp).
+  void Save(ByteWriter& out) const;
+  bool Load(ByteReader& in, const Bodies& bodies);
 
  private:
   SensorEvent EventOf(BodyPair pair, const Bodies& bodies) const;

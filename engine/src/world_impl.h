@@ -13,6 +13,7 @@
 #include "forces/springs.h"
 #include "integrate.h"
 #include "sensor_overlaps.h"
+#include "snapshot/byte_stream.h"
 #include "narrow_phase/narrow_phase.h"
 #include "sleep.h"
 #include "solver/sequential_impulse_solver.h"
@@ -45,6 +46,10 @@ struct World::Impl {
   void Withdraw(BodyIndex index);
   /// After a kinematic body's velocity changes: it moves (is integrated) only while it has one.
   void UpdateKinematicMotion(BodyIndex index);
+  /// Snapshots (snapshot/world_snapshot.cpp): everything but the settings, which the reader's
+  /// world must share (checked by a fingerprint).
+  void Save(detail::ByteWriter& out) const;
+  bool Load(detail::ByteReader& in);
   /// The springs that act: those with something to pull, between enabled bodies.
   void RebuildActingSprings();
 

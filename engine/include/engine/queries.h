@@ -6,12 +6,12 @@
 
 namespace engine {
 
-/// Where a ray first meets a body.
+/// Where a ray, or a shape cast along a translation, first meets a body.
 struct RayHit {
   BodyId body;
   Vec2 point;       ///< on the body's outline
-  Vec2 normal;      ///< the outline's outward normal there
-  double fraction;  ///< of the way from the ray's start to its end, in [0, 1]
+  Vec2 normal;      ///< the outline's outward normal there (towards the cast shape)
+  double fraction;  ///< of the way from the ray's start to its end (of the translation), in [0, 1]
 };
 
 }  // namespace engine

@@ -10,12 +10,14 @@
 
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "engine/debug_draw.h"
 #include "engine/events.h"
 #include "engine/filter.h"
 #include "engine/ids.h"
 #include "engine/math.h"
 #include "engine/queries.h"
 #include "engine/shape.h"
+#include "engine/snapshot.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
 
@@ -105,11 +107,50 @@ class World {
   /// False while the body sleeps (and always for static, disabled and resting kinematic bodies).
   bool IsAwake(BodyId id) const;
 
-  /// The first body a ray from `from` to `to` hits (static or dynamic), or nothing.
-  std::optional<RayHit> RayCast(Vec2 from, Vec2 to) const;
+  // Queries, between steps (docs/embedding.md). They see every enabled body, static and sensor
+  // ones too; never a disabled or destroyed one. Results come in slot order, or by fraction with
+  // slot order breaking ties. A `filter` keeps the bodies a body with that filter would collide
+  // with (ShouldCollide, as Box2D's query filter does); without one, every body counts.
+
+  /// The first body a ray from `from` to `to` enters, or nothing. A body the ray starts inside
+  /// is not entered, so it is not reported.
+  std::optional<RayHit> RayCast(Vec2 from, Vec2 to,
+                                const std::optional<Filter>& filter = std::nullopt) const;
+  /// Every body the ray enters, by fraction.
+  std::vector<RayHit> RayCastAll(Vec2 from, Vec2 to,
+                                 const std::optional<Filter>& filter = std::nullopt) const;
+  /// The bodies whose bounding boxes (BodyBounds) overlap `box`; touching counts (Overlaps).
+  std::vector<BodyId> OverlapAABB(const AABB& box,
+                                  const std::optional<Filter>& filter = std::nullopt) const;
+  /// The bodies whose shapes overlap or touch `shape` at `position`, turned by `angle` (rad).
+  std::vector<BodyId> OverlapShape(const Shape& shape, Vec2 position, double angle,
+                                   const std::optional<Filter>& filter = std::nullopt) const;
+  /// The first body `shape` (at `position`, turned by `angle`) meets when it moves by
+  /// `translation` without turning: exact up to rounding. `point` is where they touch, `normal`
+  /// points from the body towards the shape. A body the shape starts overlapping is met at
+  /// fraction 0 (normal {0, 0}, point `position`); one it starts only touching, at 0 when the
+  /// motion goes into it, and not at all when the motion leaves it or slides along it.
+  std::optional<RayHit> ShapeCast(const Shape& shape, Vec2 position, double angle, Vec2 translation,
+                                  const std::optional<Filter>& filter = std::nullopt) const;
+
+  /// Describes the world to `draw`: every live body in slot order (disabled ones as such), then
+  /// the springs, the bounds and the last step's contact points, as `options` selects.
+  void Draw(DebugDraw& draw, const DrawOptions& options = {}) const;
 
   /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
   std::uint64_t StateHash() const;
+
+  /// The whole state as bytes: every body (destroyed slots and generations included), the
+  /// springs, the sleep timers, last step's contacts with their warm-start impulses, what the
+  /// events and the solver carry from step to step, the step count. A world made with the same
+  /// WorldDef that restores it steps on to the same bits as this one (docs/embedding.md).
+  std::vector<std::uint8_t> TakeSnapshot() const;
+  /// The same into `out` (its storage reused: no allocation once it is large enough).
+  void TakeSnapshot(std::vector<std::uint8_t>* out) const;
+  /// Replaces this world's state with a snapshot's. Refuses (and changes nothing) a snapshot of
+  /// a world with other settings, or one that is truncated or corrupt. The last step's events
+  /// are not part of a snapshot: Events() is empty after a restore.
+  RestoreResult RestoreSnapshot(std::span<const std::uint8_t> snapshot);
 
  private:
   struct Impl;  // engine/src/world_impl.h: the bodies, the step's stages and their scratch

@@ -8,6 +8,7 @@
 
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "snapshot/byte_stream.h"
 #include "step_context.h"
 
 namespace engine {
@@ -59,6 +60,9 @@ class SequentialImpulseSolver {
 
   /// One step: free motion, impulses, then the projection of what overlap is left.
   void Step(StepContext& context);
+  /// Nothing carries over from step to step but the contacts' impulses (the world saves those).
+  void Save(ByteWriter&) const {}
+  bool Load(ByteReader&, std::size_t) { return true; }
 
  private:
   std::vector<ImpulseConstraint> constraints_;

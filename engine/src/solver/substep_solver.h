@@ -12,6 +12,7 @@
 #include "solver/shock_propagation.h"
 #include "solver/substep_constraint.h"
 #include "solver/substep_passes.h"
+#include "snapshot/byte_stream.h"
 #include "step_context.h"
 
 namespace engine::detail {
@@ -40,6 +41,10 @@ class SubstepSolver {
   static void FillAutomaticSettings(WorldDef* def);
 
   void Step(StepContext& context);
+  /// What carries over from step to step (the contacts the direct solve took last step), for
+  /// snapshots (snapshot/world_snapshot.cpp).
+  void Save(ByteWriter& out) const;
+  bool Load(ByteReader& in, std::size_t slots);
 
  private:
   template <typename C>

@@ -1,0 +1,81 @@
+// World::Draw: the world described through the debug-draw interface, and the interface's empty
+// defaults (an embedder overrides only what it draws).
+#include "engine/debug_draw.h"
+
+#include "candidate_pairs.h"
+#include "world_impl.h"
+
+namespace engine {
+
+void DebugDraw::DrawCircle(BodyId, Vec2, double, double, BodyKind) {}
+void DebugDraw::DrawBox(BodyId, Vec2, Vec2, double, BodyKind) {}
+void DebugDraw::DrawSpring(Vec2, Vec2) {}
+void DebugDraw::DrawBounds(BodyId, const AABB&, BodyKind) {}
+void DebugDraw::DrawContact(Vec2, Vec2, double, double) {}
+
+namespace {
+
+// The first kind that applies to the live body in `slot`.
+BodyKind KindOf(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, BodyIndex slot) {
+  const BodyInfo& info = bodies.infos[slot];
+  if (!bodies.enabled[slot]) return BodyKind::kDisabled;
+  if (info.is_sensor) return BodyKind::kSensor;
+  if (info.is_static) return BodyKind::kStatic;
+  if (info.is_kinematic) return BodyKind::kKinematic;
+  return awake[slot] ? BodyKind::kAwake : BodyKind::kAsleep;
+}
+
+// A point fixed on a body, in world coordinates.
+Vec2 Anchor(const BodyState& state, Vec2 local) { return state.position + Rotate(MakeRot(state.angle), local); }
+
+void DrawShapes(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, DebugDraw& draw) {
+  for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
+    if (!bodies.alive[slot]) continue;
+    const Shape& shape = bodies.infos[slot].shape;
+    const BodyState& state = bodies.states[slot];
+    const BodyKind kind = KindOf(bodies, awake, slot);
+    if (shape.type == ShapeType::kCircle) {
+      draw.DrawCircle(bodies.IdOf(slot), state.position, shape.radius, state.angle, kind);
+    } else {
+      draw.DrawBox(bodies.IdOf(slot), state.position, shape.half_extents, state.angle, kind);
+    }
+  }
+}
+
+void DrawSprings(const detail::Bodies& bodies, std::span<const SpringDef> springs, DebugDraw& draw) {
+  for (const SpringDef& spring : springs) {
+    const Vec2 a = Anchor(bodies.states[spring.body_a.index], spring.local_a);
+    const Vec2 b = spring.body_b ? Anchor(bodies.states[spring.body_b->index], spring.local_b) : spring.local_b;
+    draw.DrawSpring(a, b);
+  }
+}
+
+void DrawBounds(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, DebugDraw& draw) {
+  for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
+    if (!bodies.alive[slot]) continue;
+    const AABB bounds = detail::BodyBounds(bodies.infos[slot].shape, bodies.states[slot]);
+    draw.DrawBounds(bodies.IdOf(slot), bounds, KindOf(bodies, awake, slot));
+  }
+}
+
+void DrawContacts(std::span<const Contact> contacts, DebugDraw& draw) {
+  for (const Contact& contact : contacts) {
+    const Manifold& m = contact.manifold;
+    for (int i = 0; i < m.point_count; ++i) {
+      draw.DrawContact(m.points[i].point, m.normal, m.points[i].depth, contact.normal_impulse[i]);
+    }
+  }
+}
+
+}  // namespace
+
+void World::Draw(DebugDraw& draw, const DrawOptions& options) const {
+  const detail::Bodies& bodies = impl_->bodies;
+  // Shapes first and contacts last, so that what is drawn later lies on top.
+  if (options.shapes) DrawShapes(bodies, impl_->sleep.awake, draw);
+  if (options.springs) DrawSprings(bodies, impl_->springs.all, draw);
+  if (options.bounds) DrawBounds(bodies, impl_->sleep.awake, draw);
+  if (options.contacts) DrawContacts(impl_->narrow_phase.Contacts(), draw);
+}
+
+}  // namespace engine
