@@ -58,7 +58,8 @@ detail::ForceModel World::Impl::Forces() const {
           .applied_torques = applied ? std::span<const double>(bodies.applied_torques) : std::span<const double>(),
           .rotation = def.rotation,
           .damping = bodies.damped > 0,
-          .enabled = bodies.inactive > 0 ? std::span<const std::uint8_t>(bodies.enabled) : std::span<const std::uint8_t>()};
+          .enabled = bodies.inactive > 0 ? std::span<const std::uint8_t>(bodies.enabled)
+                                         : std::span<const std::uint8_t>()};
 }
 
 bool World::Impl::SpeculativeContacts() const {
