@@ -229,12 +229,9 @@ TEST_CASE("sensors: a static body in a static sensor is a visitor too, reported 
   CHECK(log.ends.empty());
 }
 
-// Known problem, left for World::Step (not this branch's to change): Step updates the sensors
-// only while some sensor exists, so the ends of the last sensor's overlaps, queued when it is
-// destroyed, are never reported (and come out, stale, after a later sensor's first step). The
-// fix: also run SensorOverlaps::Update while ends are queued. Remove [!shouldfail] with it.
-TEST_CASE("sensors: destroying the last sensor ends its overlaps after the next step",
-          "[sensors][!shouldfail]") {
+// Step updates the sensors while some sensor exists or ends of removed ones wait: the last
+// sensor's overlaps, queued when it is destroyed, are reported after the next step.
+TEST_CASE("sensors: destroying the last sensor ends its overlaps after the next step", "[sensors]") {
   engine::World world(engine::WorldDef{});
   world.CreateBody(Floor());
   const BodyId sensor = world.CreateBody(Sensor(Static(Box({0, 0.51}, {2, 1}))));

@@ -22,6 +22,8 @@ class SensorOverlaps {
   void Update(const Bodies& bodies, StepEvents* events);
   /// The body was destroyed or disabled: its overlaps end, reported after the next step.
   void RemoveBody(BodyIndex index, const Bodies& bodies);
+  /// Ends of removed bodies wait to be reported (even with no sensor left).
+  bool HasQueuedEnds() const { return !removed_.empty(); }
   /// What carries over from step to step, for snapshots (snapshot/world_snapshot.cpp).
   void Save(ByteWriter& out) const;
   bool Load(ByteReader& in, const Bodies& bodies);

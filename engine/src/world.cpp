@@ -108,7 +108,7 @@ void World::Step() {
   if (w.def.contact_events) {
     w.contact_events.Update(w.narrow_phase.Contacts(), bodies, w.sleep.awake, w.def, &w.events);
   }
-  if (bodies.sensors > 0) w.sensors.Update(bodies, &w.events);
+  if (bodies.sensors > 0 || w.sensors.HasQueuedEnds()) w.sensors.Update(bodies, &w.events);
   // A non-finite number stops here, named, not in a frame.
   w.fault = detail::FindNonFinite(bodies.states, w.step_count);
   ++w.step_count;
