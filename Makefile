@@ -4,7 +4,7 @@
 # and the further checks CI runs (docs/robustness.md, docs/embedding.md):
 #   make test-sanitize          the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make test-install           the engine installed to a temporary prefix, examples/embed built on it
-#   make fuzz [FUZZ_SECONDS=600] both libFuzzer targets for FUZZ_SECONDS each (default 60), with clang
+#   make fuzz [FUZZ_SECONDS=600] the three libFuzzer targets for FUZZ_SECONDS each (default 60), with clang
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PACKAGES := build-essential cmake pkg-config nlohmann-json3-dev catch2 \
@@ -70,7 +70,7 @@ test-sanitize: deps
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DBALLBOX_FUZZ=ON -DBUILD_TESTING=OFF -DBALLBOX_BUILD_BENCH=OFF -DBALLBOX_WITH_GLFW=OFF
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene fuzz_script
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene fuzz_script fuzz_snapshot ballbox
 	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 clean:
