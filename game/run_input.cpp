@@ -27,7 +27,7 @@ Expected<std::optional<engine::BodyId>> FollowedBody(const Scene& scene, const V
                                                      const std::string& scene_label) {
   if (!view.follow) return std::optional<engine::BodyId>();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].id == *view.follow) return std::optional<engine::BodyId>(i);
+    if (scene.bodies[i].id == *view.follow) return std::optional<engine::BodyId>(engine::BodyId{static_cast<engine::BodyIndex>(i)});
   }
   return BadInput("--follow: " + scene_label + " has no body with the id \"" + *view.follow + "\"");
 }

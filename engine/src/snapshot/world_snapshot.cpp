@@ -103,7 +103,17 @@ void WriteInfo(ByteWriter& out, const BodyInfo& info) {
                                    (info.bullet ? kBullet : 0)));
 }
 
-bool ReadInfo(ByteReader& in, BodyInfo* info) {
+// The mass properties MakeBodyInfo gives a body of this kind in a world with or without
+// rotation: anything else would break the solvers' assumptions (a body that turns in a world
+// that tracks no turning, a static body with mass).
+bool ConsistentMass(const BodyInfo& info, bool rotation) {
+  if (HasInfiniteMass(info)) return info.mass == 0.0 && info.inv_mass == 0.0 && info.inertia == 0.0 && info.inv_inertia == 0.0;
+  const bool turns = rotation && !info.fixed_rotation;
+  return info.mass > 0.0 && info.inv_mass == 1.0 / info.mass && info.inertia > 0.0 &&
+         info.inv_inertia == (turns ? 1.0 / info.inertia : 0.0);
+}
+
+bool ReadInfo(ByteReader& in, bool rotation, BodyInfo* info) {
   const std::uint8_t type = in.U8();
   in.Check(type <= static_cast<std::uint8_t>(ShapeType::kBox));
   info->shape.type = static_cast<ShapeType>(type);
@@ -125,7 +135,7 @@ bool ReadInfo(ByteReader& in, BodyInfo* info) {
   const bool sized = s.type == ShapeType::kCircle ? std::isfinite(s.radius) && s.radius > 0.0
                                                   : IsFinite(s.half_extents) && s.half_extents.x > 0.0 &&
                                                         s.half_extents.y > 0.0;
-  return in.Check(sized && flags < 32 && !(info->is_static && info->is_kinematic));
+  return in.Check(sized && flags < 32 && !(info->is_static && info->is_kinematic) && ConsistentMass(*info, rotation));
 }
 
 void WriteContact(ByteWriter& out, const Contact& c) {
@@ -251,14 +261,19 @@ bool World::Impl::Load(ByteReader& in) {
       continue;
     }
     BodyInfo& info = bodies.infos[index];
-    if (!ReadInfo(in, &info)) return false;
+    if (!ReadInfo(in, def.rotation, &info)) return false;
     BodyState& s = bodies.states[index];
     double* state[] = {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y, &s.angle, &s.angular_velocity};
     for (double* v : state) *v = in.F64();
     const double rest = in.F64();
     const std::uint8_t awake = in.U8();
     const std::uint32_t island = in.U32();
-    in.Check(awake <= detail::kKinematicMoving && (island < n || island == kNoBody) && std::isfinite(rest) &&
+    // What each kind of body may be: static ones rest, dynamic ones sleep or wake, kinematic
+    // ones rest or move; a disabled body rests.
+    const std::uint8_t most = !(flags & kEnabled) || info.is_static ? detail::kResting
+                              : info.is_kinematic                   ? detail::kKinematicMoving
+                                                                    : detail::kAwake;
+    in.Check((awake == detail::kResting || awake == most) && (island < n || island == kNoBody) && std::isfinite(rest) &&
              (fault || (IsFinite(s.position) && IsFinite(s.velocity) && std::isfinite(s.angle) &&
                         std::isfinite(s.angular_velocity))));
     bodies.enabled[index] = (flags & kEnabled) ? 1 : 0;
