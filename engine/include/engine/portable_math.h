@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace engine {
 
@@ -17,7 +18,7 @@ namespace portable_detail {
 
 // π/2 = kPiOver2A + kPiOver2B + kPiOver2C to 95 bits. A and B hold 21 significant bits each, so
 // k·A and k·B are exact for |k| ≤ 2^32 (Cody and Waite, "Software Manual for the Elementary
-// Functions", 1980, ch. 8).
+// Functions", 1980).
 inline constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
 inline constexpr double kPiOver2A = 0x1.921fbp+0;
 inline constexpr double kPiOver2B = 0x1.5110bp-22;
@@ -25,10 +26,11 @@ inline constexpr double kPiOver2C = 0x1.18469898cc517p-44;
 
 // Where |k| ≤ 2^32, so the reduction below is exact enough for any scene.
 inline constexpr double kLargestExactAngle = 0x1.8p32;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Whole turns taken off an angle past kLargestExactAngle: k·A is rounded there, to about half an
 // ulp of the angle, and each pass shrinks the angle by about 2^-51 until it is in range. The
-// same rotation, as far as the angle resolves one. An infinity becomes NaN.
+// same rotation, as far as the angle resolves one. Precondition: `angle` is finite.
 inline double ShrinkHugeAngle(double angle) {
   while (std::abs(angle) > kLargestExactAngle) {
     const double turns = angle * (kTwoOverPi / 4);  // a quarter of y: the power of two is exact
@@ -78,11 +80,11 @@ inline double PowInt(double x, int n) {
 }  // namespace portable_detail
 
 /// cos and sin of `angle` (radians). For |angle| ≤ 1.5·2^32 (6.4e9 rad, past any scene's limit
-/// of 1e9) each is within 1.5e-16 of the true value (an ulp of the larger of the two), within
+/// of 1e9) each is within 1.5e-16 of the true value (about an ulp of the larger), within
 /// 1 ulp where no reduction is needed (|angle| ≤ π/4), and c² + s² is 1 within 1.2·2^-52; odd
 /// and even symmetry hold bit for bit (tests/test_portable_math.cpp measures all of it). Past
 /// 6.4e9 the error grows to about half an ulp of the angle itself, the angle's own resolution.
-/// NaN and infinities give NaN.
+/// A NaN comes back as it is; infinities give std::numeric_limits<double>::quiet_NaN().
 /// Method: angle = k·π/2 + r with |r| ≤ π/4 (Cody and Waite's reduction), Taylor polynomials
 /// for sin r and cos r, and k mod 4 picks and signs them. Box2D v3's b2ComputeCosSin (Erin
 /// Catto, "Determinism", box2d.org, 2024) also divides (c, s) by its length, which its coarse
@@ -94,8 +96,10 @@ inline double PowInt(double x, int n) {
   // No turn, the axis-aligned bodies' case, at no cost; ±0 keeps its sign, as sin(±0) = ±0.
   if (angle == 0.0) return {1.0, angle};
   if (!(std::abs(angle) <= kLargestExactAngle)) {
-    angle = ShrinkHugeAngle(angle);
     if (std::isnan(angle)) return {angle, angle};
+    // Not inf − inf: its NaN has the sign bit set on x86-64 and clear on arm64.
+    if (std::isinf(angle)) return {kNaN, kNaN};
+    angle = ShrinkHugeAngle(angle);
   }
   const double y = angle * kTwoOverPi;
   // k: y rounded to a whole number, halves away from zero (symmetric, so sin stays odd).
@@ -113,14 +117,15 @@ inline double PowInt(double x, int n) {
   return {c, s};
 }
 
-/// a^(1/n) for a ≥ 0 and n ≥ 1, within 1.1 ulp of the true root (1.04 the worst that
-/// tests/test_portable_math.cpp finds for n ≤ 64, a from 1e-300 to 1e300); exact roots come out
-/// exact, +inf stays +inf. NaN for a < 0 or a NaN.
+/// a^(1/n) for a ≥ 0 and n ≥ 1, within 1.1 ulp of the true root (1.04 the worst found for
+/// n ≤ 64 and a from 1e-300 to 1e300; tests/test_portable_math.cpp checks the bound); exact
+/// roots come out exact, +inf stays +inf. std::numeric_limits<double>::quiet_NaN() for a < 0 or a NaN.
 /// Method: Newton's iteration on x^n = a from a power of two above the root (at most twice it),
 /// where it falls monotonically; it stops when a step no longer lowers x, so it always ends.
 inline double NthRoot(double a, int n) {
-  if (n == 1 || a == 0.0 || a == 1.0 || std::isinf(a)) return a >= 0.0 ? a : std::nan("");
-  if (!(a > 0.0)) return std::nan("");
+  using portable_detail::kNaN;
+  if (n == 1 || a == 0.0 || a == 1.0 || std::isinf(a)) return a >= 0.0 ? a : kNaN;
+  if (!(a > 0.0)) return kNaN;
   int e = 0;
   std::frexp(a, &e);  // a < 2^e, so a^(1/n) < 2^(e/n) ≤ 2^ceil(e/n)
   const int up = e > 0 ? (e + n - 1) / n : -(-e / n);
@@ -135,7 +140,7 @@ inline double NthRoot(double a, int n) {
 
 /// √(a² + b²) within 1.25 ulp for any finite a and b (the squares, their sum and the root round
 /// once each); where the squares would overflow or underflow, a and b are scaled by a power of
-/// two first. Infinities give +inf, NaN gives NaN.
+/// two first. An infinity gives +inf; a NaN, even beside an infinity, comes back as NaN.
 inline double Hypot(double a, double b) {
   a = std::abs(a);
   b = std::abs(b);
