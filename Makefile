@@ -2,6 +2,9 @@
 #   make run   installs missing packages, builds, renders the default scene to out/default/
 #   make test  installs missing packages, builds, runs every test through CTest
 # and the further checks CI runs (docs/robustness.md, docs/embedding.md):
+#   make test-arm64             every asset scene's state hash on arm64 (cross-built, run under
+#                               qemu-aarch64) against the native build's
+#   make test-compilers         the same with a Clang build against the GCC build
 #   make test-sanitize          the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make test-install           the engine installed to a temporary prefix, examples/embed built on it
 #   make fuzz [FUZZ_SECONDS=600] the three libFuzzer targets for FUZZ_SECONDS each (default 60), with clang
@@ -27,7 +30,7 @@ SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
                 LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp:print_suppressions=0 \
                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-.PHONY: deps build run test test-install test-sanitize fuzz clean
+.PHONY: deps build run test test-install test-sanitize fuzz clean build-sim test-arm64 test-compilers
 
 deps:
 	@missing=""; for p in $(PACKAGES); do \
@@ -73,8 +76,38 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene fuzz_script fuzz_snapshot ballbox
 	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
+# The state hash is the same on x86-64 and arm64 and with GCC and Clang (docs/robustness.md).
+# These build the engine and `ballbox sim` alone (BALLBOX_WITH_RENDER=OFF) and compare every asset
+# scene's hash after HASH_STEPS steps with the native GCC build's (.ci/compare_hashes.sh).
+SIM_BUILD ?= build-sim
+ARM64_BUILD ?= build-arm64
+CLANG_BUILD ?= build-clang
+HASH_STEPS ?= 3600
+SIM_PACKAGES := build-essential cmake nlohmann-json3-dev
+SIM_CONFIG := -DCMAKE_BUILD_TYPE=Release -DBALLBOX_WITH_RENDER=OFF -DBUILD_TESTING=OFF \
+              -DBALLBOX_BUILD_BENCH=OFF
+
+build-sim:
+	@$(MAKE) --no-print-directory deps PACKAGES="$(SIM_PACKAGES)"
+	cmake -S . -B $(SIM_BUILD) $(SIM_CONFIG)
+	cmake --build $(SIM_BUILD) -j $(JOBS) --target ballbox
+
+# Linked statically, so qemu-aarch64 needs no arm64 libraries to run it.
+test-arm64: build-sim
+	@$(MAKE) --no-print-directory deps PACKAGES="$(SIM_PACKAGES) g++-aarch64-linux-gnu qemu-user"
+	cmake -S . -B $(ARM64_BUILD) $(SIM_CONFIG) -DCMAKE_EXE_LINKER_FLAGS=-static \
+	  -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/cmake/aarch64-linux-gnu.cmake
+	cmake --build $(ARM64_BUILD) -j $(JOBS) --target ballbox
+	.ci/compare_hashes.sh $(HASH_STEPS) x86-64 $(SIM_BUILD)/ballbox arm64 qemu-aarch64 $(ARM64_BUILD)/ballbox
+
+test-compilers: build-sim
+	@$(MAKE) --no-print-directory deps PACKAGES="$(SIM_PACKAGES) clang"
+	CC=clang CXX=clang++ cmake -S . -B $(CLANG_BUILD) $(SIM_CONFIG)
+	cmake --build $(CLANG_BUILD) -j $(JOBS) --target ballbox
+	.ci/compare_hashes.sh $(HASH_STEPS) gcc $(SIM_BUILD)/ballbox clang $(CLANG_BUILD)/ballbox
+
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(SIM_BUILD) $(ARM64_BUILD) $(CLANG_BUILD)
 
 # make bench: every benchmark program into bench-out/, then docs/benchmarks.md and its plots in
 # docs/img/ (bench/plots/make_page.sh), with Box2D 2.4 and Chipmunk 7 from Debian beside ballbox.

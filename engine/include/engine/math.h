@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "engine/portable_math.h"
+
 namespace engine {
 
 struct Vec2 {
@@ -38,7 +40,11 @@ struct Rot {
   double s = 0.0;
 };
 
-inline Rot MakeRot(double angle) { return {std::cos(angle), std::sin(angle)}; }
+/// The same bits on every machine (engine/portable_math.h), unlike std::cos and std::sin.
+inline Rot MakeRot(double angle) {
+  const CosSin q = ComputeCosSin(angle);
+  return {q.c, q.s};
+}
 /// The vector turned by the rotation (local to world).
 constexpr Vec2 Rotate(Rot q, Vec2 v) { return {q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y}; }
 /// The vector turned back by the rotation (world to local).

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/portable_math.h"
+
 namespace engine::detail {
 
 namespace {
@@ -112,7 +114,7 @@ bool DeleteFromFactor(double* l, int n, int stride, int p) {
   }
   for (int j = p; j < n - 1; ++j) {
     const double a = l[j * stride + j], b = l[j * stride + j + 1];
-    const double r = std::hypot(a, b);
+    const double r = Hypot(a, b);
     if (!(r > 0.0)) return false;
     const double c = a / r, s = b / r;
     for (int i = j; i < n - 1; ++i) {

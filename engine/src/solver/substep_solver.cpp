@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/portable_math.h"
 #include "solver/impact.h"
 #include "solver/pushed_bodies.h"
 
@@ -51,7 +52,7 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   // Remove the same fraction of the overlap per step as the sequential-impulse solver does,
   // spread over the substeps: 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is
   // that times the overlap / h.
-  plan.push_out_rate = (1.0 - std::pow(1.0 - def.position_correction, 1.0 / def.substeps)) * plan.inv_h;
+  plan.push_out_rate = (1.0 - NthRoot(1.0 - def.position_correction, def.substeps)) * plan.inv_h;
   return plan;
 }
 
