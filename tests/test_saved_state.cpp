@@ -32,8 +32,8 @@ TEST_CASE("saved state: sim N then sim M from the saved state ends in the hash o
                                   kAssets + "/scenes/ball_pour.json"}) {
     INFO("scene " << (scene.empty() ? "default" : scene));
     const ProgramRun whole = Ballbox("sim " + scene + " --steps 150", dir);
-    const ProgramRun first = Ballbox("sim " + scene + " --steps 70 --save-state s.state", dir);
-    const ProgramRun second = Ballbox("sim " + scene + " --load-state s.state --steps 80", dir);
+    const ProgramRun first = Ballbox("sim " + scene + " --steps 25 --save-state s.state", dir);
+    const ProgramRun second = Ballbox("sim " + scene + " --load-state s.state --steps 125", dir);
     REQUIRE(whole.exit_code == 0);
     REQUIRE(first.exit_code == 0);
     REQUIRE(second.exit_code == 0);

@@ -320,6 +320,7 @@ bool World::Impl::Load(ByteReader& in) {
     in.Check(bodies.IsLive(s.body_a) && (!s.body_b || bodies.IsLive(*s.body_b)));
     springs.all.push_back(s);
   }
+  if (!in.Ok()) return false;  // a spring naming no live body must not reach the rebuild
   RebuildActingSprings();
   std::vector<Contact>& contacts = narrow_phase.Contacts();
   contacts.resize(in.Count(8 + 16 + 1 + 16));
