@@ -153,6 +153,8 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
         quit = true;
       } else if (event.key == ".") {
         controller.StepOnce();  // held down, it keeps stepping
+      } else if (event.key == "backspace") {
+        controller.Rewind();  // held down, it keeps going back
       } else if (event.repeat) {
         continue;  // the other keys act once per press
       } else if (event.key == "space") {

@@ -19,7 +19,9 @@ PlayController::PlayController(Scene scene, std::vector<InputEvent> script, int 
       session_(std::make_unique<Session>(scene_, std::vector<InputEvent>{}, image_width,
                                          image_height)),
       camera_(view_.camera.value_or(session_->View()), view_.follow, session_->World()),
-      clock_(session_->World().Def().dt, max_frame_seconds) {}
+      clock_(session_->World().Def().dt, max_frame_seconds) {
+  KeepRewindPoint();
+}
 
 bool PlayController::Finished() const {
   return limits_.stop_at && session_->StepIndex() >= *limits_.stop_at;
@@ -76,6 +78,9 @@ Status PlayController::LoadState(const std::string& path) {
     ++next_script_event_;
   }
   camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
+  rewind_points_.clear();
+  rewind_bytes_ = 0;
+  KeepRewindPoint();
   return std::nullopt;
 }
 
@@ -87,6 +92,9 @@ void PlayController::Restart() {
   pending_clicks_.clear();
   recorded_.clear();
   clock_.Reset();
+  rewind_points_.clear();
+  rewind_bytes_ = 0;
+  KeepRewindPoint();
 }
 
 void PlayController::StepOne() {
@@ -101,6 +109,45 @@ void PlayController::StepOne() {
   pending_clicks_.clear();
   session_->Step();
   camera_.Advance(session_->World());
+  if (session_->StepIndex() % kRewindEvery == 0) KeepRewindPoint();
+}
+
+void PlayController::KeepRewindPoint() {
+  RewindPoint point{session_->StepIndex(), session_->World().TakeSnapshot()};
+  rewind_bytes_ += point.snapshot.size();
+  rewind_points_.push_back(std::move(point));
+  // Bounded memory: the oldest points go first, but one is always kept.
+  while (rewind_bytes_ > kRewindBytes && rewind_points_.size() > 1) {
+    rewind_bytes_ -= rewind_points_.front().snapshot.size();
+    rewind_points_.pop_front();
+  }
+}
+
+bool PlayController::Rewind() {
+  const std::int64_t now = session_->StepIndex();
+  // Points at or after the current step belong to a future that is being undone.
+  while (!rewind_points_.empty() && rewind_points_.back().step >= now) {
+    rewind_bytes_ -= rewind_points_.back().snapshot.size();
+    rewind_points_.pop_back();
+  }
+  if (rewind_points_.empty()) {
+    KeepRewindPoint();  // at the oldest point already: stay, and keep it
+    return false;
+  }
+  const RewindPoint& point = rewind_points_.back();
+  session_->Rewind(point.snapshot);
+  std::erase_if(recorded_, [&](const InputEvent& e) { return e.step >= point.step; });
+  next_script_event_ = 0;
+  while (next_script_event_ < script_.size() && script_[next_script_event_].step < point.step) ++next_script_event_;
+  pending_clicks_.clear();
+  camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
+  return true;
+}
+
+std::vector<std::int64_t> PlayController::RewindSteps() const {
+  std::vector<std::int64_t> steps;
+  for (const RewindPoint& p : rewind_points_) steps.push_back(p.step);
+  return steps;
 }
 
 render::Camera PlayController::Camera() const {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -54,6 +55,15 @@ class PlayController {
   /// Starts from the state saved in `path` (--load-state); the script's events before its step
   /// are skipped.
   Status LoadState(const std::string& path);
+  /// Back in time (Backspace, held): to the last rewind point before the current step. Points
+  /// are kept every kRewindEvery steps, the oldest dropped beyond kRewindBytes. The recording
+  /// forgets the events from that step on, so it still replays to the live state. Returns
+  /// whether it went back (not at the oldest point).
+  bool Rewind();
+  static constexpr std::int64_t kRewindEvery = 10;
+  static constexpr std::size_t kRewindBytes = std::size_t{256} << 20;
+  /// The steps the kept rewind points are at, oldest first.
+  std::vector<std::int64_t> RewindSteps() const;
 
   bool Paused() const { return paused_; }
   /// The stop_at step is reached: the run is over.
@@ -78,6 +88,13 @@ class PlayController {
   /// Applies `event` at the current step as a world-point click and records it.
   void Apply(const InputEvent& event);
   bool PauseDue() const;
+  /// Keeps a rewind point at the current step (called at start and every kRewindEvery steps).
+  void KeepRewindPoint();
+
+  struct RewindPoint {
+    std::int64_t step;
+    std::vector<std::uint8_t> snapshot;
+  };
 
   Scene scene_;
   std::vector<InputEvent> script_;
@@ -93,6 +110,8 @@ class PlayController {
   bool paused_ = false;
   std::vector<engine::Vec2> pending_clicks_;  ///< live clicks waiting for the next step
   std::vector<InputEvent> recorded_;
+  std::deque<RewindPoint> rewind_points_;  ///< oldest first
+  std::size_t rewind_bytes_ = 0;
 };
 
 }  // namespace game

@@ -1,6 +1,8 @@
 // A running scene: events are applied at the start of their step, then the world steps.
 #include "game/session.h"
 
+#include <cstdlib>
+
 #include "game/click.h"
 #include "game/saved_state.h"
 
@@ -40,6 +42,13 @@ Status Session::LoadState(const std::string& path) {
   if (Status failed = game::LoadState(path, scene_, &world_)) return failed;
   while (next_event_ < events_.size() && events_[next_event_].step < StepIndex()) ++next_event_;
   return std::nullopt;
+}
+
+void Session::Rewind(std::span<const std::uint8_t> snapshot) {
+  const engine::RestoreResult restored = world_.RestoreSnapshot(snapshot);
+  if (!restored) std::abort();  // its own snapshot: refusing it would be a bug, not bad input
+  next_event_ = 0;
+  while (next_event_ < events_.size() && events_[next_event_].step < StepIndex()) ++next_event_;
 }
 
 Status Session::SaveState(const std::string& path) const { return game::SaveState(path, scene_, world_); }

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/world.h"
@@ -34,6 +35,9 @@ class Session {
   /// Starts from the state saved in `path` instead of the scene's initial one (bad input if it
   /// was saved from another scene); the events before its step are skipped.
   Status LoadState(const std::string& path);
+  /// Goes back to a snapshot this session's world took (TakeSnapshot): its events from that
+  /// step on will be applied again.
+  void Rewind(std::span<const std::uint8_t> snapshot);
   /// Writes the current state to `path` (--save-state).
   Status SaveState(const std::string& path) const;
 

@@ -378,3 +378,48 @@ TEST_CASE("screenshot: a taken name gets the next number, and no file is ever re
   std::ofstream(dir / "file") << "x";
   CHECK_FALSE(game::SaveScreenshot(image, (dir / "file").string(), "s").HasValue());
 }
+
+TEST_CASE("play controller: rewinding goes back through kept points, and a recording made after a "
+          "rewind replays to the live state",
+          "[play][rewind]") {
+  const game::RunInput input = DefaultInput();
+  const std::size_t heavy = BodyIndex(input.scene, "heavy_ball");
+  game::PlayController controller(input.scene, input.events, 800, 600);
+  const std::vector<std::uint64_t> plain = PlainLoopHashes(input, 800, 600, 130);
+  std::vector<std::uint64_t> lived(200, 0);  // the live hash at each step, as last reached
+  auto step_to = [&](std::int64_t step) {
+    while (controller.GetSession().StepIndex() < step) {
+      controller.StepOnce();
+      lived[controller.GetSession().StepIndex()] = controller.GetSession().World().StateHash();
+    }
+  };
+  controller.TogglePause();  // step by hand, one at a time
+  step_to(57);
+  controller.Click(ClickBeside(controller, heavy));  // applied at step 57, then undone
+  step_to(95);
+  REQUIRE(controller.Recorded().size() > 0);
+  // Held Backspace: 95 → 90 → 80 → 70 → 60 → 50, each a kept point with the state lived there
+  // (the click at 57 in it from 60 on, and not at 50, where it equals the plain loop's).
+  for (const std::int64_t expected : {90, 80, 70, 60, 50}) {
+    REQUIRE(controller.Rewind());
+    CHECK(controller.GetSession().StepIndex() == expected);
+    CHECK(controller.GetSession().World().StateHash() == lived[expected]);
+  }
+  CHECK(lived[60] != plain[60]);
+  CHECK(lived[50] == plain[50]);
+  // The click at 57 is forgotten; the demo script's events before step 50 stay.
+  for (const game::InputEvent& e : controller.Recorded()) CHECK(e.step < 50);
+  // A new future: another click, and on to step 130.
+  step_to(66);
+  controller.Click(ClickBeside(controller, heavy));
+  step_to(130);
+  const std::uint64_t live = controller.GetSession().World().StateHash();
+  CHECK(live != plain[130]);
+  CHECK(ReplayHash(input.scene, controller.Recorded(), 800, 600, 130) == live);
+  // Back to the start: no further.
+  while (controller.Rewind()) {
+  }
+  CHECK(controller.GetSession().StepIndex() == 0);
+  CHECK(controller.GetSession().World().StateHash() == plain[0]);
+  CHECK(controller.RewindSteps() == std::vector<std::int64_t>{0});
+}

@@ -81,6 +81,8 @@ class GlfwWindow final : public Window {
       event.key = "space";
     } else if (key == GLFW_KEY_ESCAPE) {
       event.key = "escape";
+    } else if (key == GLFW_KEY_BACKSPACE) {
+      event.key = "backspace";
     } else if (const char* name = glfwGetKeyName(key, scancode); name != nullptr) {
       // GLFW's key tokens name US-layout positions; the key's name is what it types on the
       // user's layout, so "S" means the key marked S everywhere.

@@ -19,7 +19,7 @@ struct WindowEvent {
     kClose,      ///< the user asked the window to close
   };
   Type type = Type::kKey;
-  /// kKey: "space", "escape", or for a printable key the character it types on the user's
+  /// kKey: "space", "escape", "backspace", or for a printable key the character it types on the user's
   /// keyboard layout, lower case ("s", "."). Other keys are not reported.
   std::string key;
   bool repeat = false;  ///< kKey: the key is held and the system repeats it
