@@ -273,7 +273,9 @@ bool World::Impl::Load(ByteReader& in) {
     const std::uint8_t most = !(flags & kEnabled) || info.is_static ? detail::kResting
                               : info.is_kinematic                   ? detail::kKinematicMoving
                                                                     : detail::kAwake;
-    in.Check((awake == detail::kResting || awake == most) && (island < n || island == kNoBody) && std::isfinite(rest) &&
+    // A disabled body is in no island (so no waking reaches it), as SetEnabled leaves it.
+    const bool island_ok = (flags & kEnabled) ? island < n : island == kNoBody;
+    in.Check((awake == detail::kResting || awake == most) && island_ok && std::isfinite(rest) &&
              (fault || (IsFinite(s.position) && IsFinite(s.velocity) && std::isfinite(s.angle) &&
                         std::isfinite(s.angular_velocity))));
     bodies.enabled[index] = (flags & kEnabled) ? 1 : 0;
