@@ -9,9 +9,7 @@ namespace engine::detail {
 namespace {
 
 // How fast the bodies close along the normal at the contact's points (the fastest), m/s.
-double ApproachSpeed(const Contact& c, std::span<const BodyState> states) {
-  const BodyState& a = states[c.a];
-  const BodyState& b = states[c.b];
+double ApproachSpeed(const Contact& c, const BodyState& a, const BodyState& b) {
   double fastest = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < c.manifold.point_count; ++i) {
     const Vec2 p = c.manifold.points[i].point;
@@ -25,16 +23,18 @@ double ApproachSpeed(const Contact& c, std::span<const BodyState> states) {
 // Whether the pair touched in this step: the contact solver pushed on it, or the bodies are
 // within the slop, or they bounced. A bounce (the substep solver's impact pass) leaves no
 // impulse on the contact and the bodies apart: they closed at `approach` when the step began,
-// near enough to meet within it, and now they part.
-bool Touching(const Contact& c, double approach, std::span<const BodyState> states, const WorldDef& def) {
+// near enough to meet within it, and now they part. `approach` is asked only then.
+template <typename Approach>
+bool Touching(const Contact& c, Approach approach, std::span<const BodyState> states, const WorldDef& def) {
   double gap = std::numeric_limits<double>::infinity();
   for (int i = 0; i < c.manifold.point_count; ++i) {
     if (c.normal_impulse[i] > 0.0 || c.manifold.points[i].depth >= -def.linear_slop) return true;
     gap = std::min(gap, -c.manifold.points[i].depth);
   }
-  if (!(approach > 0.0)) return false;
-  const double reach = approach * def.dt + 0.5 * Length(def.gravity) * def.dt * def.dt + def.linear_slop;
-  return gap <= reach && ApproachSpeed(c, states) < 0.0;
+  const double closing = approach();
+  if (!(closing > 0.0)) return false;
+  const double reach = closing * def.dt + 0.5 * Length(def.gravity) * def.dt * def.dt + def.linear_slop;
+  return gap <= reach && ApproachSpeed(c, states[c.a], states[c.b]) < 0.0;
 }
 
 ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodies) {
@@ -46,9 +46,13 @@ ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodie
 
 }  // namespace
 
-void ContactEvents::MeasureApproach(std::span<const Contact> contacts, std::span<const BodyState> states) {
-  approach_.resize(contacts.size());
-  for (std::size_t i = 0; i < contacts.size(); ++i) approach_[i] = ApproachSpeed(contacts[i], states);
+void ContactEvents::RecordStartVelocities(std::span<const BodyState> states) {
+  start_velocities_.resize(states.size());
+  start_angular_velocities_.resize(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    start_velocities_[i] = states[i].velocity;
+    start_angular_velocities_[i] = states[i].angular_velocity;
+  }
 }
 
 void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodies,
@@ -70,9 +74,15 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
       }
     }
   };
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& c = contacts[i];
-    if (!Touching(c, approach_[i], bodies.states, def)) continue;
+  // How fast the contact closed when the step began.
+  auto approach = [&](const Contact& c) {
+    auto start = [&](BodyIndex i) {
+      return BodyState{bodies.start_positions[i], start_velocities_[i], 0.0, start_angular_velocities_[i]};
+    };
+    return ApproachSpeed(c, start(c.a), start(c.b));
+  };
+  for (const Contact& c : contacts) {
+    if (!Touching(c, [&] { return approach(c); }, bodies.states, def)) continue;
     const BodyPair pair{c.a, c.b};
     end_before(pair);
     touching_.push_back(pair);
@@ -80,7 +90,7 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
       ++j;
       continue;
     }
-    const ContactBeginEvent begin = BeginOf(c, approach_[i], bodies);
+    const ContactBeginEvent begin = BeginOf(c, approach(c), bodies);
     events->contact_begin.push_back(begin);
     if (begin.approach_speed >= def.hit_speed) events->hits.push_back(begin);
   }

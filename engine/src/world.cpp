@@ -75,7 +75,7 @@ void World::Step() {
   Impl& w = *impl_;
   if (w.fault) return;
   detail::Bodies& bodies = w.bodies;
-  w.events = {};
+  w.events.Clear();  // keeps the lists' storage from step to step
   bodies.MarkStepStart();  // contacts measure how far bodies move from here
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
@@ -86,7 +86,7 @@ void World::Step() {
   detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, bodies.infos, w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, w.candidates.Margins());
-  if (w.def.contact_events) w.contact_events.MeasureApproach(w.narrow_phase.Contacts(), bodies.states);
+  if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
   detail::StepContext context{.def = w.def,

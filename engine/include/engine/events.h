@@ -48,6 +48,14 @@ struct StepEvents {
   std::vector<ContactBeginEvent> hits;
   std::vector<SensorEvent> sensor_begin;
   std::vector<SensorEvent> sensor_end;
+
+  void Clear() {
+    contact_begin.clear();
+    contact_end.clear();
+    hits.clear();
+    sensor_begin.clear();
+    sensor_end.clear();
+  }
 };
 
 }  // namespace engine
