@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "engine/filter.h"
 #include "engine/math.h"
@@ -11,8 +12,14 @@
 namespace engine {
 
 struct BodyDef {
-  Shape shape;
-  Vec2 position;                  ///< centre, m
+  Shape shape;                    ///< a circle or a box, when `parts` is empty
+  /// The body's parts, when it is made of them (then `shape` is not read): polygons, capsules,
+  /// segment polylines, circles and boxes, each placed in the body's frame. Mass, centre of mass
+  /// and inertia add up over them.
+  std::vector<ShapePart> parts;
+  /// m: a circle's or box's centre; for a body made of parts, the origin of the body's frame
+  /// (the centre of mass follows from the parts, World::LocalCenter).
+  Vec2 position;
   Vec2 velocity;                  ///< m/s
   double angle = 0.0;             ///< rad (kept, not integrated, while rotation is off)
   double angular_velocity = 0.0;  ///< rad/s
@@ -34,13 +41,13 @@ struct BodyDef {
   double linear_damping = 0.0;    ///< 1/s: a force −c·m·v
   double angular_damping = 0.0;   ///< 1/s: a torque −c·I·ω
   /// Quadratic drag coefficient C_d in a fluid; negative means the shape's usual value
-  /// (0.47 for a circle, 1.05 for a box).
+  /// (0.47 for a circle or capsule, 1.05 for a box or anything else).
   double drag_coefficient = -1.0;
 };
 
 /// What every step writes.
 struct BodyState {
-  Vec2 position;
+  Vec2 position;  ///< of the centre of mass (World::Origin gives the body frame's origin)
   Vec2 velocity;
   double angle = 0.0;
   double angular_velocity = 0.0;

@@ -27,6 +27,10 @@ struct Manifold {
 struct Contact {
   BodyIndex a;  ///< the lower slot (World::IdAt gives the id)
   BodyIndex b;
+  /// Which convex piece of each body (World::Pieces; 0 for a circle or box): bodies made of
+  /// parts can touch at several pieces, one contact each, in (a, b, piece_a, piece_b) order.
+  std::uint16_t piece_a = 0;
+  std::uint16_t piece_b = 0;
   Manifold manifold;   ///< normal points from a to b
   double restitution;  ///< the larger of the pair's
   double friction;     ///< the geometric mean of the pair's

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "engine/ids.h"
 #include "engine/math.h"
@@ -38,6 +39,13 @@ class DebugDraw {
   /// `angle` lets a line from the centre show the circle turning.
   virtual void DrawCircle(BodyId body, Vec2 center, double radius, double angle, BodyKind kind);
   virtual void DrawBox(BodyId body, Vec2 center, Vec2 half_extents, double angle, BodyKind kind);
+  // The pieces of a body made of parts (World::Pieces), in the world: a circle piece comes
+  // through DrawCircle, the others through these.
+  /// A convex polygon, counter-clockwise, every corner rounded by `radius` (0: sharp).
+  virtual void DrawPolygon(BodyId body, std::span<const Vec2> vertices, double radius, BodyKind kind);
+  virtual void DrawCapsule(BodyId body, Vec2 center1, Vec2 center2, double radius, BodyKind kind);
+  /// One segment of a polyline.
+  virtual void DrawSegment(BodyId body, Vec2 a, Vec2 b, BodyKind kind);
   /// A spring from anchor `a` on its first body to `b`, on its second body or fixed in the world.
   virtual void DrawSpring(Vec2 a, Vec2 b);
   virtual void DrawBounds(BodyId body, const AABB& bounds, BodyKind kind);

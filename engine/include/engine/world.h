@@ -55,6 +55,8 @@ class World {
   // Moving bodies by hand, between steps. Each wakes the body (and, for a static or kinematic
   // body, the bodies touching it); on a static body only the placement setters act.
 
+  /// Places the body's frame: a circle's or box's centre, the origin of a body made of parts
+  /// (as BodyDef::position).
   void SetPosition(BodyId id, Vec2 position);
   void SetAngle(BodyId id, double angle);
   void SetLinearVelocity(BodyId id, Vec2 velocity);
@@ -90,6 +92,15 @@ class World {
   BodyId IdAt(BodyIndex index) const;
   const BodyState& State(BodyId id) const;
   const BodyInfo& Info(BodyId id) const;
+  /// The origin of the body's frame (BodyDef::position), which the dump and the state hash
+  /// report: State(id).position less the turned LocalCenter.
+  Vec2 Origin(BodyId id) const;
+  /// The centre of mass in the body's frame: {0, 0} for circles and boxes.
+  Vec2 LocalCenter(BodyId id) const;
+  /// A body's parts as BodyDef::parts gave them (empty for a lone circle or box).
+  std::span<const ShapePart> Parts(BodyId id) const;
+  /// The convex pieces it collides as, in the body's frame (one for a lone circle or box).
+  std::span<const ConvexPiece> Pieces(BodyId id) const;
   AABB BodyBounds(BodyId id) const;
   /// The settings, with the automatic ones (0 substeps or iterations) filled in.
   const WorldDef& Def() const;
@@ -137,7 +148,8 @@ class World {
   /// the springs, the bounds and the last step's contact points, as `options` selects.
   void Draw(DebugDraw& draw, const DrawOptions& options = {}) const;
 
-  /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body.
+  /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body,
+  /// (x, y) its Origin.
   std::uint64_t StateHash() const;
 
   /// The whole state as bytes: every body (destroyed slots and generations included), the
