@@ -9,6 +9,9 @@ namespace engine {
 
 void DebugDraw::DrawCircle(BodyId, Vec2, double, double, BodyKind) {}
 void DebugDraw::DrawBox(BodyId, Vec2, Vec2, double, BodyKind) {}
+void DebugDraw::DrawPolygon(BodyId, std::span<const Vec2>, double, BodyKind) {}
+void DebugDraw::DrawCapsule(BodyId, Vec2, Vec2, double, BodyKind) {}
+void DebugDraw::DrawSegment(BodyId, Vec2, Vec2, BodyKind) {}
 void DebugDraw::DrawSpring(Vec2, Vec2) {}
 void DebugDraw::DrawBounds(BodyId, const AABB&, BodyKind) {}
 void DebugDraw::DrawContact(Vec2, Vec2, double, double) {}
