@@ -80,8 +80,10 @@ float PolygonDistance(vec2 p, int at, int n) {
   float nearest = 1e30;
   bool inside = false;
   vec2 a = Vertex(at, n - 1);
+  vec4 two;  // a texel holds two vertices
   for (int i = 0; i < n; ++i) {
-    vec2 b = Vertex(at, i);
+    if ((i & 1) == 0) two = texelFetch(shapes, at + 1 + i / 2);
+    vec2 b = (i & 1) == 0 ? two.xy : two.zw;
     vec2 e = b - a;
     vec2 w = p - a;
     vec2 q = w - e * clamp(dot(w, e) / dot(e, e), 0.0, 1.0);
