@@ -4,9 +4,15 @@
 // pieces meet), with smooth edges; circles and boxes beside them look as they do without them.
 #include <catch2/catch.hpp>
 
+#include <stb/stb_image.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
@@ -17,7 +23,10 @@
 #include "render/color.h"
 #include "render/context.h"
 #include "render/image.h"
+#include "render/png_writer.h"
 #include "render/renderer.h"
+#include "render/window.h"
+#include "run_program.h"
 #include "world_builders.h"
 
 using engine::Vec2;
@@ -29,6 +38,8 @@ namespace {
 constexpr Color kFill{200, 40, 30};
 constexpr Color kOther{30, 90, 200};
 const Color kBackground = render::kBackgroundColor;
+
+namespace fs = std::filesystem;
 
 // As in test_render.cpp: 200x150 pixels of a 20 m wide view centred on the origin, 0.1 m per
 // pixel, so world (x, y) lies at pixel (100 + 10x, 75 − 10y); pixel (i, j)'s centre is the
@@ -410,13 +421,24 @@ TEST_CASE("render shapes: a circle part shows its spoke, and later bodies draw o
   CHECK(Show(image.At(100, 105)) == Show(kOther));     // 3 m down: the square around it
 }
 
-TEST_CASE("render shapes: the same world draws the same bytes", "[render]") {
-  engine::World world(Still(true));
-  world.CreateBody(Made({Polygon({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, 0.2)}, {-6.3, -2.2}, 0.4));
+namespace {
+
+// Every kind at once: a rounded concave polygon, a capsule, a polyline and a ball, turned.
+void AddEveryKind(engine::World& world) {
+  world.CreateBody(
+      Made({Polygon({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, 0.2)}, {-6.3, -2.2}, 0.4));
   world.CreateBody(Made({Capsule(3.0, 0.7)}, {3.1, 2.3}, -0.2));
   world.CreateBody(Made({Segments({{-9, -6}, {0, -5}, {9, -6.5}})}, {0.0, 0.0}, 0.0, true));
   world.CreateBody(testing::Circle({4.0, -2.0}, 1.2));
-  const std::vector<Color> colors{kFill, kOther, render::kStaticColor, kFill};
+}
+const std::vector<Color> kEveryKindColors{kFill, kOther, render::kStaticColor, kFill};
+
+}  // namespace
+
+TEST_CASE("render shapes: the same world draws the same bytes", "[render]") {
+  engine::World world(Still(true));
+  AddEveryKind(world);
+  const std::vector<Color>& colors = kEveryKindColors;
   Gl first = MakeGl();
   const Image a = Draw(first, world, colors);
   CHECK(Draw(first, world, colors).rgb == a.rgb);
@@ -424,4 +446,71 @@ TEST_CASE("render shapes: the same world draws the same bytes", "[render]") {
   first.context.reset();
   Gl second = MakeGl();
   CHECK(Draw(second, world, colors).rgb == a.rgb);
+}
+
+// `ballbox play` draws with the same Renderer into a GLFW window's context. The test below runs
+// this one in a fresh Xvfb (the test binary starts without a display), which writes its picture
+// where BALLBOX_SHAPES_PNG says.
+TEST_CASE("window child: the shapes drawn in a window's context (run by render shapes)",
+          "[.shapes_in_window]") {
+  const char* path = std::getenv("BALLBOX_SHAPES_PNG");
+  REQUIRE(path != nullptr);
+  render::Window::Failure failure = render::Window::Failure::kNone;
+  std::string error;
+  const auto window = render::Window::Open(kWidth, kHeight, "shapes", failure, error);
+  INFO(error);
+  REQUIRE(window);
+  auto renderer = render::Renderer::Create(*window, kWidth, kHeight, error);
+  INFO(error);
+  REQUIRE(renderer);
+  engine::World world(Still(true));
+  AddEveryKind(world);
+  renderer->Draw(world, kEveryKindColors, kCamera);
+  Image image;
+  renderer->ReadImage(image);
+  const std::vector<std::uint8_t> png = render::EncodePng(image);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+}
+
+TEST_CASE("render shapes: a window's context draws them as the offscreen one does",
+          "[render][xvfb]") {
+  const bool have = std::system("command -v xvfb-run >/dev/null 2>&1 && command -v flock "
+                                ">/dev/null 2>&1") == 0;
+  if (!render::WindowSupportBuilt() || !have) {
+    WARN("SKIPPED: needs a build with GLFW, xvfb-run and flock");
+    return;
+  }
+  const fs::path dir = testing::FreshTestDir("render_shapes", "window");
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  const std::string lock = (fs::path(BALLBOX_TEST_TMP) / "xvfb.lock").string();
+  // One Xvfb at a time (the lock the play window tests take): two xvfb-run -a can collide.
+  const testing::ProgramRun run = testing::RunShell(
+      "BALLBOX_SHAPES_PNG=window.png flock '" + lock +
+          "' xvfb-run -a -s '-screen 0 1024x768x24' '" + self + "' '[.shapes_in_window]'",
+      dir, dir.parent_path() / "window_captured");
+  INFO("stdout: " << run.out << "\nstderr: " << run.err);
+  REQUIRE(run.exit_code == 0);
+
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load((dir / "window.png").c_str(), &width, &height, &channels, 3);
+  REQUIRE(pixels != nullptr);
+  const std::vector<std::uint8_t> shot(pixels, pixels + static_cast<std::size_t>(width) * height * 3);
+  stbi_image_free(pixels);
+  REQUIRE(width == kWidth);
+  REQUIRE(height == kHeight);
+
+  Gl gl = MakeGl();
+  engine::World world(Still(true));
+  AddEveryKind(world);
+  const Image offscreen = Draw(gl, world, kEveryKindColors);
+  // The same renderer on the same Mesa: equal but for a few edge pixels by a level or two.
+  int differing = 0;
+  for (std::size_t i = 0; i < shot.size(); ++i) {
+    if (std::abs(shot[i] - offscreen.rgb[i]) > 2) ++differing;
+  }
+  CHECK(differing <= kWidth * kHeight / 1000);
+  // And it holds the shapes: the capsule's middle, (3.1, 2.3), is pixel (131, 52).
+  const std::size_t at = (52 * static_cast<std::size_t>(kWidth) + 131) * 3;
+  CHECK(Show({shot[at], shot[at + 1], shot[at + 2]}) == Show(kOther));
 }
