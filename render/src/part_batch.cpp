@@ -216,23 +216,19 @@ void PartBatch::FindNeighbours(double margin) {
   }
   for (int i = 0; i < n; ++i) neighbour_start_[i + 1] += neighbour_start_[i];
   neighbours_.resize(neighbour_start_[n]);
-  std::vector<std::size_t>& fill = neighbour_start_;
+  cursor_.assign(neighbour_start_.begin(), neighbour_start_.end() - 1);
   for (const auto& [a, b] : pairs_) {
-    neighbours_[fill[a]++] = b;
-    neighbours_[fill[b]++] = a;
+    neighbours_[cursor_[a]++] = b;
+    neighbours_[cursor_[b]++] = a;
   }
-  // Filling moved each start to the next one's: shift back.
-  for (int i = n; i > 0; --i) fill[i] = fill[i - 1];
-  fill[0] = 0;
 }
 
 void PartBatch::Emit(Vec2 origin, engine::Rot rotation, Color color, double thickness) {
   // Records first, so neighbour lists can name them by texel.
-  std::vector<std::size_t>& records = records_;
-  records.resize(primitives_.size());
+  records_.resize(primitives_.size());
   for (std::size_t i = 0; i < primitives_.size(); ++i) {
     const Primitive& p = primitives_[i];
-    records[i] = TexelCount();
+    records_[i] = TexelCount();
     PutTexel(texels_, static_cast<double>(p.kind), static_cast<double>(p.count), p.radius, 0.0);
     for (std::size_t v = 0; v < p.count; v += 2) {
       const Vec2 a = vertices_[p.first + v];
@@ -245,7 +241,7 @@ void PartBatch::Emit(Vec2 origin, engine::Rot rotation, Color color, double thic
     const std::size_t first = TexelCount();
     const std::size_t count = neighbour_start_[i + 1] - neighbour_start_[i];
     for (std::size_t k = 0; k < count; ++k) {
-      texels_.push_back(static_cast<float>(records[neighbours_[neighbour_start_[i] + k]]));
+      texels_.push_back(static_cast<float>(records_[neighbours_[neighbour_start_[i] + k]]));
     }
     texels_.resize((texels_.size() + 3) / 4 * 4, 0.0f);  // the next list starts on a texel
     PartInstance instance{};
@@ -263,7 +259,7 @@ void PartBatch::Emit(Vec2 origin, engine::Rot rotation, Color color, double thic
     instance.color[1] = color.g;
     instance.color[2] = color.b;
     instance.color[3] = 255;
-    instance.record[0] = static_cast<float>(records[i]);
+    instance.record[0] = static_cast<float>(records_[i]);
     instance.record[1] = static_cast<float>(first);
     instance.record[2] = static_cast<float>(count);
     instance.record[3] = static_cast<float>(thickness);

@@ -19,7 +19,7 @@ namespace render {
 inline constexpr double kLineWidthPixels = 6.0;
 
 /// Quads reach this many pixels beyond their primitive, room for its anti-aliased edge (the
-/// shader grows them by it; neighbour tests add the slack of a turned quad).
+/// vertex shader's 2.0; neighbour tests add the slack of a turned quad).
 inline constexpr double kQuadMarginPixels = 2.0;
 
 /// The kinds of primitive records, as the fragment shader reads them.
@@ -80,7 +80,8 @@ class PartBatch {
   std::vector<std::pair<int, int>> pairs_;     // neighbouring primitives, each pair once
   std::vector<int> order_;                     // primitives by the left side of their box
   std::vector<engine::AABB> boxes_;
-  std::vector<std::size_t> neighbour_start_;   // per primitive, into neighbours_
+  std::vector<std::size_t> neighbour_start_;   // per primitive, into neighbours_; then the end
+  std::vector<std::size_t> cursor_;            // where each list is filled up to
   std::vector<int> neighbours_;
   std::vector<std::size_t> records_;           // per primitive, its record's texel
 };
