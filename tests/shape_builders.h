@@ -40,6 +40,14 @@ inline engine::ShapePart SegmentsPart(std::vector<engine::Vec2> points, bool loo
   return part;
 }
 
+/// A world with rotation on (bodies made of parts turn), sleeping as asked.
+inline engine::WorldDef TurningWorld(bool sleeping = true) {
+  engine::WorldDef def;
+  def.rotation = true;
+  def.sleeping = sleeping;
+  return def;
+}
+
 /// A body of `parts` whose frame's origin stands at `position`, turned by `angle`.
 inline engine::BodyDef PartsBody(std::vector<engine::ShapePart> parts, engine::Vec2 position, double angle = 0.0) {
   engine::BodyDef def;

@@ -11,7 +11,7 @@ using namespace testing;
 TEST_CASE("a right triangle's mass, centroid and inertia", "[shapes]") {
   // Legs 3 (x) and 6 (y), density 2: area 9, mass 18, centroid (1, 2). About the centroid,
   // I = m·(a² + b²)/18 for a right triangle with legs a, b: 18·45/18 = 45.
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   engine::BodyDef def = PartsBody({PolygonPart({{0, 0}, {3, 0}, {0, 6}})}, {10, 20});
   def.density = 2.0;
   const engine::BodyId id = world.CreateBody(def);
@@ -31,7 +31,7 @@ TEST_CASE("an L of two boxes adds up by the parallel axis theorem", "[shapes]") 
   // A 2 × 1 bar along the bottom (centre (1, 0.5)) and a 1 × 2 post standing on its left end
   // (centre (0.5, 2)); density 1: masses 2 and 2, centre (0.75, 1.25).
   // Each: I = m(w² + h²)/12 = 2·5/12 = 5/6, plus m·d² with d² = 0.25² + 0.75² = 0.625 each.
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   const engine::BodyId id =
       world.CreateBody(PartsBody({BoxPart({2, 1}, {1, 0.5}), BoxPart({1, 2}, {0.5, 2})}, {0, 0}));
   const engine::BodyInfo& info = world.Info(id);
@@ -53,7 +53,7 @@ TEST_CASE("a capsule's mass and inertia: a rectangle and two half discs", "[shap
   const double m_r = L * 2 * r, i_r = m_r * (L * L + 4 * r * r) / 12.0;
   const double m_d = kPi * r * r, c = 4 * r / (3 * kPi);
   const double i_d = 0.5 * m_d * r * r + m_d * ((L / 2 + c) * (L / 2 + c) - c * c);
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   const engine::BodyId id = world.CreateBody(PartsBody({CapsulePart(L, r)}, {0, 0}));
   CHECK(world.Info(id).mass == Approx(m_r + m_d).epsilon(1e-12));
   CHECK(world.Info(id).inertia == Approx(i_r + i_d).epsilon(1e-12));
@@ -62,7 +62,7 @@ TEST_CASE("a capsule's mass and inertia: a rectangle and two half discs", "[shap
 
 TEST_CASE("a concave polygon is split into convex pieces that cover its area", "[shapes]") {
   // A U: the 3 × 3 square less the 1 × 2 notch from the top middle: area 7.
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   const engine::BodyId id = world.CreateBody(
       PartsBody({PolygonPart({{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}})}, {0, 0}));
   CHECK(world.Pieces(id).size() >= 3);

@@ -12,6 +12,12 @@ using namespace testing;
 
 namespace {
 
+engine::WorldDef NoSleep() {
+  engine::WorldDef def;
+  def.sleeping = false;
+  return def;
+}
+
 constexpr double kPi = 3.14159265358979323846;
 
 struct RampRun {
@@ -23,7 +29,7 @@ struct RampRun {
 // A 0.5 m polygon square set on a 30° polygon ramp, both with friction `mu`, stepped `steps`.
 RampRun SlideDownRamp(double mu, int steps) {
   const double theta = kPi / 6.0;
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   const double length = 20.0, height = length * std::tan(theta);
   engine::BodyDef ramp = PartsBody({PolygonPart({{0, 0}, {length, 0}, {0, height}})}, {0, 0});
   ramp.is_static = true;
@@ -93,7 +99,7 @@ engine::BodyDef StaticPolygonFloor(double width) {
 
 TEST_CASE("a stack of horizontal capsules stands within 1 cm for 10 s", "[shapes]") {
   // Awake all the way: a stack that fell asleep would stand whatever the solver did.
-  engine::World world{engine::WorldDef{.rotation = true, .sleeping = false}};
+  engine::World world{TurningWorld(false)};
   world.CreateBody(StaticPolygonFloor(20));
   const double r = 0.25;
   for (int i = 0; i < 10; ++i) world.CreateBody(PartsBody({CapsulePart(1.0, r)}, {0, r + 2 * r * i}));
@@ -105,7 +111,7 @@ TEST_CASE("a stack of horizontal capsules stands within 1 cm for 10 s", "[shapes
 }
 
 TEST_CASE("a turning pyramid of 210 polygon squares stands within 1 cm for 10 s", "[shapes]") {
-  engine::World world{engine::WorldDef{.rotation = true, .sleeping = false}};
+  engine::World world{TurningWorld(false)};
   world.CreateBody(StaticPolygonFloor(40));
   const double side = 0.5;
   const int rows = 20;  // 20 + 19 + … + 1 = 210
@@ -125,7 +131,7 @@ TEST_CASE("a turning pyramid of 210 polygon squares stands within 1 cm for 10 s"
 }
 
 TEST_CASE("200 hexagons settle in a box without a NaN or an escape", "[shapes]") {
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   // A closed box of segments, 8 m wide and 20 m tall, its floor at y = 0.
   engine::BodyDef box = PartsBody({SegmentsPart({{-4, 0}, {4, 0}, {4, 20}, {-4, 20}}, true)}, {0, 0});
   box.is_static = true;
@@ -153,7 +159,7 @@ TEST_CASE("200 hexagons settle in a box without a NaN or an escape", "[shapes]")
 }
 
 TEST_CASE("balls dropped into a concave cup stay in it", "[shapes]") {
-  engine::World world{engine::WorldDef{.rotation = true}};
+  engine::World world{TurningWorld()};
   // A cup 4 m wide inside, walls 0.5 m thick and 3 m tall, its inner floor at y = 0.5.
   engine::BodyDef cup = PartsBody(
       {PolygonPart({{-2.5, 0}, {2.5, 0}, {2.5, 3}, {2, 3}, {2, 0.5}, {-2, 0.5}, {-2, 3}, {-2.5, 3}})}, {0, 0});
@@ -178,7 +184,7 @@ TEST_CASE("balls dropped into a concave cup stay in it", "[shapes]") {
 
 TEST_CASE("a thin polygon dart at 2 000 m/s stops at a 10 cm wall", "[shapes]") {
   for (const bool rotation : {false, true}) {
-    engine::World world{engine::WorldDef{.rotation = rotation}};
+    engine::World world{rotation ? TurningWorld() : engine::WorldDef{}};
     engine::BodyDef wall = PartsBody({PolygonPart({{0, -5}, {0.1, -5}, {0.1, 5}, {0, 5}})}, {30, 0});
     wall.is_static = true;
     wall.restitution = 0.0;
@@ -203,7 +209,7 @@ TEST_CASE("a thin polygon dart at 2 000 m/s stops at a 10 cm wall", "[shapes]") 
 
 TEST_CASE("a box sliding along a straight run of segments feels no bump at the joins", "[shapes]") {
   for (const bool rotation : {false, true}) {
-    engine::World world{engine::WorldDef{.rotation = rotation, .sleeping = false}};
+    engine::World world{rotation ? TurningWorld(false) : NoSleep()};
     // 40 segments of 1 m along y = 0: 39 joins under the box's path.
     std::vector<engine::Vec2> points;
     for (int i = 0; i <= 40; ++i) points.push_back({-5.0 + i, 0.0});
@@ -232,7 +238,7 @@ TEST_CASE("a box sliding along a straight run of segments feels no bump at the j
 }
 
 TEST_CASE("a polygon bullet at 1 000 m/s does not pass through a dynamic box", "[shapes]") {
-  engine::World world{engine::WorldDef{.rotation = true, .sleeping = false}};
+  engine::World world{TurningWorld(false)};
   world.CreateBody(Static(Box({0, -0.5}, {400, 1})));
   const engine::BodyId target = world.CreateBody(Box({20, 0.5}, {0.2, 1}));
   engine::BodyDef bullet = PartsBody({PolygonPart(RegularPolygon(5, 0.05))}, {0, 0.5});
