@@ -69,6 +69,7 @@ BodyIndex Bodies::AppendSlot() {
   states.emplace_back();
   infos.emplace_back();
   geometries.emplace_back();
+  placed_origins.emplace_back();
   generations.push_back(0);
   alive.push_back(1);
   enabled.push_back(1);

@@ -19,6 +19,15 @@ struct Bodies {
   std::vector<BodyInfo> infos;
   /// The pieces of a body made of parts; null for a lone circle or box.
   std::vector<std::shared_ptr<const BodyGeometry>> geometries;
+  /// For a body made of parts, its frame's origin as last placed (made, or set by hand) and the
+  /// centre and angle it had then: while the body stays there the origin is reported as given,
+  /// not recomputed from the centre of mass with a rounding error.
+  struct PlacedOrigin {
+    Vec2 origin;
+    Vec2 center;
+    double angle = 0.0;
+  };
+  std::vector<PlacedOrigin> placed_origins;
   std::vector<Vec2> start_positions;  ///< each body's centre when the current step began
   std::vector<std::uint32_t> generations;
   std::vector<std::uint8_t> alive;    ///< 0: the slot is free
@@ -56,7 +65,17 @@ struct Bodies {
 
   /// The body frame's origin: the centre, unless the body is made of parts.
   Vec2 Origin(BodyIndex index) const {
-    return geometries[index] ? OriginOf(*geometries[index], states[index]) : states[index].position;
+    if (!geometries[index]) return states[index].position;
+    const PlacedOrigin& placed = placed_origins[index];
+    const BodyState& s = states[index];
+    if (s.position == placed.center && s.angle == placed.angle) return placed.origin;
+    return OriginOf(*geometries[index], s);
+  }
+  /// Places a body made of parts with its frame's origin at `origin`, turned by `angle`.
+  void PlaceOrigin(BodyIndex index, Vec2 origin, double angle) {
+    states[index].position = origin + Rotate(MakeRot(angle), geometries[index]->local_center);
+    states[index].angle = angle;
+    placed_origins[index] = {origin, states[index].position, angle};
   }
 
   void MarkStepStart() {

@@ -44,11 +44,7 @@ void RequireValid(const BodyDef& def) {
           "BodyDef mass (or density) must be positive and finite");
 }
 
-// Where the centre of mass stands for a body frame at `origin`, turned by `angle`.
-Vec2 CenterFor(const detail::BodyGeometry* geometry, Vec2 origin, double angle) {
-  if (!geometry) return origin;
-  return origin + Rotate(MakeRot(angle), geometry->local_center);
-}
+
 
 }  // namespace
 
@@ -117,8 +113,9 @@ BodyId World::CreateBody(const BodyDef& def) {
   bodies.geometries[index] = geometry;
   BodyInfo& info = bodies.infos[index] = detail::MakeBodyInfo(def, geometry.get(), impl_->def.rotation);
   BodyState& state = bodies.states[index] = {};
-  state.position = CenterFor(geometry.get(), def.position, def.angle);
+  state.position = def.position;
   state.angle = def.angle;
+  if (geometry) bodies.PlaceOrigin(index, def.position, def.angle);
   if (!def.is_static) {
     state.velocity = def.velocity;
     state.angular_velocity = def.angular_velocity;
@@ -184,8 +181,12 @@ void World::SetPosition(BodyId id, Vec2 position) {
   const BodyIndex index = impl_->Slot(id, "SetPosition");
   Require(IsFinite(position), "SetPosition: position must be finite");
   impl_->WakeTouching(index);  // what rested on it, or under it, where it was
-  BodyState& state = impl_->bodies.states[index];
-  state.position = CenterFor(impl_->bodies.geometries[index].get(), position, state.angle);
+  detail::Bodies& bodies = impl_->bodies;
+  if (bodies.geometries[index]) {
+    bodies.PlaceOrigin(index, position, bodies.states[index].angle);
+  } else {
+    bodies.states[index].position = position;
+  }
   impl_->WakeTouching(index);  // what it lands on or in
 }
 
@@ -194,10 +195,12 @@ void World::SetAngle(BodyId id, double angle) {
   Require(std::isfinite(angle), "SetAngle: angle must be finite");
   impl_->WakeTouching(index);
   // A body made of parts turns about its frame's origin, which stays where it is.
-  const Vec2 origin = impl_->bodies.Origin(index);
-  BodyState& state = impl_->bodies.states[index];
-  state.angle = angle;
-  state.position = CenterFor(impl_->bodies.geometries[index].get(), origin, angle);
+  detail::Bodies& bodies = impl_->bodies;
+  if (bodies.geometries[index]) {
+    bodies.PlaceOrigin(index, bodies.Origin(index), angle);
+  } else {
+    bodies.states[index].angle = angle;
+  }
   impl_->WakeTouching(index);
 }
 

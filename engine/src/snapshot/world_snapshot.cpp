@@ -256,7 +256,13 @@ void World::Impl::Save(ByteWriter& out) const {
                                      (forced ? kForced : 0)));
     if (!bodies.alive[i]) continue;
     WriteInfo(out, bodies.infos[i]);
-    if (bodies.geometries[i]) WriteParts(out, *bodies.geometries[i]);
+    if (bodies.geometries[i]) {
+      WriteParts(out, *bodies.geometries[i]);
+      const detail::Bodies::PlacedOrigin& placed = bodies.placed_origins[i];
+      WriteVec(out, placed.origin);
+      WriteVec(out, placed.center);
+      out.F64(placed.angle);
+    }
     const BodyState& s = bodies.states[i];
     for (const double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
       out.F64(v);
@@ -334,6 +340,11 @@ bool World::Impl::Load(ByteReader& in) {
     if (!IsSimpleShape(info.shape.type)) {
       bodies.geometries[index] = ReadParts(in, info);
       if (!bodies.geometries[index]) return false;
+      detail::Bodies::PlacedOrigin& placed = bodies.placed_origins[index];
+      placed.origin = ReadVec(in);
+      placed.center = ReadVec(in);
+      placed.angle = in.F64();
+      if (!in.Check(IsFinite(placed.origin) && IsFinite(placed.center) && std::isfinite(placed.angle))) return false;
     }
     BodyState& s = bodies.states[index];
     double* state[] = {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y, &s.angle, &s.angular_velocity};
