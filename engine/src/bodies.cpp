@@ -17,9 +17,13 @@ double BodyMass(const BodyDef& def) {
   return def.mass > 0.0 ? def.mass : def.density * ShapeArea(def.shape);
 }
 
-BodyInfo MakeBodyInfo(const BodyDef& def, bool rotation) {
+BodyInfo MakeBodyInfo(const BodyDef& def, const BodyGeometry* geometry, bool rotation) {
   BodyInfo info;
   info.shape = def.shape;
+  if (geometry) {
+    info.shape = Shape{};
+    info.shape.type = geometry->parts.size() == 1 ? geometry->parts[0].type : ShapeType::kCompound;
+  }
   info.restitution = def.restitution;
   info.friction = def.friction;
   info.is_static = def.is_static;
@@ -30,12 +34,13 @@ BodyInfo MakeBodyInfo(const BodyDef& def, bool rotation) {
   info.linear_damping = def.linear_damping;
   info.angular_damping = def.angular_damping;
   info.drag_coefficient = def.drag_coefficient >= 0.0                  ? def.drag_coefficient
-                          : def.shape.type == ShapeType::kCircle ? kCircleDrag
-                                                                 : kBoxDrag;
+                          : info.shape.type == ShapeType::kCircle || info.shape.type == ShapeType::kCapsule
+                              ? kCircleDrag
+                              : kBoxDrag;
   if (def.is_static || def.is_kinematic) return info;  // infinite mass and inertia: every inverse 0
-  info.mass = BodyMass(def);
+  info.mass = geometry ? geometry->mass : BodyMass(def);
   info.inv_mass = 1.0 / info.mass;
-  info.inertia = ShapeInertia(def.shape, info.mass);
+  info.inertia = geometry ? geometry->inertia : ShapeInertia(def.shape, info.mass);
   // Without rotation (world or body) nothing can turn the body: infinite inertia.
   info.inv_inertia = rotation && !def.fixed_rotation ? 1.0 / info.inertia : 0.0;
   return info;
@@ -63,6 +68,7 @@ BodyIndex Bodies::AppendSlot() {
   const auto index = static_cast<BodyIndex>(states.size());
   states.emplace_back();
   infos.emplace_back();
+  geometries.emplace_back();
   generations.push_back(0);
   alive.push_back(1);
   enabled.push_back(1);
@@ -84,6 +90,7 @@ void Bodies::Free(BodyIndex index) {
   states[index] = BodyState{};
   infos[index] = BodyInfo{};
   infos[index].is_static = true;
+  geometries[index].reset();
   applied_forces[index] = {};
   applied_torques[index] = 0.0;
   free_slots.push_back(index);
@@ -101,6 +108,7 @@ void Bodies::Count(BodyIndex index, int sign) {
   add(filtered, !(filters[index] == Filter{}));
   add(sensors, info.is_sensor);
   add(kinematic, info.is_kinematic);
+  add(with_parts, geometries[index] != nullptr);
 }
 
 void Bodies::ClearAppliedForces() {

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "body_geometry.h"
 #include "engine/body.h"
 #include "engine/ids.h"
 
@@ -16,6 +17,8 @@ namespace engine::detail {
 struct Bodies {
   std::vector<BodyState> states;
   std::vector<BodyInfo> infos;
+  /// The pieces of a body made of parts; null for a lone circle or box.
+  std::vector<std::shared_ptr<const BodyGeometry>> geometries;
   std::vector<Vec2> start_positions;  ///< each body's centre when the current step began
   std::vector<std::uint32_t> generations;
   std::vector<std::uint8_t> alive;    ///< 0: the slot is free
@@ -34,6 +37,7 @@ struct Bodies {
   std::size_t filtered = 0;           ///< bodies whose filter is not the default
   std::size_t sensors = 0;
   std::size_t kinematic = 0;
+  std::size_t with_parts = 0;         ///< bodies made of parts (not a lone circle or box)
   bool forces_applied = false;        ///< some applied force or torque waits for the step
 
   /// A slot for a new body (a free one, else a new one at the end), its generation kept.
@@ -50,17 +54,24 @@ struct Bodies {
   void Count(BodyIndex index, int sign);
   void ClearAppliedForces();
 
+  /// The body frame's origin: the centre, unless the body is made of parts.
+  Vec2 Origin(BodyIndex index) const {
+    return geometries[index] ? OriginOf(*geometries[index], states[index]) : states[index].position;
+  }
+
   void MarkStepStart() {
     start_positions.resize(states.size());
     for (std::size_t i = 0; i < states.size(); ++i) start_positions[i] = states[i].position;
   }
 };
 
-/// kg: the given mass, or density × area.
+/// kg: the given mass, or density × area (of a circle or box; a body of parts has its
+/// geometry's).
 double BodyMass(const BodyDef& def);
 
 /// What a step reads of a body made from `def` (preconditions checked): mass and inertia from
-/// the shape, infinite inertia (0 inverse) without rotation.
-BodyInfo MakeBodyInfo(const BodyDef& def, bool rotation);
+/// the shape, or from `geometry` for a body made of parts; infinite inertia (0 inverse) without
+/// rotation.
+BodyInfo MakeBodyInfo(const BodyDef& def, const BodyGeometry* geometry, bool rotation);
 
 }  // namespace engine::detail

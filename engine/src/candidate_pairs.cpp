@@ -27,7 +27,8 @@ constexpr double kPairQuota = 16;
 constexpr double kPairQuotaPerAspect = 4;
 
 // How far a body may reach within a step, m: contacts within it are speculative.
-double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info, bool awake) {
+double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info,
+                         const BodyGeometry* geometry, bool awake) {
   const double speculative = 0.5 * kSpeculativeSlops * def.linear_slop;
   if (!awake) return speculative;
   // The farthest a body can travel in this step under gravity, and then some; a turning body's
@@ -37,14 +38,17 @@ double SpeculativeMargin(const WorldDef& def, const BodyState& state, const Body
   const double dt = def.dt;
   const Shape& shape = info.shape;
   const double motion = Length(state.velocity) * dt + Length(def.gravity) * dt * dt;
-  const double outer = shape.type == ShapeType::kCircle ? shape.radius : Length(shape.half_extents);
+  const double outer = shape.type == ShapeType::kCircle ? shape.radius
+                       : shape.type == ShapeType::kBox  ? Length(shape.half_extents)
+                                                        : geometry->reach;
   const double turning = info.inv_inertia != 0.0 ? std::abs(state.angular_velocity) * outer * dt : 0.0;
   // A body moving farther in a step than half its size is fast. With continuous collision off
   // (and the body no bullet) a fast body is tested only where it is, as a discrete engine does:
   // it may tunnel. Slow bodies are the same either way, so a scene without fast bodies does
   // not change at all.
   const double size = shape.type == ShapeType::kCircle ? 2.0 * shape.radius
-                                                       : 2.0 * std::min(shape.half_extents.x, shape.half_extents.y);
+                      : shape.type == ShapeType::kBox  ? 2.0 * std::min(shape.half_extents.x, shape.half_extents.y)
+                                                       : geometry->thickness;
   const bool fast = motion + turning > kFastFraction * size;
   if (fast && !def.continuous && !info.bullet) return speculative;
   double margin = motion + speculative;
@@ -77,15 +81,27 @@ PairQuota QuotaOf(const Shape& shape, bool is_static) {
   return {is_static ? kInfinity : 2.0 * std::min(h.x, h.y), static_cast<std::uint32_t>(quota), 4.0 * h.x * h.y};
 }
 
+Shape QuotaShape(const Bodies& bodies, BodyIndex index) {
+  const BodyGeometry* geometry = bodies.geometries[index].get();
+  if (!geometry) return bodies.infos[index].shape;
+  constexpr double kLeast = 0.0005;
+  Shape box;
+  box.type = ShapeType::kBox;
+  box.half_extents = {std::max(kLeast, geometry->half_size.x), std::max(kLeast, geometry->half_size.y)};
+  return box;
+}
+
 void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& bodies,
                           std::span<const std::uint8_t> awake) {
   const std::size_t n = bodies.states.size();
   bounds_.resize(n);
   margins_.resize(n);
   for (BodyIndex id = 0; id < n; ++id) {
-    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id], awake[id] != 0) : 0.0;
+    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id],
+                                                   bodies.geometries[id].get(), awake[id] != 0)
+                               : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
-    const AABB b = BodyBounds(bodies.infos[id].shape, bodies.states[id]);
+    const AABB b = BoundsOf(bodies, id);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.

@@ -23,8 +23,17 @@ inline constexpr double kSpeculativeSlops = 4.0;
 /// The body's bounding box where it stands (turned boxes included).
 AABB BodyBounds(const Shape& shape, const BodyState& state);
 
+/// The bounding box of the body in `index`, whatever it is made of.
+inline AABB BoundsOf(const Bodies& bodies, BodyIndex index) {
+  if (IsSimpleShape(bodies.infos[index].shape.type)) return BodyBounds(bodies.infos[index].shape, bodies.states[index]);
+  return PiecesBounds(*bodies.geometries[index], bodies.states[index]);
+}
+
 /// The pair budget's inputs for a body of this shape (docs/limits.md).
 PairQuota QuotaOf(const Shape& shape, bool is_static);
+/// The shape the body's quota is reckoned from: its own, or for a body of parts the box around
+/// them (at least a millimetre across, so a flat polyline has an area).
+Shape QuotaShape(const Bodies& bodies, BodyIndex index);
 
 class CandidatePairs {
  public:

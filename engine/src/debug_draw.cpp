@@ -31,13 +31,33 @@ BodyKind KindOf(const detail::Bodies& bodies, std::span<const std::uint8_t> awak
 // A point fixed on a body, in world coordinates.
 Vec2 Anchor(const BodyState& state, Vec2 local) { return state.position + Rotate(MakeRot(state.angle), local); }
 
+// A body's pieces in the world: each drawn by the call for its kind.
+void DrawPieces(BodyId id, const detail::BodyGeometry& geometry, const BodyState& state, BodyKind kind,
+                DebugDraw& draw) {
+  const Vec2 origin = detail::OriginOf(geometry, state);
+  const Rot rotation = MakeRot(state.angle);
+  auto world = [&](Vec2 local) { return origin + Rotate(rotation, local); };
+  for (const ConvexPiece& piece : geometry.public_pieces) {
+    std::vector<Vec2> points;
+    for (const Vec2 v : piece.vertices) points.push_back(world(v));
+    switch (piece.type) {
+      case ShapeType::kCircle: draw.DrawCircle(id, points[0], piece.radius, state.angle, kind); break;
+      case ShapeType::kCapsule: draw.DrawCapsule(id, points[0], points[1], piece.radius, kind); break;
+      case ShapeType::kSegments: draw.DrawSegment(id, points[0], points[1], kind); break;
+      default: draw.DrawPolygon(id, points, piece.radius, kind);
+    }
+  }
+}
+
 void DrawShapes(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, DebugDraw& draw) {
   for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
     if (!bodies.alive[slot]) continue;
     const Shape& shape = bodies.infos[slot].shape;
     const BodyState& state = bodies.states[slot];
     const BodyKind kind = KindOf(bodies, awake, slot);
-    if (shape.type == ShapeType::kCircle) {
+    if (const detail::BodyGeometry* geometry = bodies.geometries[slot].get()) {
+      DrawPieces(bodies.IdOf(slot), *geometry, state, kind, draw);
+    } else if (shape.type == ShapeType::kCircle) {
       draw.DrawCircle(bodies.IdOf(slot), state.position, shape.radius, state.angle, kind);
     } else {
       draw.DrawBox(bodies.IdOf(slot), state.position, shape.half_extents, state.angle, kind);
@@ -56,7 +76,7 @@ void DrawSprings(const detail::Bodies& bodies, std::span<const SpringDef> spring
 void DrawBounds(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, DebugDraw& draw) {
   for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
     if (!bodies.alive[slot]) continue;
-    const AABB bounds = detail::BodyBounds(bodies.infos[slot].shape, bodies.states[slot]);
+    const AABB bounds = detail::BoundsOf(bodies, slot);
     draw.DrawBounds(bodies.IdOf(slot), bounds, KindOf(bodies, awake, slot));
   }
 }

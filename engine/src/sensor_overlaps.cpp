@@ -26,7 +26,8 @@ void SensorOverlaps::Update(const Bodies& bodies, StepEvents* events) {
   previous_.swap(overlaps_);
   overlaps_.clear();
   for (const BodyPair p : candidates_) {
-    if (ShapesOverlap(bodies.infos[p.a], bodies.states[p.a], bodies.infos[p.b], bodies.states[p.b])) {
+    if (ShapesOverlap(bodies.infos[p.a], bodies.states[p.a], bodies.geometries[p.a].get(), bodies.infos[p.b],
+                      bodies.states[p.b], bodies.geometries[p.b].get())) {
       overlaps_.push_back(p);
     }
   }

@@ -26,8 +26,9 @@ std::uint64_t World::StateHash() const {
   std::uint64_t hash = kFnvOffset;
   for (const BodyId id : impl_->bodies.live_ids) {
     const BodyState& s = impl_->bodies.states[id.index];
-    HashDouble(s.position.x, &hash);
-    HashDouble(s.position.y, &hash);
+    const Vec2 origin = impl_->bodies.Origin(id.index);
+    HashDouble(origin.x, &hash);
+    HashDouble(origin.y, &hash);
     HashDouble(s.velocity.x, &hash);
     HashDouble(s.velocity.y, &hash);
     HashDouble(s.angle, &hash);

@@ -59,7 +59,10 @@ detail::ForceModel World::Impl::Forces() const {
           .rotation = def.rotation,
           .damping = bodies.damped > 0,
           .enabled = bodies.inactive > 0 ? std::span<const std::uint8_t>(bodies.enabled)
-                                         : std::span<const std::uint8_t>()};
+                                         : std::span<const std::uint8_t>(),
+          .geometries = bodies.with_parts > 0 ? std::span<const std::shared_ptr<const detail::BodyGeometry>>(
+                                                    bodies.geometries)
+                                              : std::span<const std::shared_ptr<const detail::BodyGeometry>>()};
 }
 
 bool World::Impl::SpeculativeContacts() const {
@@ -85,7 +88,8 @@ void World::Step() {
   // A moving body reaching a sleeping one wakes its island; pairs where nothing moves drop out.
   detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, bodies.infos, w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
-  w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, w.candidates.Margins());
+  w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
+                        w.candidates.Margins());
   if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
@@ -141,7 +145,20 @@ const BodyState& World::State(BodyId id) const { return impl_->bodies.states[imp
 const BodyInfo& World::Info(BodyId id) const { return impl_->bodies.infos[impl_->Slot(id, "Info")]; }
 AABB World::BodyBounds(BodyId id) const {
   const BodyIndex i = impl_->Slot(id, "BodyBounds");
-  return detail::BodyBounds(impl_->bodies.infos[i].shape, impl_->bodies.states[i]);
+  return detail::BoundsOf(impl_->bodies, i);
+}
+Vec2 World::Origin(BodyId id) const { return impl_->bodies.Origin(impl_->Slot(id, "Origin")); }
+Vec2 World::LocalCenter(BodyId id) const {
+  const auto& geometry = impl_->bodies.geometries[impl_->Slot(id, "LocalCenter")];
+  return geometry ? geometry->local_center : Vec2{};
+}
+std::span<const ShapePart> World::Parts(BodyId id) const {
+  const auto& geometry = impl_->bodies.geometries[impl_->Slot(id, "Parts")];
+  return geometry ? std::span<const ShapePart>(geometry->parts) : std::span<const ShapePart>();
+}
+std::span<const ConvexPiece> World::Pieces(BodyId id) const {
+  const auto& geometry = impl_->bodies.geometries[impl_->Slot(id, "Pieces")];
+  return geometry ? std::span<const ConvexPiece>(geometry->public_pieces) : std::span<const ConvexPiece>();
 }
 const WorldDef& World::Def() const { return impl_->def; }
 std::int64_t World::StepCount() const { return impl_->step_count; }

@@ -17,10 +17,20 @@ using detail::Require;
 
 void RequireValid(const BodyDef& def) {
   const Shape& shape = def.shape;
-  Require(shape.type == ShapeType::kCircle ? IsPositiveFinite(shape.radius)
-                                           : IsPositiveFinite(shape.half_extents.x) &&
-                                                 IsPositiveFinite(shape.half_extents.y),
-          "BodyDef::shape size must be positive and finite");
+  if (def.parts.empty()) {
+    Require(shape.type == ShapeType::kCircle ? IsPositiveFinite(shape.radius)
+            : shape.type == ShapeType::kBox  ? IsPositiveFinite(shape.half_extents.x) &&
+                                                  IsPositiveFinite(shape.half_extents.y)
+                                             : false,
+            "BodyDef::shape must be a circle or box of positive finite size (other shapes go in parts)");
+  }
+  for (const ShapePart& part : def.parts) {
+    if (const std::optional<PartProblem> problem = CheckShapePart(part, def.is_static)) {
+      std::fprintf(stderr, "engine precondition failed: BodyDef::parts: %s %s\n", problem->key.c_str(),
+                   problem->message.c_str());
+      std::abort();
+    }
+  }
   Require(IsFinite(def.position) && IsFinite(def.velocity) && std::isfinite(def.angle) &&
               std::isfinite(def.angular_velocity),
           "BodyDef state must be finite");
@@ -30,8 +40,14 @@ void RequireValid(const BodyDef& def) {
               std::isfinite(def.drag_coefficient),
           "BodyDef damping must be finite and >= 0, the drag coefficient finite");
   Require(!(def.is_static && def.is_kinematic), "BodyDef cannot be both static and kinematic");
-  Require(def.is_static || def.is_kinematic || IsPositiveFinite(detail::BodyMass(def)),
+  Require(def.is_static || def.is_kinematic || !def.parts.empty() || IsPositiveFinite(detail::BodyMass(def)),
           "BodyDef mass (or density) must be positive and finite");
+}
+
+// Where the centre of mass stands for a body frame at `origin`, turned by `angle`.
+Vec2 CenterFor(const detail::BodyGeometry* geometry, Vec2 origin, double angle) {
+  if (!geometry) return origin;
+  return origin + Rotate(MakeRot(angle), geometry->local_center);
 }
 
 }  // namespace
@@ -57,12 +73,12 @@ void World::Impl::WakeTouching(BodyIndex index) {
   // sleepers are found by their bounds: within the reach at which two resting bodies get a
   // contact (candidate_pairs.cpp), so whatever rests on the body or under it.
   const double reach = detail::kSpeculativeSlops * def.linear_slop;
-  const AABB b = detail::BodyBounds(bodies.infos[index].shape, bodies.states[index]);
+  const AABB b = detail::BoundsOf(bodies, index);
   const AABB near{b.lower - Vec2{reach, reach}, b.upper + Vec2{reach, reach}};
   const detail::SleepState view = sleep.View();
   for (BodyIndex i = 0; i < bodies.states.size(); ++i) {
     if (view.awake[i] || view.island[i] == kNoBody || HasInfiniteMass(bodies.infos[i])) continue;
-    if (Overlaps(near, detail::BodyBounds(bodies.infos[i].shape, bodies.states[i]))) {
+    if (Overlaps(near, detail::BoundsOf(bodies, i))) {
       detail::WakeIsland(i, bodies.infos, view);
     }
   }
@@ -91,10 +107,17 @@ void World::Impl::RebuildActingSprings() {
 BodyId World::CreateBody(const BodyDef& def) {
   RequireValid(def);
   detail::Bodies& bodies = impl_->bodies;
+  std::shared_ptr<const detail::BodyGeometry> geometry;
+  if (!def.parts.empty()) {
+    geometry = detail::MakeBodyGeometry(def);
+    Require(def.is_static || def.is_kinematic || IsPositiveFinite(geometry->mass),
+            "BodyDef mass (or the parts' density) must be positive and finite");
+  }
   const BodyIndex index = bodies.Allocate();
-  BodyInfo& info = bodies.infos[index] = detail::MakeBodyInfo(def, impl_->def.rotation);
+  bodies.geometries[index] = geometry;
+  BodyInfo& info = bodies.infos[index] = detail::MakeBodyInfo(def, geometry.get(), impl_->def.rotation);
   BodyState& state = bodies.states[index] = {};
-  state.position = def.position;
+  state.position = CenterFor(geometry.get(), def.position, def.angle);
   state.angle = def.angle;
   if (!def.is_static) {
     state.velocity = def.velocity;
@@ -105,7 +128,7 @@ BodyId World::CreateBody(const BodyDef& def) {
   bodies.user_data[index] = def.user_data;
   bodies.Count(index, +1);
   impl_->sleep.Place(index, detail::WakefulnessOf(info, state), def.enabled);
-  impl_->candidates.Place(index, def.shape, def.is_static);
+  impl_->candidates.Place(index, detail::QuotaShape(bodies, index), def.is_static);
   return bodies.IdOf(index);
 }
 
@@ -161,7 +184,8 @@ void World::SetPosition(BodyId id, Vec2 position) {
   const BodyIndex index = impl_->Slot(id, "SetPosition");
   Require(IsFinite(position), "SetPosition: position must be finite");
   impl_->WakeTouching(index);  // what rested on it, or under it, where it was
-  impl_->bodies.states[index].position = position;
+  BodyState& state = impl_->bodies.states[index];
+  state.position = CenterFor(impl_->bodies.geometries[index].get(), position, state.angle);
   impl_->WakeTouching(index);  // what it lands on or in
 }
 
@@ -169,7 +193,11 @@ void World::SetAngle(BodyId id, double angle) {
   const BodyIndex index = impl_->Slot(id, "SetAngle");
   Require(std::isfinite(angle), "SetAngle: angle must be finite");
   impl_->WakeTouching(index);
-  impl_->bodies.states[index].angle = angle;
+  // A body made of parts turns about its frame's origin, which stays where it is.
+  const Vec2 origin = impl_->bodies.Origin(index);
+  BodyState& state = impl_->bodies.states[index];
+  state.angle = angle;
+  state.position = CenterFor(impl_->bodies.geometries[index].get(), origin, angle);
   impl_->WakeTouching(index);
 }
 

@@ -99,7 +99,8 @@ class World {
   Vec2 LocalCenter(BodyId id) const;
   /// A body's parts as BodyDef::parts gave them (empty for a lone circle or box).
   std::span<const ShapePart> Parts(BodyId id) const;
-  /// The convex pieces it collides as, in the body's frame (one for a lone circle or box).
+  /// The convex pieces it collides as, in the body's frame (none for a lone circle or box:
+  /// Info(id).shape is all there is to it).
   std::span<const ConvexPiece> Pieces(BodyId id) const;
   AABB BodyBounds(BodyId id) const;
   /// The settings, with the automatic ones (0 substeps or iterations) filled in.

@@ -8,8 +8,10 @@ namespace engine::detail {
 namespace {
 
 // The length of a body's outline seen along `direction` (unit), m: what a 2D fluid pushes on.
-double ProjectedLength(const BodyInfo& info, double angle, Vec2 direction) {
+double ProjectedLength(const BodyInfo& info, const BodyGeometry* geometry, const BodyState& state, Vec2 direction) {
   if (info.shape.type == ShapeType::kCircle) return 2.0 * info.shape.radius;
+  if (geometry) return PiecesWidth(*geometry, state, direction);
+  const double angle = state.angle;
   const Vec2 across = InvRotate(MakeRot(angle), LeftPerp(direction));
   return 2.0 * (std::abs(across.x) * info.shape.half_extents.x + std::abs(across.y) * info.shape.half_extents.y);
 }
@@ -18,10 +20,12 @@ double ProjectedLength(const BodyInfo& info, double angle, Vec2 direction) {
 
 // F = −½·ρ·C_d·L·|v|·v (per metre of depth), the drag of a body much faster than creep, as the
 // rate ½·ρ·C_d·L·|v| / m that multiplies −v.
-double ForceModel::QuadraticDragRate(const BodyInfo& info, const BodyState& s) const {
+double ForceModel::QuadraticDragRate(const BodyState& s, std::size_t body) const {
+  const BodyInfo& info = infos[body];
   const double speed = Length(s.velocity);
   if (speed == 0.0) return 0.0;
-  const double length = ProjectedLength(info, s.angle, s.velocity / speed);
+  const BodyGeometry* geometry = geometries.empty() ? nullptr : geometries[body].get();
+  const double length = ProjectedLength(info, geometry, s, s.velocity / speed);
   const double c = 0.5 * def.fluid_density * info.drag_coefficient * length;
   return c * speed * info.inv_mass;
 }
@@ -29,7 +33,7 @@ double ForceModel::QuadraticDragRate(const BodyInfo& info, const BodyState& s) c
 double ForceModel::DragRate(const BodyState& state, std::size_t body) const {
   const BodyInfo& info = infos[body];
   double rate = info.linear_damping;
-  if (def.fluid_density != 0.0) rate += QuadraticDragRate(info, state);
+  if (def.fluid_density != 0.0) rate += QuadraticDragRate(state, body);
   return rate;
 }
 
@@ -47,7 +51,7 @@ void ForceModel::Evaluate(std::span<const BodyState> states, std::span<Vec2> lin
     const BodyState& s = states[i];
     if (info.linear_damping != 0.0) linear[i] -= info.linear_damping * s.velocity;
     if (rotation && info.angular_damping != 0.0) angular[i] -= info.angular_damping * s.angular_velocity;
-    if (def.fluid_density != 0.0) linear[i] -= QuadraticDragRate(info, s) * s.velocity;
+    if (def.fluid_density != 0.0) linear[i] -= QuadraticDragRate(s, i) * s.velocity;
   }
 
   for (std::size_t i = 0; i < applied_forces.size(); ++i) {

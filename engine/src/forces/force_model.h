@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <span>
 
+#include <memory>
+
+#include "body_geometry.h"
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "forces/springs.h"
@@ -26,6 +29,8 @@ struct ForceModel {
   bool damping;                          ///< some body has linear or angular damping
   /// Per body slot, 0 for a disabled body or a free slot (which pull nothing); empty: all enabled.
   std::span<const std::uint8_t> enabled = {};
+  /// Per body slot, the pieces of a body made of parts (their width is what drag pushes on).
+  std::span<const std::shared_ptr<const BodyGeometry>> geometries = {};
 
   /// Linear and angular acceleration of every body in `states` (zero for bodies not awake).
   void Evaluate(std::span<const BodyState> states, std::span<Vec2> linear,
@@ -42,7 +47,7 @@ struct ForceModel {
   double DragRate(const BodyState& state, std::size_t body) const;
 
  private:
-  double QuadraticDragRate(const BodyInfo& info, const BodyState& state) const;
+  double QuadraticDragRate(const BodyState& state, std::size_t body) const;
 };
 
 }  // namespace engine::detail

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "narrow_phase/collide.h"
+#include "narrow_phase/collide_pieces.h"
 
 namespace engine::detail {
 
@@ -42,16 +43,18 @@ namespace {
   return CollideOrientedBoxes(box_a(), box_b(), m, margin);
 }
 
-// Last step's impulses on the points of `contact` that match by feature id, if the pair was in
-// contact then with about the same normal. `cursor` walks forward through last step's list,
-// which is in the same pair order.
+// Last step's impulses on the points of `contact` that match by feature id, if the same pieces
+// were in contact then with about the same normal. `cursor` walks forward through last step's
+// list, which is in the same order.
 [[gnu::always_inline]] inline void CarryImpulses(const std::vector<Contact>& previous, Contact* contact,
                                                  std::size_t* cursor) {
-  const BodyPair pair{contact->a, contact->b};
-  while (*cursor < previous.size() && BodyPair{previous[*cursor].a, previous[*cursor].b} < pair) ++*cursor;
+  while (*cursor < previous.size() && ContactBefore(previous[*cursor], *contact)) ++*cursor;
   if (*cursor == previous.size()) return;
   const Contact& old = previous[*cursor];
-  if (old.a != pair.a || old.b != pair.b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) return;
+  if (old.a != contact->a || old.b != contact->b || old.piece_a != contact->piece_a ||
+      old.piece_b != contact->piece_b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) {
+    return;
+  }
   const Manifold& m = contact->manifold;
   for (int i = 0; i < m.point_count; ++i) {
     for (int j = 0; j < old.manifold.point_count; ++j) {
@@ -64,7 +67,9 @@ namespace {
 
 }  // namespace
 
-bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b) {
+bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyGeometry* ga, const BodyInfo& ib,
+                   const BodyState& b, const BodyGeometry* gb) {
+  if (ga || gb) return PiecesOverlap({0, ia, a, ga}, {0, ib, b, gb});
   Manifold m;
   if (!CollideBodies(ia, a, ib, b, 0.0, &m)) return false;
   for (int i = 0; i < m.point_count; ++i) {
@@ -74,7 +79,7 @@ bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, c
 }
 
 void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-                         std::span<const BodyInfo> infos, std::span<const double> margins) {
+                         std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins) {
   previous_contacts_.swap(contacts_);
   contacts_.clear();
   // At most one contact a pair: reserving that much at once avoids growth by doubling, which
@@ -84,10 +89,21 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
   for (const BodyPair& pair : pairs) {
     const BodyInfo& ia = infos[pair.a];
     const BodyInfo& ib = infos[pair.b];
+    const double margin = margins[pair.a] + margins[pair.b];
+    if (!IsSimpleShape(ia.shape.type) || !IsSimpleShape(ib.shape.type)) {
+      const std::size_t first = contacts_.size();
+      CollidePieces({pair.a, ia, states[pair.a], geometries[pair.a].get()},
+                    {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts_);
+      for (std::size_t i = first; i < contacts_.size(); ++i) CarryImpulses(previous_contacts_, &contacts_[i], &previous);
+      continue;
+    }
     Manifold m;
-    if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margins[pair.a] + margins[pair.b], &m)) continue;
-    Contact contact{pair.a, pair.b, m, std::max(ia.restitution, ib.restitution),
-                    std::sqrt(ia.friction * ib.friction)};
+    if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margin, &m)) continue;
+    Contact contact{.a = pair.a,
+                    .b = pair.b,
+                    .manifold = m,
+                    .restitution = std::max(ia.restitution, ib.restitution),
+                    .friction = std::sqrt(ia.friction * ib.friction)};
     CarryImpulses(previous_contacts_, &contact, &previous);
     contacts_.push_back(contact);
   }

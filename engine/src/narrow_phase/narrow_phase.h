@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "body_geometry.h"
 #include "body_pair.h"
 #include "engine/body.h"
 #include "engine/contact.h"
@@ -12,14 +13,27 @@
 
 namespace engine::detail {
 
-/// Whether two bodies' shapes overlap or touch (what a sensor reports).
-bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyInfo& ib, const BodyState& b);
+/// Whether two bodies' shapes overlap or touch (what a sensor reports); the geometry of a body
+/// made of parts, null for a lone circle or box.
+bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyGeometry* ga, const BodyInfo& ib,
+                   const BodyState& b, const BodyGeometry* gb);
+
+/// The order of contacts: by body pair, then by the pieces of bodies made of parts.
+inline bool ContactBefore(const Contact& x, const Contact& y) {
+  if (x.a != y.a) return x.a < y.a;
+  if (x.b != y.b) return x.b < y.b;
+  if (x.piece_a != y.piece_a) return x.piece_a < y.piece_a;
+  return x.piece_b < y.piece_b;
+}
+
+/// The body slots' geometries (Bodies::geometries).
+using Geometries = std::span<const std::shared_ptr<const BodyGeometry>>;
 
 class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body.
   void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-              std::span<const BodyInfo> infos, std::span<const double> margins);
+              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins);
 
   /// Forgets the body's contacts (destroyed or disabled), so none warm-starts a body that takes
   /// its slot.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "queries/cast_pieces.h"
 #include "queries/query.h"
 #include "queries/sweep.h"
 
@@ -61,7 +62,9 @@ template <class OnHit>
 void ForEachHit(const Bodies& bodies, const Cast& cast, const std::optional<Filter>& filter, OnHit on_hit) {
   for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
     if (!IsQueried(bodies, slot, filter)) continue;
-    std::optional<RayHit> hit = CastAgainst(cast, bodies.infos[slot].shape, bodies.states[slot]);
+    const BodyGeometry* geometry = bodies.geometries[slot].get();
+    std::optional<RayHit> hit = geometry ? CastAgainstPieces(cast, *geometry, bodies.states[slot])
+                                         : CastAgainst(cast, bodies.infos[slot].shape, bodies.states[slot]);
     if (!hit) continue;
     hit->body = bodies.IdOf(slot);
     on_hit(*hit);

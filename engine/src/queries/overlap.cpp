@@ -23,7 +23,7 @@ std::vector<BodyId> World::OverlapAABB(const AABB& box, const std::optional<Filt
   std::vector<BodyId> found;
   for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
     if (!detail::IsQueried(bodies, slot, filter)) continue;
-    if (Overlaps(detail::BodyBounds(bodies.infos[slot].shape, bodies.states[slot]), box)) {
+    if (Overlaps(detail::BoundsOf(bodies, slot), box)) {
       found.push_back(bodies.IdOf(slot));
     }
   }
@@ -45,9 +45,11 @@ std::vector<BodyId> World::OverlapShape(const Shape& shape, Vec2 position, doubl
     const BodyState& state = bodies.states[slot];
     // Far bodies are passed over by their outer circles, without turning anything; the reach is
     // grown a little so that rounding never passes over one that only just touches.
-    const double reach = (OuterRadius(shape) + OuterRadius(info.shape)) * (1.0 + 1e-9);
+    const detail::BodyGeometry* geometry = bodies.geometries[slot].get();
+    const double outer = geometry ? geometry->reach : OuterRadius(info.shape);
+    const double reach = (OuterRadius(shape) + outer) * (1.0 + 1e-9);
     if (LengthSquared(state.position - position) > reach * reach) continue;
-    if (detail::ShapesOverlap(query_info, query, info, state)) found.push_back(bodies.IdOf(slot));
+    if (detail::ShapesOverlap(query_info, query, nullptr, info, state, geometry)) found.push_back(bodies.IdOf(slot));
   }
   return found;
 }

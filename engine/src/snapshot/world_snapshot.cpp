@@ -14,6 +14,7 @@ namespace {
 
 using detail::ByteReader;
 using detail::ByteWriter;
+using detail::BodyGeometry;
 
 constexpr std::uint32_t kMagic = 0x31584242;  // "BBX1"
 constexpr std::uint32_t kVersion = 1;
@@ -115,7 +116,7 @@ bool ConsistentMass(const BodyInfo& info, bool rotation) {
 
 bool ReadInfo(ByteReader& in, bool rotation, BodyInfo* info) {
   const std::uint8_t type = in.U8();
-  in.Check(type <= static_cast<std::uint8_t>(ShapeType::kBox));
+  in.Check(type <= static_cast<std::uint8_t>(ShapeType::kCompound));
   info->shape.type = static_cast<ShapeType>(type);
   info->shape.radius = in.F64();
   info->shape.half_extents = ReadVec(in);
@@ -132,10 +133,70 @@ bool ReadInfo(ByteReader& in, bool rotation, BodyInfo* info) {
   info->fixed_rotation = flags & kFixedRotation;
   info->bullet = flags & kBullet;
   const Shape& s = info->shape;
+  // A body made of parts has its size in them (ReadParts).
   const bool sized = s.type == ShapeType::kCircle ? std::isfinite(s.radius) && s.radius > 0.0
-                                                  : IsFinite(s.half_extents) && s.half_extents.x > 0.0 &&
-                                                        s.half_extents.y > 0.0;
+                     : s.type == ShapeType::kBox  ? IsFinite(s.half_extents) && s.half_extents.x > 0.0 &&
+                                                       s.half_extents.y > 0.0
+                                                  : true;
   return in.Check(sized && flags < 32 && !(info->is_static && info->is_kinematic) && ConsistentMass(*info, rotation));
+}
+
+// A body's parts, as the body was made with them: enough to build its geometry again.
+void WriteParts(ByteWriter& out, const BodyGeometry& g) {
+  out.F64(g.density);
+  out.F64(g.friction);
+  out.F64(g.restitution);
+  out.U32(static_cast<std::uint32_t>(g.parts.size()));
+  for (const ShapePart& p : g.parts) {
+    out.U8(static_cast<std::uint8_t>(p.type));
+    out.U8(static_cast<std::uint8_t>((p.loop ? 1 : 0) | (p.density ? 2 : 0) | (p.friction ? 4 : 0) |
+                                     (p.restitution ? 8 : 0)));
+    out.F64(p.radius);
+    WriteVec(out, p.half_extents);
+    out.F64(p.length);
+    WriteVec(out, p.offset);
+    out.F64(p.angle);
+    for (const std::optional<double>& v : {p.density, p.friction, p.restitution}) {
+      if (v) out.F64(*v);
+    }
+    out.U32(static_cast<std::uint32_t>(p.points.size()));
+    for (const Vec2 v : p.points) WriteVec(out, v);
+  }
+}
+
+// The parts WriteParts wrote, each checked as CreateBody checks it, and the geometry built
+// from them; null (and `in` failed) for anything CreateBody would refuse.
+std::shared_ptr<const BodyGeometry> ReadParts(ByteReader& in, const BodyInfo& info) {
+  BodyDef def;
+  def.is_static = info.is_static;
+  def.density = in.F64();
+  def.friction = in.F64();
+  def.restitution = in.F64();
+  if (!in.Check(std::isfinite(def.density) && def.density > 0.0)) return nullptr;
+  def.parts.resize(in.Count(2 + 8 + 16 + 8 + 16 + 8 + 4));
+  for (ShapePart& p : def.parts) {
+    const std::uint8_t type = in.U8();
+    const std::uint8_t flags = in.U8();
+    if (!in.Check(type <= static_cast<std::uint8_t>(ShapeType::kSegments) && flags < 16)) return nullptr;
+    p.type = static_cast<ShapeType>(type);
+    p.loop = flags & 1;
+    p.radius = in.F64();
+    p.half_extents = ReadVec(in);
+    p.length = in.F64();
+    p.offset = ReadVec(in);
+    p.angle = in.F64();
+    if (flags & 2) p.density = in.F64();
+    if (flags & 4) p.friction = in.F64();
+    if (flags & 8) p.restitution = in.F64();
+    p.points.resize(in.Count(16));
+    for (Vec2& v : p.points) v = ReadVec(in);
+    if (!in.Ok() || !in.Check(!CheckShapePart(p, def.is_static))) return nullptr;
+  }
+  const ShapeType type = def.parts.size() == 1 ? def.parts[0].type : ShapeType::kCompound;
+  if (!in.Check(!def.parts.empty() && type == info.shape.type)) return nullptr;
+  auto geometry = detail::MakeBodyGeometry(def);
+  if (!in.Check(HasInfiniteMass(info) || geometry->mass > 0.0)) return nullptr;
+  return geometry;
 }
 
 void WriteContact(ByteWriter& out, const Contact& c) {
@@ -195,6 +256,7 @@ void World::Impl::Save(ByteWriter& out) const {
                                      (forced ? kForced : 0)));
     if (!bodies.alive[i]) continue;
     WriteInfo(out, bodies.infos[i]);
+    if (bodies.geometries[i]) WriteParts(out, *bodies.geometries[i]);
     const BodyState& s = bodies.states[i];
     for (const double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
       out.F64(v);
@@ -228,7 +290,14 @@ void World::Impl::Save(ByteWriter& out) const {
   }
   const std::vector<Contact>& contacts = narrow_phase.Contacts();
   out.U32(static_cast<std::uint32_t>(contacts.size()));
-  for (const Contact& c : contacts) WriteContact(out, c);
+  for (const Contact& c : contacts) {
+    WriteContact(out, c);
+    // Which pieces touch, in worlds that have bodies of parts (others' snapshots stay as they were).
+    if (bodies.with_parts > 0) {
+      out.U32(c.piece_a);
+      out.U32(c.piece_b);
+    }
+  }
   contact_events.Save(out);
   sensors.Save(out);
   out.U8(static_cast<std::uint8_t>(solver.index()));
@@ -262,6 +331,10 @@ bool World::Impl::Load(ByteReader& in) {
     }
     BodyInfo& info = bodies.infos[index];
     if (!ReadInfo(in, def.rotation, &info)) return false;
+    if (!IsSimpleShape(info.shape.type)) {
+      bodies.geometries[index] = ReadParts(in, info);
+      if (!bodies.geometries[index]) return false;
+    }
     BodyState& s = bodies.states[index];
     double* state[] = {&s.position.x, &s.position.y, &s.velocity.x, &s.velocity.y, &s.angle, &s.angular_velocity};
     for (double* v : state) *v = in.F64();
@@ -295,7 +368,7 @@ bool World::Impl::Load(ByteReader& in) {
     sleep.rest_time[index] = rest;
     sleep.awake[index] = awake;
     sleep.island[index] = island;
-    candidates.Place(index, info.shape, info.is_static);
+    candidates.Place(index, detail::QuotaShape(bodies, index), info.is_static);
   }
   // The free list, in its order: the next bodies created take the same slots.
   bodies.free_slots.assign(in.Count(4), 0);
@@ -329,9 +402,17 @@ bool World::Impl::Load(ByteReader& in) {
   for (std::size_t i = 0; i < contacts.size() && in.Ok(); ++i) {
     Contact& c = contacts[i];
     if (!ReadContact(in, &c)) return false;
-    const BodyPair pair{c.a, c.b};
-    in.Check(c.a < c.b && c.b < n && bodies.enabled[c.a] && bodies.enabled[c.b] &&
-             (i == 0 || BodyPair{contacts[i - 1].a, contacts[i - 1].b} < pair));
+    if (bodies.with_parts > 0) {
+      const std::uint32_t piece_a = in.U32(), piece_b = in.U32();
+      if (!in.Check(piece_a <= 0xffff && piece_b <= 0xffff)) return false;
+      c.piece_a = static_cast<std::uint16_t>(piece_a);
+      c.piece_b = static_cast<std::uint16_t>(piece_b);
+    }
+    auto pieces = [&](BodyIndex body) {
+      return bodies.geometries[body] ? bodies.geometries[body]->pieces.size() : std::size_t{1};
+    };
+    in.Check(c.a < c.b && c.b < n && bodies.enabled[c.a] && bodies.enabled[c.b] && c.piece_a < pieces(c.a) &&
+             c.piece_b < pieces(c.b) && (i == 0 || detail::ContactBefore(contacts[i - 1], c)));
   }
   if (!in.Ok() || !contact_events.Load(in, bodies) || !sensors.Load(in, bodies)) return false;
   if (!in.Check(in.U8() == solver.index())) return false;
