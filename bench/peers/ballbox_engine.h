@@ -49,6 +49,12 @@ class BallboxEngine : public PhysicsEngine {
       def.shape.type = b.kind == Kind::kCircle ? engine::ShapeType::kCircle : engine::ShapeType::kBox;
       def.shape.radius = b.radius;
       def.shape.half_extents = b.half;
+      if (b.as_polygon) {
+        engine::ShapePart square;
+        square.type = engine::ShapeType::kPolygon;
+        square.points = {{-b.half.x, -b.half.y}, {b.half.x, -b.half.y}, {b.half.x, b.half.y}, {-b.half.x, b.half.y}};
+        def.parts = {square};
+      }
       def.position = b.position;
       def.velocity = b.velocity;
       def.is_static = b.is_static;

@@ -46,7 +46,15 @@ class Box2dEngine : public PhysicsEngine {
       if (spec.kind == Kind::kBox) {
         // Box2D rounds every polygon by b2_polygonRadius (1 cm) and collides the rounded outline:
         // a box that much smaller has the scene's outline (boxes would otherwise rest 1.5 cm apart).
-        box.SetAsBox(static_cast<float>(spec.half.x) - b2_polygonRadius, static_cast<float>(spec.half.y) - b2_polygonRadius);
+        const float hx = static_cast<float>(spec.half.x) - b2_polygonRadius;
+        const float hy = static_cast<float>(spec.half.y) - b2_polygonRadius;
+        if (spec.as_polygon) {
+          // The same square through the general polygon path (b2PolygonShape::Set computes its hull).
+          const b2Vec2 corners[4] = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+          box.Set(corners, 4);
+        } else {
+          box.SetAsBox(hx, hy);
+        }
         fixture.shape = &box;
       } else {
         circle.m_radius = static_cast<float>(spec.radius);

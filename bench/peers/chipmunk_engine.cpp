@@ -76,8 +76,11 @@ class ChipmunkEngine : public PhysicsEngine {
         body = cpSpaceAddBody(space_, cpBodyNew(spec.mass, scene.rotation ? spec.inertia : INFINITY));
         cpBodySetPosition(body, cpv(spec.position.x, spec.position.y));
         cpBodySetVelocity(body, cpv(spec.velocity.x, spec.velocity.y));
-        shape = spec.kind == Kind::kBox ? cpBoxShapeNew(body, 2 * spec.half.x, 2 * spec.half.y, 0.0)
-                                        : cpCircleShapeNew(body, spec.radius, cpvzero);
+        const cpVect corners[4] = {cpv(-spec.half.x, -spec.half.y), cpv(spec.half.x, -spec.half.y),
+                                   cpv(spec.half.x, spec.half.y), cpv(-spec.half.x, spec.half.y)};
+        shape = spec.kind == Kind::kCircle ? cpCircleShapeNew(body, spec.radius, cpvzero)
+                : spec.as_polygon          ? cpPolyShapeNew(body, 4, corners, cpTransformIdentity, 0.0)
+                                           : cpBoxShapeNew(body, 2 * spec.half.x, 2 * spec.half.y, 0.0);
         owned_bodies_.push_back(body);
       }
       cpShapeSetFriction(shape, friction);

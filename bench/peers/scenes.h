@@ -37,6 +37,10 @@ struct BodySpec {
   bool is_static = false;
   double mass = 0;      ///< kg, set explicitly in every engine (not left to its density rules)
   double inertia = 0;   ///< kg·m² about the centre
+  /// A box handed to the engine as a general convex polygon (its four corners), not as a box:
+  /// ballbox's polygon path instead of its box path. Box2D and Chipmunk collide boxes as
+  /// polygons anyway, so for them it is the same body.
+  bool as_polygon = false;
 };
 
 /// One scene as every engine builds it: the same bodies, one material for every shape (so the
@@ -102,12 +106,16 @@ inline BodySpec Circle(Vec2 center, double radius, Vec2 velocity = {}) {
   return b;
 }
 
-inline void AddPyramid(SceneSpec& s, int base, double overlap = 0.0) {
+inline void AddPyramid(SceneSpec& s, int base, double overlap = 0.0, bool polygons = false) {
   s.bodies.push_back(Box({0, -0.5}, {2.0 * base + 20, 1}, 1, true));
+  s.bodies.back().as_polygon = polygons;
   const double pitch = 1.0 - overlap;
   for (int row = 0; row < base; ++row) {
     const int n = base - row;
-    for (int i = 0; i < n; ++i) s.bodies.push_back(Box({(i - 0.5 * (n - 1)) * pitch, 0.5 + row * pitch}, {1, 1}));
+    for (int i = 0; i < n; ++i) {
+      s.bodies.push_back(Box({(i - 0.5 * (n - 1)) * pitch, 0.5 + row * pitch}, {1, 1}));
+      s.bodies.back().as_polygon = polygons;
+    }
   }
   s.bounds = {{-base - 10.0, -1}, {base + 10.0, base + 10.0}};
 }
@@ -321,6 +329,10 @@ inline std::vector<Scene> Scenes() {
     const std::string turning = rotation ? " (turning)" : "";
     out.push_back(resting("pyramid base 20" + turning, rotation, [](SceneSpec& s) { AddPyramid(s, 20); }));
     if (!rotation) out.push_back(resting("pyramid base 40", false, [](SceneSpec& s) { AddPyramid(s, 40); }));
+    if (rotation) {
+      out.push_back(resting("polygon pyramid base 20 (turning)", true,
+                            [](SceneSpec& s) { AddPyramid(s, 20, 0.0, true); }));
+    }
     out.push_back(resting("stack of 20" + turning, rotation, [](SceneSpec& s) {
       s.bodies.push_back(Box({0, -0.5}, {20, 1}, 1, true));
       for (int i = 0; i < 20; ++i) s.bodies.push_back(Box({0, 0.5 + i}, {1, 1}));

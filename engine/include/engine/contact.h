@@ -31,6 +31,10 @@ struct Contact {
   /// parts can touch at several pieces, one contact each, in (a, b, piece_a, piece_b) order.
   std::uint16_t piece_a = 0;
   std::uint16_t piece_b = 0;
+  /// One of the bodies is made of parts: a bounce strikes the points that touch first (the
+  /// others, a speculative margin behind, would turn a pointed body hit tip-first), where two
+  /// lone circles or boxes are struck at the middle of the manifold, as they always were.
+  bool strike_first_touch = false;
   Manifold manifold;   ///< normal points from a to b
   double restitution;  ///< the larger of the pair's
   double friction;     ///< the geometric mean of the pair's

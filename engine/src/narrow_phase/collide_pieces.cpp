@@ -128,8 +128,14 @@ void ForEachTouchingPair(const PieceBody& a, const PieceBody& b, double margin, 
 void CollidePieces(const PieceBody& a, const PieceBody& b, double margin, std::vector<Contact>* out) {
   ForEachTouchingPair(a, b, margin, [&](std::size_t i, std::size_t j, const PieceRef& pa, const PieceRef& pb,
                                         const Manifold& m) {
-    Contact c{a.index, b.index, static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j), m,
-              std::max(pa.restitution, pb.restitution), std::sqrt(pa.friction * pb.friction)};
+    const Contact c{.a = a.index,
+                    .b = b.index,
+                    .piece_a = static_cast<std::uint16_t>(i),
+                    .piece_b = static_cast<std::uint16_t>(j),
+                    .strike_first_touch = true,
+                    .manifold = m,
+                    .restitution = std::max(pa.restitution, pb.restitution),
+                    .friction = std::sqrt(pa.friction * pb.friction)};
     out->push_back(c);
     return true;
   });

@@ -121,11 +121,22 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
       if constexpr (kCanTurn<C>) {
         if (sc.angular) {
           separation = std::numeric_limits<double>::infinity();
+          double gaps[2] = {0.0, 0.0};
           for (int k = 0; k < sc.point_count; ++k) {
             const SubstepPoint& p = sc.points[k];
-            anchor_a += p.anchor_a / sc.point_count;
-            anchor_b += p.anchor_b / sc.point_count;
-            separation = std::min(separation, p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal));
+            gaps[k] = p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal);
+            separation = std::min(separation, gaps[k]);
+          }
+          // The points struck: all, or those within the slop of the first to touch.
+          int struck = sc.point_count;
+          if (contacts[i].strike_first_touch) {
+            struck = 0;
+            for (int k = 0; k < sc.point_count; ++k) struck += gaps[k] <= separation + def.linear_slop ? 1 : 0;
+          }
+          for (int k = 0; k < sc.point_count; ++k) {
+            if (struck < sc.point_count && gaps[k] > separation + def.linear_slop) continue;
+            anchor_a += sc.points[k].anchor_a / struck;
+            anchor_b += sc.points[k].anchor_b / struck;
           }
           const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
           normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
