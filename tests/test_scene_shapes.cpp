@@ -597,12 +597,11 @@ TEST_CASE("scene shapes: the dump reports a polygon body's origin, not its centr
   }
 }
 
-// The dump's x, y of a resting body made of parts should be its scene position to the bit, as a
-// circle's and a box's are. The engine keeps the centre of mass and computes the origin back from
-// it (centre − turned LocalCenter), which rounds: 0.1 + 2/3 − 2/3 is 0.09999999999999998. Marked
-// [!shouldfail] while that holds; when the origin comes back exact, this fails: drop the tag.
+// The dump's x, y of a resting body made of parts is its scene position to the bit, as a
+// circle's and a box's are: the engine reports the origin as placed while the body has not moved
+// (computed back from the centre of mass it would round: 0.1 + 2/3 − 2/3 is 0.09999999999999998).
 TEST_CASE("scene shapes: a resting polygon's dumped origin is its position to the bit",
-          "[scene][shapes][cli][!shouldfail]") {
+          "[scene][shapes][cli]") {
   for (const DumpRow& row : DumpTriangles("dump_origin_exact")) {
     INFO(row.step << " " << row.id);
     if (row.id == "ramp") {
