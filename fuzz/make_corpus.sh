@@ -22,3 +22,20 @@ cat >"$out/scene/all_keys.json" <<'JSON'
   {"shape": "circle", "radius": 0.25, "position": [0.5, 3], "density": 3, "color": "#a0b0c0"},
   {"shape": "box", "size": [20, 1], "position": [0, -0.5], "static": true}]}
 JSON
+# Every shape key (polygon, capsule, segment, "shapes" with each part key), in one scene.
+cat >"$out/scene/all_shape_keys.json" <<'JSON'
+{"rotation": true, "bodies": [
+  {"id": "g", "shape": "segment", "points": [[-6, 2], [-5, 0], [5, 0], [6, 2]], "loop": false, "position": [0, 0],
+   "static": true},
+  {"shape": "segment", "points": [[0, 0], [1, 0], [1, 1]], "loop": true, "position": [3, 3], "static": true},
+  {"shape": "polygon", "vertices": [[0, 0], [1, 0], [1, 1], [0.5, 0.4], [0, 1]], "radius": 0.05,
+   "position": [-2, 1], "angle": 0.3, "density": 2},
+  {"shape": "capsule", "length": 1, "radius": 0.25, "position": [0, 2], "angular_velocity": 1},
+  {"position": [2, 2], "mass": 3, "shapes": [
+    {"shape": "circle", "radius": 0.3, "offset": [0, 0.5], "density": 2, "friction": 0.1, "restitution": 0.5},
+    {"shape": "box", "size": [1, 0.2], "angle": 0.4},
+    {"shape": "polygon", "vertices": [[0, 0], [0.5, 0], [0, 0.5]], "offset": [-0.5, 0]},
+    {"shape": "capsule", "length": 0.5, "radius": 0.1, "offset": [0.5, -0.3], "angle": 1.2}]},
+  {"position": [0, 5], "static": true, "shapes": [
+    {"shape": "segment", "points": [[0, 0], [2, 0]]}, {"shape": "box", "size": [0.5, 0.5], "offset": [1, 1]}]}]}
+JSON

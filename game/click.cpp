@@ -3,6 +3,18 @@
 
 namespace game {
 
+namespace {
+
+// A ball: a dynamic lone circle. A body made of parts is no ball, even of one circle part (its
+// `shapes` entry may sit off the body's origin, and the rule names a ball's centre and radius).
+bool IsBall(const engine::World& world, engine::BodyId id) {
+  const engine::BodyInfo& info = world.Info(id);
+  return !engine::HasInfiniteMass(info) && info.shape.type == engine::ShapeType::kCircle &&
+         world.Parts(id).empty();
+}
+
+}  // namespace
+
 engine::Vec2 ClickImpulse(engine::Vec2 center, double radius, engine::Vec2 p, double max_impulse) {
   const engine::Vec2 away = center - p;
   const double d = engine::Length(away);
@@ -17,8 +29,8 @@ std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
   const std::span<const engine::BodyId> ids = world.BodyIds();
   for (auto it = ids.rbegin(); it != ids.rend(); ++it) {
     const engine::BodyId id = *it;
+    if (!IsBall(world, id)) continue;
     const engine::BodyInfo& info = world.Info(id);
-    if (engine::HasInfiniteMass(info) || info.shape.type != engine::ShapeType::kCircle) continue;
     const engine::Vec2 center = world.State(id).position;
     const double r = info.shape.radius;
     if (engine::LengthSquared(p - center) > r * r) continue;
@@ -30,8 +42,8 @@ std::optional<ClickHit> ResolveClick(const engine::World& world, engine::Vec2 p,
 std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p) {
   std::optional<NearBall> nearest;
   for (const engine::BodyId id : world.BodyIds()) {
+    if (!IsBall(world, id)) continue;
     const engine::BodyInfo& info = world.Info(id);
-    if (engine::HasInfiniteMass(info) || info.shape.type != engine::ShapeType::kCircle) continue;
     const double gap = engine::Length(p - world.State(id).position) - info.shape.radius;
     if (!nearest || gap < nearest->gap) nearest = NearBall{id, gap};
   }

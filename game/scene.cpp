@@ -10,119 +10,15 @@
 
 #include "game/limits.h"
 #include "game/scene_json.h"
+#include "game/scene_shapes.h"
+#include "game/scene_values.h"
 #include "game/text_file.h"
 
 namespace game {
 
 namespace {
 
-using Json = nlohmann::json;
-
-// Thrown inside the reader and turned into a Failure at its top: validation reads straight down.
-struct SceneError {
-  std::string path;
-  std::string message;
-};
-
-std::string Join(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-
-// Text from the file, quoted and escaped as JSON, so a message stays on one line.
-std::string Quote(const std::string& text) {
-  return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
-}
-
-// Edit distance, to suggest the key a typo meant.
-std::size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-void RejectUnknownKeys(const Json& object, const std::string& path,
-                       std::initializer_list<const char*> known) {
-  for (const auto& item : object.items()) {
-    bool is_known = false;
-    for (const char* k : known) is_known = is_known || item.key() == k;
-    if (is_known) continue;
-    // Distances only for a key that is wrong: a million-body scene has ten million right ones.
-    std::string suggestion;
-    std::size_t best = 3;  // suggest only close matches
-    for (const char* k : known) {
-      const std::size_t distance = EditDistance(item.key(), k);
-      if (distance < best) best = distance, suggestion = k;
-    }
-    std::string message = "unknown key " + Quote(item.key());
-    if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
-    throw SceneError{path, message};
-  }
-}
-
-const Json* Find(const Json& object, const char* key) {
-  const auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
-
-double ReadNumber(const Json& value, const std::string& path) {
-  if (!value.is_number()) throw SceneError{path, "must be a number"};
-  const double v = value.get<double>();
-  if (!std::isfinite(v)) throw SceneError{path, "must be finite"};
-  if (std::abs(v) > kMaxSceneMagnitude) {
-    throw SceneError{path, "must be between -1e9 and 1e9 (docs/limits.md)"};
-  }
-  return v;
-}
-
-std::string TooSmall() { return "must be at least 1e-09 m (docs/limits.md)"; }
-
-double ReadPositive(const Json& value, const std::string& path) {
-  const double v = ReadNumber(value, path);
-  if (!(v > 0.0)) throw SceneError{path, "must be > 0"};
-  return v;
-}
-
-double ReadNonNegative(const Json& value, const std::string& path) {
-  const double v = ReadNumber(value, path);
-  if (v < 0.0) throw SceneError{path, "must be >= 0"};
-  return v;
-}
-
-engine::Vec2 ReadVec2(const Json& value, const std::string& path) {
-  if (!value.is_array() || value.size() != 2) throw SceneError{path, "must be an array of 2 numbers"};
-  return {ReadNumber(value[0], path + "[0]"), ReadNumber(value[1], path + "[1]")};
-}
-
-bool ReadBool(const Json& value, const std::string& path) {
-  if (!value.is_boolean()) throw SceneError{path, "must be true or false"};
-  return value.get<bool>();
-}
-
-std::string ReadString(const Json& value, const std::string& path) {
-  if (!value.is_string()) throw SceneError{path, "must be a string"};
-  return value.get<std::string>();
-}
-
-template <class Enum>
-Enum ReadChoice(const Json& value, const std::string& path,
-                std::initializer_list<std::pair<const char*, Enum>> choices) {
-  const std::string name = ReadString(value, path);
-  std::string expected;
-  for (const auto& [label, choice] : choices) {
-    if (name == label) return choice;
-    expected += (expected.empty() ? "\"" : ", \"") + std::string(label) + "\"";
-  }
-  throw SceneError{path, "unknown value " + Quote(name) + " (expected one of " + expected + ")"};
-}
+using namespace scene_values;  // NOLINT: the reader is made of these
 
 int HexDigit(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -183,7 +79,8 @@ void ReadSolver(const Json& solver, const std::string& path, engine::WorldDef* w
 SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index, bool rotation) {
   if (!body.is_object()) throw SceneError{path, "must be an object"};
   RejectUnknownKeys(body, path,
-                    {"id", "shape", "radius", "size", "position", "velocity", "angle",
+                    {"id", "shape", "shapes", "radius", "size", "vertices", "length", "points", "loop",
+                     "offset", "position", "velocity", "angle",
                      "angular_velocity", "mass", "density", "static", "kinematic", "restitution", "friction",
                      "fixed_rotation", "bullet", "color", "linear_damping", "angular_damping",
                      "drag_coefficient"});
@@ -198,34 +95,15 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
     if (out.id.empty()) throw SceneError{key("id"), "must not be empty"};
   }
 
-  const Json* shape = Find(body, "shape");
-  if (!shape) throw SceneError{path, "needs a \"shape\" (\"circle\" or \"box\")"};
-  def.shape.type = ReadChoice<engine::ShapeType>(
-      *shape, key("shape"), {{"circle", engine::ShapeType::kCircle}, {"box", engine::ShapeType::kBox}});
-  if (def.shape.type == engine::ShapeType::kCircle) {
-    if (Find(body, "size")) throw SceneError{key("size"), "applies to boxes only; a circle has a \"radius\""};
-    const Json* radius = Find(body, "radius");
-    if (!radius) throw SceneError{path, "a circle needs a \"radius\""};
-    def.shape.radius = ReadPositive(*radius, key("radius"));
-    if (!(def.shape.radius >= kMinBodySize)) throw SceneError{key("radius"), TooSmall()};
-  } else {
-    if (Find(body, "radius")) throw SceneError{key("radius"), "applies to circles only; a box has a \"size\""};
-    const Json* size = Find(body, "size");
-    if (!size) throw SceneError{path, "a box needs a \"size\" [width, height]"};
-    const engine::Vec2 s = ReadVec2(*size, key("size"));
-    if (!(s.x > 0.0)) throw SceneError{key("size") + "[0]", "must be > 0"};
-    if (!(s.y > 0.0)) throw SceneError{key("size") + "[1]", "must be > 0"};
-    if (!(s.x >= kMinBodySize)) throw SceneError{key("size") + "[0]", TooSmall()};
-    if (!(s.y >= kMinBodySize)) throw SceneError{key("size") + "[1]", TooSmall()};
-    def.shape.half_extents = 0.5 * s;
-  }
+  // Read first: what a body may be made of depends on them (segments are static only).
+  if (const Json* v = Find(body, "static")) def.is_static = ReadBool(*v, key("static"));
+  if (const Json* v = Find(body, "kinematic")) def.is_kinematic = ReadBool(*v, key("kinematic"));
+  ReadBodyShape(body, path, &def);
 
   const Json* position = Find(body, "position");
   if (!position) throw SceneError{path, "needs a \"position\" [x, y]"};
   def.position = ReadVec2(*position, key("position"));
 
-  if (const Json* v = Find(body, "static")) def.is_static = ReadBool(*v, key("static"));
-  if (const Json* v = Find(body, "kinematic")) def.is_kinematic = ReadBool(*v, key("kinematic"));
   if (def.is_static && def.is_kinematic) {
     throw SceneError{key("kinematic"), "a body cannot be both static and kinematic"};
   }
@@ -258,7 +136,7 @@ SceneBody ReadBody(const Json& body, const std::string& path, std::size_t index,
   if (density) def.density = ReadPositive(*density, key("density"));
   if (!def.is_static && !def.is_kinematic) {
     // The engine divides by the mass: one that underflows would make its inverse infinite.
-    const double body_mass = mass ? def.mass : def.density * engine::ShapeArea(def.shape);
+    const double body_mass = mass ? def.mass : MassFromDensity(def);
     if (!(body_mass >= kMinBodyMass)) {
       throw SceneError{mass ? key("mass") : path,
                        std::string(mass ? "" : "its mass, density * area, ") +

@@ -29,8 +29,11 @@ void DumpStep(std::FILE* out, const Session& session, const std::vector<std::str
   const double time = static_cast<double>(step) * world.Def().dt;
   for (const engine::BodyId id : world.BodyIds()) {
     const engine::BodyState& s = world.State(id);
+    // x, y: the body frame's origin (a polygon's or compound's scene position, not its centre
+    // of mass), as the state hash has it; for circles and boxes the two are the same point.
+    const engine::Vec2 origin = world.Origin(id);
     std::fprintf(out, "%" PRId64 ",%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time,
-                 ids[id.index].c_str(), s.position.x, s.position.y,
+                 ids[id.index].c_str(), origin.x, origin.y,
                  s.velocity.x, s.velocity.y, s.angle, s.angular_velocity);
   }
 }

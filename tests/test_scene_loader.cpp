@@ -283,11 +283,14 @@ TEST_CASE("scene default id clashing with an earlier explicit id names the body,
 
 TEST_CASE("scene unknown shape lists the shapes", "[scene]") {
   RequireSceneError("scene_unknown_shape.json",
-                    "bodies[0].shape: unknown value \"triangle\" (expected one of \"circle\", \"box\")");
+                    "bodies[0].shape: unknown value \"triangle\" (expected one of \"circle\", \"box\", "
+                    "\"polygon\", \"capsule\", \"segment\")");
 }
 
 TEST_CASE("scene body without a shape", "[scene]") {
-  RequireSceneError("scene_missing_shape.json", "bodies[0]: needs a \"shape\" (\"circle\" or \"box\")");
+  RequireSceneError("scene_missing_shape.json",
+                    "bodies[0]: needs a \"shape\" (\"circle\", \"box\", \"polygon\", \"capsule\" or "
+                    "\"segment\") or \"shapes\" (a list of them)");
 }
 
 TEST_CASE("scene circle without a radius", "[scene]") {
@@ -304,7 +307,7 @@ TEST_CASE("scene body without a position", "[scene]") {
 
 TEST_CASE("scene radius on a box", "[scene]") {
   RequireSceneError("scene_radius_on_box.json",
-                    "bodies[0].radius: applies to circles only; a box has a \"size\"");
+                    "bodies[0].radius: applies to circles, capsules and polygons only; a box has a \"size\"");
 }
 
 TEST_CASE("scene size on a circle", "[scene]") {

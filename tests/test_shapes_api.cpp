@@ -166,3 +166,29 @@ TEST_CASE("debug draw describes each piece in the world", "[shapes][debug_draw]"
     CHECK(found);
   }
 }
+
+TEST_CASE("a spring attaches to a body made of parts at a point of the body's frame", "[shapes]") {
+  // A triangle whose centre of mass is 1 m from its frame's origin, held at that origin by a
+  // stiff spring of rest length 0 to the same world point: nothing pulls, nothing moves.
+  engine::World world{NoGravity()};
+  const engine::BodyId triangle = world.CreateBody(PartsBody({PolygonPart({{0, 0}, {3, 0}, {0, 3}})}, {2, 5}));
+  engine::SpringDef spring;
+  spring.body_a = triangle;
+  spring.local_a = {0, 0};
+  spring.local_b = {2, 5};
+  spring.stiffness = 100.0;
+  world.AddSpring(spring);
+  StepTimes(world, 60);
+  CHECK(world.Origin(triangle).x == 2.0);
+  CHECK(world.Origin(triangle).y == 5.0);
+  // Pulled from its corner (3, 0) in its frame, the body moves that corner towards the anchor.
+  engine::World pulled{NoGravity()};
+  const engine::BodyId other = pulled.CreateBody(PartsBody({PolygonPart({{0, 0}, {3, 0}, {0, 3}})}, {0, 0}));
+  spring.body_a = other;
+  spring.local_a = {3, 0};
+  spring.local_b = {3, -1};
+  pulled.AddSpring(spring);
+  pulled.Step();
+  CHECK(pulled.State(other).velocity.y < 0.0);
+  CHECK(pulled.State(other).velocity.x == Approx(0.0).margin(1e-12));
+}

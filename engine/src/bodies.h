@@ -71,6 +71,11 @@ struct Bodies {
     if (s.position == placed.center && s.angle == placed.angle) return placed.origin;
     return OriginOf(*geometries[index], s);
   }
+  /// A point given in the body's frame, seen from its centre of mass (the same for a lone
+  /// circle or box).
+  Vec2 FromCenter(BodyIndex index, Vec2 local) const {
+    return geometries[index] ? local - geometries[index]->local_center : local;
+  }
   /// Places a body made of parts with its frame's origin at `origin`, turned by `angle`.
   void PlaceOrigin(BodyIndex index, Vec2 origin, double angle) {
     states[index].position = origin + Rotate(MakeRot(angle), geometries[index]->local_center);

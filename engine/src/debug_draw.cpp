@@ -67,8 +67,10 @@ void DrawShapes(const detail::Bodies& bodies, std::span<const std::uint8_t> awak
 
 void DrawSprings(const detail::Bodies& bodies, std::span<const SpringDef> springs, DebugDraw& draw) {
   for (const SpringDef& spring : springs) {
-    const Vec2 a = Anchor(bodies.states[spring.body_a.index], spring.local_a);
-    const Vec2 b = spring.body_b ? Anchor(bodies.states[spring.body_b->index], spring.local_b) : spring.local_b;
+    const Vec2 a = Anchor(bodies.states[spring.body_a.index], bodies.FromCenter(spring.body_a.index, spring.local_a));
+    const Vec2 b = spring.body_b ? Anchor(bodies.states[spring.body_b->index],
+                                          bodies.FromCenter(spring.body_b->index, spring.local_b))
+                                 : spring.local_b;
     draw.DrawSpring(a, b);
   }
 }

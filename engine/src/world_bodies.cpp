@@ -96,7 +96,10 @@ void World::Impl::RebuildActingSprings() {
     if (!enabled(s.body_a) || (s.body_b && !enabled(*s.body_b))) continue;
     std::optional<BodyIndex> b;
     if (s.body_b) b = s.body_b->index;
-    springs.acting.push_back({s.body_a.index, s.local_a, b, s.local_b, s.rest_length, s.stiffness, s.damping});
+    // The attachments are given in each body's frame; the step works from its centre of mass.
+    const Vec2 local_b = s.body_b ? bodies.FromCenter(*b, s.local_b) : s.local_b;
+    springs.acting.push_back({s.body_a.index, bodies.FromCenter(s.body_a.index, s.local_a), b, local_b,
+                              s.rest_length, s.stiffness, s.damping});
   }
 }
 
