@@ -266,6 +266,26 @@ TEST_CASE("render shapes: a concave L shows one outline and no edge between its 
   CHECK(edge <= 2 * 320 + 40);
 }
 
+TEST_CASE("render shapes: a turned, rounded bowl of many pieces shows none of its cuts",
+          "[render]") {
+  Gl gl = MakeGl();
+  // Half a ring, 8 m across and 1.2 m thick, of 34 points: the engine fans it into triangles
+  // and larger pieces, whose cuts meet at shared corners.
+  std::vector<Vec2> bowl;
+  constexpr double kPi = 3.14159265358979323846;
+  for (int i = 0; i <= 16; ++i) bowl.push_back({-8.0 * std::cos(kPi * i / 16), -8.0 * std::sin(kPi * i / 16)});
+  for (int i = 16; i >= 0; --i) bowl.push_back({-6.8 * std::cos(kPi * i / 16), -6.8 * std::sin(kPi * i / 16)});
+  const double radius = 0.15, angle = 0.3;
+  const Vec2 origin{0.5, 3.0};
+  engine::World world(Still(true));
+  const engine::BodyId id = world.CreateBody(Made({Polygon(bowl, radius)}, origin, angle, true));
+  REQUIRE(world.Pieces(id).size() >= 8);
+  const Image image = Draw(gl, world, {kFill});
+  const std::vector<Vec2> placed = Placed(bowl, origin, angle);
+  CHECK(Mismatches(image, [&](Vec2 p) { return PolygonDistance(p, placed) - radius; }, kFill,
+                   kBackground) == "");
+}
+
 TEST_CASE("render shapes: a capsule has round caps and turns with its body", "[render]") {
   Gl gl = MakeGl();
   engine::World world(Still(true));
@@ -375,6 +395,29 @@ TEST_CASE("render shapes: a compound body is one filled shape with one outline",
   const Vec2 seam = origin + engine::Rotate(turn, {1.6, 0.0});
   const Vec2 px = render::WorldToPixel(kCamera, kWidth, kHeight, seam);
   CHECK(Show(image.At(static_cast<int>(px.x), static_cast<int>(px.y))) == Show(kFill));
+}
+
+TEST_CASE("render shapes: boxes that touch or cross in one body have one outline", "[render]") {
+  Gl gl = MakeGl();
+  engine::World world(Still(true));
+  // An L of two boxes that only touch (the upright stands on the base's top, y = 1), and a cross
+  // of two boxes that overlap; both turned, so the touching edges meet only up to rounding.
+  const Vec2 l_origin{-4.0, -2.0}, cross_origin{5.0, 1.0};
+  const double l_angle = 0.5, cross_angle = -0.3;
+  world.CreateBody(Made({BoxPart({3.0, 1.0}), BoxPart({1.0, 2.0}, {-2.0, 3.0})}, l_origin, l_angle));
+  world.CreateBody(Made({BoxPart({3.0, 0.8}), BoxPart({0.8, 3.0})}, cross_origin, cross_angle));
+  const Image image = Draw(gl, world, {kFill, kOther});
+  const std::vector<Vec2> l_outline =
+      Placed({{-3, -1}, {3, -1}, {3, 1}, {-1, 1}, {-1, 5}, {-3, 5}}, l_origin, l_angle);
+  const std::vector<Vec2> cross_outline =
+      Placed({{-3, -0.8}, {-0.8, -0.8}, {-0.8, -3}, {0.8, -3}, {0.8, -0.8}, {3, -0.8}, {3, 0.8},
+              {0.8, 0.8}, {0.8, 3}, {-0.8, 3}, {-0.8, 0.8}, {-3, 0.8}},
+             cross_origin, cross_angle);
+  // Each body against its own outline, on its own side of x = 0.5 (NaN: not checked).
+  CHECK(Mismatches(image, [&](Vec2 p) { return p.x < 0.5 ? PolygonDistance(p, l_outline) : NAN; },
+                   kFill, kBackground) == "");
+  CHECK(Mismatches(image, [&](Vec2 p) { return p.x > 0.5 ? PolygonDistance(p, cross_outline) : NAN; },
+                   kOther, kBackground) == "");
 }
 
 TEST_CASE("render shapes: circles and boxes beside parts look as they do alone", "[render]") {

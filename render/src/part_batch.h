@@ -1,11 +1,14 @@
-// Bodies as the part shader draws them: every circle, box, polygon, capsule and polyline segment
-// of a body is one primitive (a record in a texture buffer) drawn as one instance of a quad, and
-// the pixels where a body's primitives meet are drawn once, with the distance to their union, so
-// a body shows one outline however many parts and pieces it is made of. No GL here.
+// Bodies as the part shader draws them: every convex piece of a body (World::Pieces: a circle, a
+// capsule, a polygon or a polyline's segment) is one primitive (a record in a texture buffer)
+// drawn as one instance of a quad, and the pixels where a body's primitives meet are drawn once,
+// with the distance to their union, so a body shows one outline however many parts and pieces
+// it is made of: edges where pieces meet (a concave polygon's cuts, parts that touch or overlap)
+// are marked as not outline. No GL.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -33,9 +36,13 @@ struct PartInstance {
   float quad_axis[2];    // unit vector in the body frame along which quad_half.x runs
   float quad_half[2];    // m
   std::uint8_t color[4];
-  // The texel of the primitive's record; the first texel and the number of its neighbours'
-  // record indices (four a texel); the body's thickness (m), which caps its outline's width.
+  // The texel of the primitive's record; the first texel and the length of its list of
+  // neighbours' record texels, itself included (four a texel); the body's thickness (m), which
+  // caps its outline's width.
   float record[4];
+  // 1 when the primitive is a polygon piece and every primitive near it is a polygon piece of
+  // its group: deep inside it the shader needs no list.
+  float only_own_group;
 };
 
 /// One frame's instances and texture buffer contents (RGBA32F texels).
@@ -55,21 +62,32 @@ class PartBatch {
   std::size_t TexelCount() const { return texels_.size() / 4; }
 
  private:
-  // A primitive of the body being appended, in the body's frame.
+  // A primitive of the body being appended, in the body's frame: one of its convex pieces.
   struct Primitive {
     PrimitiveKind kind = PrimitiveKind::kPolygon;
     std::size_t first = 0;  // into vertices_
     std::size_t count = 0;
     double radius = 0.0;    // m: circle, capsule or line half-width, polygon rounding
+    int part = 0;           // which of the body's parts it comes from
+    // Polygon pieces whose outlines merge: 0 for every sharp piece, 1 + part for a rounded
+    // part's; round kinds (circles, capsules, segments) come last and merge one by one.
+    int group = 0;
     engine::Vec2 center, axis{1.0, 0.0}, half;  // the quad
   };
 
-  void AddSimple(const engine::Shape& shape);
-  void AddPart(const engine::ShapePart& part, double line_radius);
-  /// The polygon whose points are vertices_ from `first` on.
-  void AddPolygon(std::size_t first, double radius, engine::Vec2 axis);
-  void AddRound(PrimitiveKind kind, engine::Vec2 a, engine::Vec2 b, double radius);
+  void AddPiece(const engine::ConvexPiece& piece, std::span<const engine::ShapePart> parts,
+                double line_radius);
+  void AddPolygon(const std::vector<engine::Vec2>& points, double radius, engine::Vec2 axis,
+                  int part);
+  /// A circle (a: centre, b: the spoke's tip on the rim) or a capsule (a, b: the cap centres).
+  void AddRound(PrimitiveKind kind, engine::Vec2 a, engine::Vec2 b, double radius, int part);
+  void MarkOutline();
   void FindNeighbours(double margin);
+  bool OnlyOwnGroup(std::size_t i) const;
+  /// Appends the edge a0 a1 to split_vertices_, split where covered_ begins and ends.
+  void AppendEdge(engine::Vec2 a0, engine::Vec2 a1);
+  /// Whether the quads of primitives a and b, each grown by `margin`, overlap.
+  bool QuadsMeet(int a, int b, double margin) const;
   void Emit(engine::Vec2 origin, engine::Rot rotation, Color color, double thickness);
 
   std::vector<PartInstance> instances_;
@@ -77,6 +95,7 @@ class PartBatch {
   // Scratch for the body being appended, kept to reuse its storage.
   std::vector<Primitive> primitives_;
   std::vector<engine::Vec2> vertices_;
+  std::vector<std::uint8_t> outline_;          // per vertex: its edge to the next is outline
   std::vector<std::pair<int, int>> pairs_;     // neighbouring primitives, each pair once
   std::vector<int> order_;                     // primitives by the left side of their box
   std::vector<engine::AABB> boxes_;
@@ -84,6 +103,10 @@ class PartBatch {
   std::vector<std::size_t> cursor_;            // where each list is filled up to
   std::vector<int> neighbours_;
   std::vector<std::size_t> records_;           // per primitive, its record's texel
+  std::vector<std::pair<double, double>> covered_;  // stretches of one edge inside others
+  std::vector<engine::Vec2> split_vertices_;   // vertices_ and outline_ as MarkOutline splits
+  std::vector<std::uint8_t> split_outline_;
+  std::vector<std::size_t> split_start_;       // per primitive, into split_vertices_
 };
 
 }  // namespace render

@@ -1,7 +1,7 @@
-// The part shader: each instance is a quad over one primitive; its fragments find the distance to
-// the primitive (circle, capsule, or any simple polygon, rounded or not) and to its neighbours in
-// the same body, keep the pixels where their own primitive is the nearest, and shade the distance
-// to that union exactly as the plain shader shades circles and boxes.
+// The part shader: each instance is a quad over one primitive (a convex piece: circle, capsule or
+// polygon, rounded or not); its fragments find the distance to it and to its neighbours in the
+// same body, keep the pixels where their own primitive is the nearest, and shade the distance to
+// the body's outline exactly as the plain shader shades circles and boxes.
 #include "part_program.h"
 
 #include <algorithm>
@@ -21,6 +21,7 @@ layout(location = 4) in vec2 quad_axis;
 layout(location = 5) in vec2 quad_half;
 layout(location = 6) in vec4 color;
 layout(location = 7) in vec4 record_in;
+layout(location = 8) in float only_own_group_in;
 
 uniform vec2 view_half_size;  // m
 uniform float pixel_size;     // m per pixel
@@ -29,6 +30,7 @@ flat out vec2 body_origin;
 flat out vec2 body_rotation;
 flat out vec3 fill;
 flat out vec4 record;
+flat out float only_own_group;
 
 vec2 Turn(vec2 r, vec2 v) { return vec2(r.x * v.x - r.y * v.y, r.y * v.x + r.x * v.y); }
 
@@ -41,6 +43,7 @@ void main() {
   body_rotation = rotation;
   fill = color.rgb;
   record = record_in;
+  only_own_group = only_own_group_in;
 }
 )";
 
@@ -48,12 +51,17 @@ constexpr const char* kFragmentShader = R"(#version 330 core
 flat in vec2 body_origin;
 flat in vec2 body_rotation;
 flat in vec3 fill;
-flat in vec4 record;  // own record's texel, first neighbour texel, neighbours, body thickness
+// Own record's texel; the first texel and length of the list of the body's primitives near it,
+// itself included (empty when the body has no other); the body's thickness.
+flat in vec4 record;
+flat in float only_own_group;  // 1: every primitive near it is a polygon piece of its group
 
 uniform vec2 view_half_size;  // m
 uniform float pixel_size;     // m per pixel
 uniform bool spokes;
-uniform samplerBuffer shapes;  // records: (kind, vertices, radius, 0), then vertices two a texel
+// Records: (kind, vertices, radius, group of a polygon piece), then a polygon's vertices a texel each (x, y, whether
+// the edge to the next is outline), or a circle's centre and spoke tip, a capsule's two ends.
+uniform samplerBuffer shapes;
 
 out vec4 frag_color;
 
@@ -61,11 +69,7 @@ const float kOutlinePixels = 2.0;
 const float kOutlineShade = 0.55;  // the outline is the fill, darker
 const float kCircle = 0.0;
 const float kPolygon = 2.0;
-
-vec2 Vertex(int at, int k) {
-  vec4 t = texelFetch(shapes, at + 1 + k / 2);
-  return (k & 1) == 0 ? t.xy : t.zw;
-}
+const float kFar = 1e30;
 
 float SegmentDistance(vec2 p, vec2 a, vec2 b) {
   vec2 ab = b - a;
@@ -74,32 +78,50 @@ float SegmentDistance(vec2 p, vec2 a, vec2 b) {
   return length(ap - t * ab);
 }
 
-// The exact signed distance to a simple polygon, either winding, convex or not: the nearest edge
-// gives the distance, an even-odd crossing count the side (after Inigo Quilez's sdPolygon).
-float PolygonDistance(vec2 p, int at, int n) {
-  float nearest = 1e30;
+// A polygon piece, before rounding: its signed distance (the nearest edge gives the distance, an
+// even-odd crossing count the side, as Inigo Quilez's sdPolygon), and the distance to the
+// nearest of its edges on the outline (kFar if none).
+void PieceDistances(vec2 p, int at, int n, out float core, out float outline) {
+  float nearest = kFar;
+  float nearest_outline = kFar;
   bool inside = false;
-  vec2 a = Vertex(at, n - 1);
-  vec4 two;  // a texel holds two vertices
-  for (int i = 0; i < n; ++i) {
-    if ((i & 1) == 0) two = texelFetch(shapes, at + 1 + i / 2);
-    vec2 b = (i & 1) == 0 ? two.xy : two.zw;
-    vec2 e = b - a;
-    vec2 w = p - a;
+  vec4 a = texelFetch(shapes, at + n);
+  for (int i = 1; i <= n; ++i) {
+    vec4 b = texelFetch(shapes, at + i);
+    vec2 e = b.xy - a.xy;
+    vec2 w = p - a.xy;
     vec2 q = w - e * clamp(dot(w, e) / dot(e, e), 0.0, 1.0);
-    nearest = min(nearest, dot(q, q));
+    float q2 = dot(q, q);
+    nearest = min(nearest, q2);
+    if (a.z > 0.5) nearest_outline = min(nearest_outline, q2);
     if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * e.x / e.y) inside = !inside;
     a = b;
   }
-  return (inside ? -1.0 : 1.0) * sqrt(nearest);
+  core = (inside ? -1.0 : 1.0) * sqrt(nearest);
+  outline = sqrt(nearest_outline);
 }
 
-float Distance(vec2 p, int at) {
-  vec4 head = texelFetch(shapes, at);
-  if (head.x == kPolygon) return PolygonDistance(p, at, int(head.y)) - head.z;
+// A primitive's own signed distance (rounding included); for a polygon piece also `core` and
+// `outline` as PieceDistances gives them.
+float OwnDistance(vec2 p, int at, vec4 head, out float core, out float outline) {
+  if (head.x == kPolygon) {
+    PieceDistances(p, at, int(head.y), core, outline);
+    return core - head.z;
+  }
   vec4 ends = texelFetch(shapes, at + 1);
-  if (head.x == kCircle) return length(p - ends.xy) - head.z;
-  return SegmentDistance(p, ends.xy, ends.zw) - head.z;
+  core = head.x == kCircle ? length(p - ends.xy) - head.z
+                           : SegmentDistance(p, ends.xy, ends.zw) - head.z;
+  outline = kFar;
+  return core;
+}
+
+// A group of polygon pieces' signed distance from what its pieces near the point say: `inside`
+// whether one holds it, `outside` the least piece distance, `edge` the distance to the nearest
+// outline edge. A point on a cut between two pieces may be held by neither (the crossing test is
+// exact only off the boundary), but there the outline is farther than the pieces: inside too.
+float GroupDistance(bool inside, float outside, float edge, float rounding) {
+  bool held = inside || outside < edge - 1e-3 * pixel_size;
+  return (held ? -edge : outside) - rounding;
 }
 
 void main() {
@@ -109,27 +131,72 @@ void main() {
   vec2 p = vec2(body_rotation.x * r.x + body_rotation.y * r.y,
                 -body_rotation.y * r.x + body_rotation.x * r.y);
   int self = int(record.x);
-  float d = Distance(p, self);
-  if (d >= 0.5 * pixel_size) discard;
+  vec4 self_head = texelFetch(shapes, self);
+  float self_core, self_outline;
+  float self_own = OwnDistance(p, self, self_head, self_core, self_outline);
+  // Nothing of this primitive within half a pixel: either no coverage or another's pixel.
+  if (self_own >= 0.5 * pixel_size) discard;
+
   int first = int(record.y);
   int count = int(record.z);
+  // The union's distance d: the least over round primitives and over groups of polygon pieces.
+  // A group, gathered from its pieces (listed one after another), is inside when a piece holds
+  // the point, then as deep as its nearest outline edge, so where pieces meet never shows.
+  // A body of one primitive lists none: the union is the primitive. Deep inside a polygon piece
+  // that only pieces of its own group lie near, no other piece holds the point and every outline
+  // edge is at least as far as this piece's own edges: the plain fill, with no list to go through.
+  float outline_width = min(kOutlinePixels * pixel_size, 0.5 * record.w);
+  bool settled = count == 0 ||
+                 (only_own_group > 0.5 && self_own <= -(outline_width + 0.5 * pixel_size));
+  float d = settled ? self_own : kFar;
+  if (settled) count = 0;
+  float group = -1.0;
+  bool inside = false;
+  float outside = kFar;
+  float edge = kFar;
+  float rounding = 0.0;
   for (int k = 0; k < count; ++k) {
-    int other = int(texelFetch(shapes, first + k / 4)[k % 4]);
-    float d_other = Distance(p, other);
-    // The nearest primitive draws the pixel; of equals, the first.
-    if (d_other < d || (d_other == d && other < self)) discard;
+    int at = int(texelFetch(shapes, first + k / 4)[k % 4]);
+    vec4 head = at == self ? self_head : texelFetch(shapes, at);
+    float core, outline, own;
+    if (at == self) {
+      core = self_core;
+      outline = self_outline;
+      own = self_own;
+    } else {
+      own = OwnDistance(p, at, head, core, outline);
+    }
+    // The primitive nearest the point draws it; of equals, the first (lists share one order).
+    if (own < self_own || (own == self_own && at < self)) discard;
+    if (head.x != kPolygon) {
+      d = min(d, own);
+      continue;
+    }
+    if (head.w != group) {
+      if (group >= 0.0) d = min(d, GroupDistance(inside, outside, edge, rounding));
+      group = head.w;
+      inside = false;
+      outside = kFar;
+      edge = kFar;
+      rounding = head.z;
+    }
+    inside = inside || core < 0.0;
+    outside = min(outside, core);
+    edge = min(edge, outline);
   }
+  if (group >= 0.0) d = min(d, GroupDistance(inside, outside, edge, rounding));
+
   // From here as the plain shader: coverage over one pixel, an outline band inside the edge.
   float coverage = clamp(0.5 - d / pixel_size, 0.0, 1.0);
-  float outline_width = min(kOutlinePixels * pixel_size, 0.5 * record.w);
-  vec3 outline = kOutlineShade * fill;
-  vec3 color = mix(fill, outline, clamp(0.5 + (d + outline_width) / pixel_size, 0.0, 1.0));
-  if (spokes && texelFetch(shapes, self).x == kCircle) {
+  if (coverage == 0.0) discard;
+  vec3 outline_color = kOutlineShade * fill;
+  vec3 color = mix(fill, outline_color, clamp(0.5 + (d + outline_width) / pixel_size, 0.0, 1.0));
+  if (spokes && self_head.x == kCircle) {
     // A circle's spoke runs from its centre to the rim along its x axis: it shows the angle.
     vec4 spoke_ends = texelFetch(shapes, self + 1);
     float from_spoke = SegmentDistance(p, spoke_ends.xy, spoke_ends.zw);
     float spoke = clamp(0.5 - (from_spoke - 0.5 * outline_width) / pixel_size, 0.0, 1.0);
-    color = mix(color, outline, spoke);
+    color = mix(color, outline_color, spoke);
   }
   frag_color = vec4(color, coverage);
 }
@@ -168,6 +235,7 @@ bool PartProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string&
   // Normalised bytes reach the shader as exactly c / 255: fills are the scene colour exactly.
   SetAttribute(fn, 6, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(PartInstance, color));
   SetAttribute(fn, 7, 4, GL_FLOAT, GL_FALSE, offsetof(PartInstance, record));
+  SetAttribute(fn, 8, 1, GL_FLOAT, GL_FALSE, offsetof(PartInstance, only_own_group));
 
   fn.GenBuffers(1, &texel_buffer_);
   fn.BindBuffer(GL_TEXTURE_BUFFER, texel_buffer_);
