@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "continuous.h"
 #include "require.h"
 #include "world_impl.h"
 
@@ -107,6 +108,10 @@ void World::Step() {
   std::visit([&](auto& solver) { solver.Step(context); }, w.solver);
   bodies.ClearAppliedForces();
   if (w.fault) return;                  // broken down mid-step: stop where it appeared
+  // Fast bodies made of parts that the step carried through something go back to the touch.
+  if (bodies.with_parts > 0 && w.def.continuous) {
+    detail::SolveContinuous(bodies, bodies.start_angles, w.candidates.Pairs(), w.sleep.awake, w.def);
+  }
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep
   // Events: contacts that began or ended touching, sensors that began or ended overlapping.
   if (w.def.contact_events) {
