@@ -40,6 +40,7 @@ namespace render {
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)              \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)                                \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                    \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                    \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)              \
@@ -61,7 +62,12 @@ namespace render {
   X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)            \
   X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)            \
   X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                    \
-  X(PFNGLSCISSORPROC, Scissor)
+  X(PFNGLSCISSORPROC, Scissor)                                    \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                            \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                            \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                      \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                        \
+  X(PFNGLTEXBUFFERPROC, TexBuffer)
 
 struct GlFunctions {
 #define BALLBOX_GL_MEMBER(type, name) type name = nullptr;

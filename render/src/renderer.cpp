@@ -1,5 +1,6 @@
 // The OpenGL renderer: every body is one instance of a quad whose fragment shader evaluates the
-// shape's signed distance, which gives smooth edges and outlines without multisampling.
+// shape's signed distance, which gives smooth edges and outlines without multisampling. Worlds
+// with bodies made of parts go through the part program (part_program.h) instead, whole.
 #include "render/renderer.h"
 
 #include <cassert>
@@ -10,6 +11,9 @@
 #include <vector>
 
 #include "gl_functions.h"
+#include "part_batch.h"
+#include "part_program.h"
+#include "shader_build.h"
 
 namespace render {
 namespace {
@@ -95,46 +99,6 @@ void main() {
 }
 )";
 
-bool CompileShader(const GlFunctions& fn, GLenum type, const char* source, GLuint& shader,
-                   std::string& error) {
-  shader = fn.CreateShader(type);
-  fn.ShaderSource(shader, 1, &source, nullptr);
-  fn.CompileShader(shader);
-  GLint ok = GL_FALSE;
-  fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok == GL_TRUE) return true;
-  char log[1024] = {};
-  fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-  error = std::string("the ") + (type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
-          " shader does not compile: " + log;
-  fn.DeleteShader(shader);
-  return false;
-}
-
-bool BuildProgram(const GlFunctions& fn, GLuint& program, std::string& error) {
-  GLuint vertex = 0;
-  GLuint fragment = 0;
-  if (!CompileShader(fn, GL_VERTEX_SHADER, kVertexShader, vertex, error)) return false;
-  if (!CompileShader(fn, GL_FRAGMENT_SHADER, kFragmentShader, fragment, error)) {
-    fn.DeleteShader(vertex);
-    return false;
-  }
-  program = fn.CreateProgram();
-  fn.AttachShader(program, vertex);
-  fn.AttachShader(program, fragment);
-  fn.LinkProgram(program);
-  // The program keeps the compiled code; the shader objects can go once it is linked.
-  fn.DeleteShader(vertex);
-  fn.DeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok == GL_TRUE) return true;
-  char log[1024] = {};
-  fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = std::string("the shader program does not link: ") + log;
-  return false;
-}
-
 void SetInstanceAttribute(const GlFunctions& fn, GLuint location, GLint size, GLenum type,
                           GLboolean normalized, std::size_t offset) {
   fn.EnableVertexAttribArray(location);
@@ -158,6 +122,29 @@ bool SizeAllowed(const GlFunctions& fn, int width, int height, std::string& erro
   return true;
 }
 
+// Whether any body is made of parts: then the whole world goes through the part program, which
+// draws circles and boxes too, so bodies keep their scene order.
+bool HasParts(const engine::World& world) {
+  for (const engine::BodyId id : world.BodyIds()) {
+    if (!world.Parts(id).empty()) return true;
+  }
+  return false;
+}
+
+// Clears the renderer's own framebuffer to the background and sets the blending every program
+// draws with. All state is set on every draw, so a window backend may share the context.
+void BeginFrame(const GlFunctions& fn, GLuint framebuffer, int width, int height) {
+  fn.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  fn.Viewport(0, 0, width, height);
+  fn.ClearColor(kBackgroundColor.r / 255.0f, kBackgroundColor.g / 255.0f,
+                kBackgroundColor.b / 255.0f, 1.0f);
+  fn.Clear(GL_COLOR_BUFFER_BIT);
+  fn.Enable(GL_BLEND);
+  // Alpha accumulates towards 1 instead of being overwritten by the edge coverage, so the
+  // framebuffer stays opaque (a PNG with partial alpha looks washed out in viewers).
+  fn.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+}
+
 void ClearTo(const GlFunctions& fn, Color color) {
   fn.ClearColor(color.r / 255.0f, color.g / 255.0f, color.b / 255.0f, 1.0f);
   fn.Clear(GL_COLOR_BUFFER_BIT);
@@ -178,6 +165,8 @@ struct Renderer::Gl {
   GLuint framebuffer = 0;
   GLuint color_buffer = 0;
   std::vector<Instance> instances;     // reused every frame
+  PartProgram parts;
+  PartBatch part_batch;                // reused every frame
   std::vector<std::uint8_t> readback;  // bottom-up rows, as GL returns them
 
   explicit Gl(const GlFunctions& functions) : fn(functions) {}
@@ -186,6 +175,7 @@ struct Renderer::Gl {
   ~Gl() {
     // GL ignores the name 0, so a half-built renderer cleans up the same way.
     fn.DeleteProgram(program);
+    parts.Destroy(fn);
     fn.DeleteBuffers(1, &quad_buffer);
     fn.DeleteBuffers(1, &instance_buffer);
     fn.DeleteVertexArrays(1, &vertex_array);
@@ -205,7 +195,7 @@ std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, 
   gl->width = width;
   gl->height = height;
 
-  if (!BuildProgram(fn, gl->program, error)) return nullptr;
+  if (!BuildProgram(fn, kVertexShader, kFragmentShader, "", gl->program, error)) return nullptr;
   gl->view_half_size_location = fn.GetUniformLocation(gl->program, "view_half_size");
   gl->pixel_size_location = fn.GetUniformLocation(gl->program, "pixel_size");
 
@@ -225,6 +215,8 @@ std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, 
   // as exactly its scene colour.
   SetInstanceAttribute(fn, 4, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Instance, color));
   SetInstanceAttribute(fn, 5, 1, GL_FLOAT, GL_FALSE, offsetof(Instance, kind));
+
+  if (!gl->parts.Create(fn, gl->quad_buffer, error)) return nullptr;
 
   fn.GenRenderbuffers(1, &gl->color_buffer);
   fn.BindRenderbuffer(GL_RENDERBUFFER, gl->color_buffer);
@@ -262,6 +254,10 @@ std::string Renderer::Description() const {
 void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
                     const Camera& camera) {
   assert(colors.size() == world.BodyCount());
+  if (HasParts(world)) {
+    DrawWithParts(world, colors, camera);
+    return;
+  }
   Gl& gl = *gl_;
   const GlFunctions& fn = gl.fn;
   // With rotation off the engine does no angular work, so angles are not part of the picture.
@@ -293,16 +289,7 @@ void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
     gl.instances.push_back(instance);
   }
 
-  // All state is set on every draw, so a window backend may share the context with other code.
-  fn.BindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
-  fn.Viewport(0, 0, gl.width, gl.height);
-  fn.ClearColor(kBackgroundColor.r / 255.0f, kBackgroundColor.g / 255.0f,
-                kBackgroundColor.b / 255.0f, 1.0f);
-  fn.Clear(GL_COLOR_BUFFER_BIT);
-  fn.Enable(GL_BLEND);
-  // Alpha accumulates towards 1 instead of being overwritten by the edge coverage, so the
-  // framebuffer stays opaque (a PNG with partial alpha looks washed out in viewers).
-  fn.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  BeginFrame(fn, gl.framebuffer, gl.width, gl.height);
   fn.UseProgram(gl.program);
   const double pixel_size = camera.width / gl.width;
   fn.Uniform2f(gl.view_half_size_location, static_cast<float>(0.5 * camera.width),
@@ -315,6 +302,33 @@ void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
   if (!gl.instances.empty()) {
     fn.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(gl.instances.size()));
   }
+}
+
+void Renderer::DrawWithParts(const engine::World& world, std::span<const Color> colors,
+                             const Camera& camera) {
+  Gl& gl = *gl_;
+  const GlFunctions& fn = gl.fn;
+  const bool rotation = world.Def().rotation;
+  const double pixel_size = camera.width / gl.width;
+  const float half_width = static_cast<float>(0.5 * camera.width);
+  const float half_height = static_cast<float>(0.5 * pixel_size * gl.height);
+  BeginFrame(fn, gl.framebuffer, gl.width, gl.height);
+  PartBatch& batch = gl.part_batch;
+  batch.Clear();
+  // One draw call holds as many bodies as the texture buffer takes; a body too big for it
+  // alone is left out (its outline would need more texels than this GL has).
+  for (const engine::BodyId id : world.BodyIds()) {
+    const std::size_t instances = batch.Instances().size();
+    const std::size_t texels = batch.TexelCount();
+    batch.Append(world, id, colors[id.index], rotation, camera, pixel_size);
+    if (batch.TexelCount() <= gl.parts.MaxTexels()) continue;
+    batch.Truncate(instances, texels);
+    gl.parts.Draw(fn, batch, half_width, half_height, static_cast<float>(pixel_size), rotation);
+    batch.Clear();
+    batch.Append(world, id, colors[id.index], rotation, camera, pixel_size);
+    if (batch.TexelCount() > gl.parts.MaxTexels()) batch.Clear();
+  }
+  gl.parts.Draw(fn, batch, half_width, half_height, static_cast<float>(pixel_size), rotation);
 }
 
 void Renderer::ReadImage(Image& image) {

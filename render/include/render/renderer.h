@@ -1,6 +1,8 @@
 // Draws a world through a camera with OpenGL 3.3 core into an offscreen framebuffer and reads
 // the picture back. Balls are anti-aliased discs (a spoke shows the angle when rotation is on),
-// boxes filled rectangles; both outlined. No GL header here: the GL state lives in renderer.cpp.
+// boxes filled rectangles, polygons (concave or rounded too) and capsules filled shapes, segment
+// polylines bands of a few pixels; each body outlined once around all its parts. No GL header
+// here: the GL state lives in renderer.cpp and part_program.cpp.
 #pragma once
 
 #include <memory>
@@ -53,6 +55,9 @@ class Renderer {
  private:
   struct Gl;  // the function table and the GL objects
   explicit Renderer(std::unique_ptr<Gl> gl);
+  // Draw for a world with bodies made of parts: every body through the part program.
+  void DrawWithParts(const engine::World& world, std::span<const Color> colors,
+                     const Camera& camera);
   std::unique_ptr<Gl> gl_;
 };
 
