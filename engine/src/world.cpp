@@ -90,7 +90,7 @@ void World::Step() {
   detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, bodies.infos, w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
-                        w.candidates.Margins());
+                        w.candidates.Margins(), bodies.with_parts > 0);
   if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
