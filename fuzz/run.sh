@@ -12,6 +12,11 @@ for steps in 0 5 60 200; do
   "$build/ballbox" sim --steps "$steps" --save-state "$build/fuzz-seeds/state" >/dev/null
   tail -c +17 "$build/fuzz-seeds/state" >"$build/fuzz-seeds/snapshot/default_$steps"
 done
+# And a world with every kind of part, under the default scene's settings (the same fingerprint).
+for steps in 0 30 120; do
+  "$build/ballbox" sim "$here/snapshot_parts_scene.json" --steps "$steps" --save-state "$build/fuzz-seeds/state" >/dev/null
+  tail -c +17 "$build/fuzz-seeds/state" >"$build/fuzz-seeds/snapshot/parts_$steps"
+done
 rm -f "$build/fuzz-seeds/state"
 mkdir -p "$build/fuzz-artifacts"
 pids=()

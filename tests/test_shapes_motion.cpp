@@ -253,3 +253,24 @@ TEST_CASE("a polygon bullet at 1 000 m/s does not pass through a dynamic box", "
   }
   CHECK(world.State(target).velocity.x > 0.0);  // and it was hit
 }
+
+TEST_CASE("fast spinning sticks never pass a 10 cm wall", "[shapes]") {
+  // A 2 m stick 2 cm thick, thrown at 50 to 440 m/s while spinning at 20 to 59 rad/s: without the
+  // continuous pass 16 of these 40 went through (speculative contacts take the normal of the
+  // step's start; a thin body turning fast meets the wall elsewhere).
+  int through = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    engine::World world{TurningWorld(false)};
+    engine::BodyDef wall = PartsBody({PolygonPart({{0, -20}, {0.1, -20}, {0.1, 20}, {0, 20}})}, {30, 0});
+    wall.is_static = true;
+    world.CreateBody(wall);
+    engine::BodyDef stick = PartsBody({PolygonPart({{-1, -0.01}, {1, -0.01}, {1, 0.01}, {-1, 0.01}})}, {0, 0}, 0.1 * trial);
+    stick.velocity = {50.0 + 10 * trial, 0};
+    stick.angular_velocity = 20.0 + trial;
+    const engine::BodyId id = world.CreateBody(stick);
+    StepTimes(world, 120);
+    CHECK_FALSE(world.Fault());
+    if (world.Origin(id).x > 30.0) ++through;
+  }
+  CHECK(through == 0);
+}

@@ -29,6 +29,9 @@ struct Bodies {
   };
   std::vector<PlacedOrigin> placed_origins;
   std::vector<Vec2> start_positions;  ///< each body's centre when the current step began
+  /// Each body's angle when the step began, kept only while some body is made of parts (the
+  /// continuous pass sweeps them).
+  std::vector<double> start_angles;
   std::vector<std::uint32_t> generations;
   std::vector<std::uint8_t> alive;    ///< 0: the slot is free
   std::vector<std::uint8_t> enabled;  ///< 0: disabled or free: not simulated at all
@@ -86,6 +89,9 @@ struct Bodies {
   void MarkStepStart() {
     start_positions.resize(states.size());
     for (std::size_t i = 0; i < states.size(); ++i) start_positions[i] = states[i].position;
+    if (with_parts == 0) return;
+    start_angles.resize(states.size());
+    for (std::size_t i = 0; i < states.size(); ++i) start_angles[i] = states[i].angle;
   }
 };
 

@@ -193,6 +193,22 @@ AABB PiecesBounds(const BodyGeometry& geometry, const BodyState& state) {
   return box;
 }
 
+geometry::ShapeProxy ProxyOf(const BodyGeometry& g, const Piece& piece) {
+  switch (piece.kind) {
+    case Piece::Kind::kCircle: {
+      const Vec2 center[1] = {piece.center};
+      return geometry::MakeProxy(center, piece.radius);
+    }
+    case Piece::Kind::kSegment: {
+      const geometry::ChainSegment& s = g.segments[piece.index];
+      const Vec2 ends[2] = {s.point1, s.point2};
+      return geometry::MakeProxy(ends, 0.0);
+    }
+    default:
+      return geometry::MakeProxy(g.polygons[piece.index]);
+  }
+}
+
 double PiecesWidth(const BodyGeometry& geometry, const BodyState& state, Vec2 along) {
   // Project every piece on the line across `along`, in the body's frame.
   const Vec2 across = InvRotate(MakeRot(state.angle), LeftPerp(along));

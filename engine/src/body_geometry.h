@@ -12,6 +12,7 @@
 #include "engine/math.h"
 #include "engine/shape.h"
 #include "geometry/chain.h"
+#include "geometry/gjk.h"
 #include "geometry/mass.h"
 #include "geometry/polygon.h"
 #include "geometry/transform.h"
@@ -62,6 +63,9 @@ AABB PiecesBounds(const BodyGeometry& geometry, const BodyState& state);
 inline Vec2 OriginOf(const BodyGeometry& geometry, const BodyState& state) {
   return state.position - Rotate(MakeRot(state.angle), geometry.local_center);
 }
+
+/// A piece as a GJK proxy, in the centre-of-mass frame.
+geometry::ShapeProxy ProxyOf(const BodyGeometry& geometry, const Piece& piece);
 
 /// The width of the body across the direction `along` (a unit vector), for drag.
 double PiecesWidth(const BodyGeometry& geometry, const BodyState& state, Vec2 along);

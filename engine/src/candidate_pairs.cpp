@@ -96,12 +96,13 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
   const std::size_t n = bodies.states.size();
   bounds_.resize(n);
   margins_.resize(n);
+  const bool parts = bodies.with_parts > 0;
   for (BodyIndex id = 0; id < n; ++id) {
-    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id],
-                                                   bodies.geometries[id].get(), awake[id] != 0)
+    const BodyGeometry* geometry = parts ? bodies.geometries[id].get() : nullptr;
+    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id], geometry, awake[id] != 0)
                                : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
-    const AABB b = BoundsOf(bodies, id);
+    const AABB b = parts ? BoundsOf(bodies, id) : BodyBounds(bodies.infos[id].shape, bodies.states[id]);
     bounds_[id] = {b.lower - grow, b.upper + grow};
   }
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.

@@ -81,11 +81,12 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
     };
     return ApproachSpeed(c, start(c.a), start(c.b));
   };
+  const bool parts = bodies.with_parts > 0;
   for (const Contact& c : contacts) {
     if (!Touching(c, [&] { return approach(c); }, bodies.states, def)) continue;
     const BodyPair pair{c.a, c.b};
     // Bodies made of parts can touch at several pieces: one pair, one begin.
-    if (!touching_.empty() && touching_.back() == pair) continue;
+    if (parts && !touching_.empty() && touching_.back() == pair) continue;
     end_before(pair);
     touching_.push_back(pair);
     if (j < previous_.size() && previous_[j] == pair) {

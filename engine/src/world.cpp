@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "continuous.h"
 #include "require.h"
 #include "world_impl.h"
 
@@ -89,7 +90,7 @@ void World::Step() {
   detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, bodies.infos, w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
-                        w.candidates.Margins());
+                        w.candidates.Margins(), bodies.with_parts > 0);
   if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
@@ -107,6 +108,10 @@ void World::Step() {
   std::visit([&](auto& solver) { solver.Step(context); }, w.solver);
   bodies.ClearAppliedForces();
   if (w.fault) return;                  // broken down mid-step: stop where it appeared
+  // Fast bodies made of parts that the step carried through something go back to the touch.
+  if (bodies.with_parts > 0 && w.def.continuous) {
+    detail::SolveContinuous(bodies, bodies.start_angles, w.candidates.Pairs(), w.sleep.awake, w.def);
+  }
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep
   // Events: contacts that began or ended touching, sensors that began or ended overlapping.
   if (w.def.contact_events) {

@@ -45,16 +45,23 @@ namespace {
 
 // Last step's impulses on the points of `contact` that match by feature id, if the same pieces
 // were in contact then with about the same normal. `cursor` walks forward through last step's
-// list, which is in the same order.
+// list, which is in the same order. Without bodies made of parts every piece is 0, and only the
+// pair is compared (the narrow phase of a circle pour is mostly this).
+template <bool kParts>
 [[gnu::always_inline]] inline void CarryImpulses(const std::vector<Contact>& previous, Contact* contact,
                                                  std::size_t* cursor) {
-  while (*cursor < previous.size() && ContactBefore(previous[*cursor], *contact)) ++*cursor;
+  auto before = [&](const Contact& old) {
+    if constexpr (kParts) return ContactBefore(old, *contact);
+    return BodyPair{old.a, old.b} < BodyPair{contact->a, contact->b};
+  };
+  while (*cursor < previous.size() && before(previous[*cursor])) ++*cursor;
   if (*cursor == previous.size()) return;
   const Contact& old = previous[*cursor];
-  if (old.a != contact->a || old.b != contact->b || old.piece_a != contact->piece_a ||
-      old.piece_b != contact->piece_b || !(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) {
-    return;
+  if (old.a != contact->a || old.b != contact->b) return;
+  if constexpr (kParts) {
+    if (old.piece_a != contact->piece_a || old.piece_b != contact->piece_b) return;
   }
+  if (!(Dot(old.manifold.normal, contact->manifold.normal) > 0.99)) return;
   const Manifold& m = contact->manifold;
   for (int i = 0; i < m.point_count; ++i) {
     for (int j = 0; j < old.manifold.point_count; ++j) {
@@ -79,6 +86,14 @@ bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyGeometry* g
 }
 
 void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
+                         std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
+                         bool parts) {
+  if (parts) return Update<true>(pairs, states, infos, geometries, margins);
+  Update<false>(pairs, states, infos, geometries, margins);
+}
+
+template <bool kParts>
+void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins) {
   previous_contacts_.swap(contacts_);
   contacts_.clear();
@@ -90,12 +105,16 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
     const BodyInfo& ia = infos[pair.a];
     const BodyInfo& ib = infos[pair.b];
     const double margin = margins[pair.a] + margins[pair.b];
-    if (!IsSimpleShape(ia.shape.type) || !IsSimpleShape(ib.shape.type)) {
-      const std::size_t first = contacts_.size();
-      CollidePieces({pair.a, ia, states[pair.a], geometries[pair.a].get()},
-                    {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts_);
-      for (std::size_t i = first; i < contacts_.size(); ++i) CarryImpulses(previous_contacts_, &contacts_[i], &previous);
-      continue;
+    if constexpr (kParts) {
+      if (!IsSimpleShape(ia.shape.type) || !IsSimpleShape(ib.shape.type)) {
+        const std::size_t first = contacts_.size();
+        CollidePieces({pair.a, ia, states[pair.a], geometries[pair.a].get()},
+                      {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts_);
+        for (std::size_t i = first; i < contacts_.size(); ++i) {
+          CarryImpulses<true>(previous_contacts_, &contacts_[i], &previous);
+        }
+        continue;
+      }
     }
     Manifold m;
     if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margin, &m)) continue;
@@ -104,7 +123,7 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                     .manifold = m,
                     .restitution = std::max(ia.restitution, ib.restitution),
                     .friction = std::sqrt(ia.friction * ib.friction)};
-    CarryImpulses(previous_contacts_, &contact, &previous);
+    CarryImpulses<kParts>(previous_contacts_, &contact, &previous);
     contacts_.push_back(contact);
   }
 }

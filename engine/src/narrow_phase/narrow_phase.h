@@ -32,8 +32,9 @@ using Geometries = std::span<const std::shared_ptr<const BodyGeometry>>;
 class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body.
+  /// `parts`: some body is made of parts (else the loop is the one circles and boxes always had).
   void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins);
+              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins, bool parts);
 
   /// Forgets the body's contacts (destroyed or disabled), so none warm-starts a body that takes
   /// its slot.
@@ -45,6 +46,10 @@ class NarrowPhase {
   const std::vector<Contact>& Contacts() const { return contacts_; }
 
  private:
+  template <bool kParts>
+  void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
+              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins);
+
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
 };

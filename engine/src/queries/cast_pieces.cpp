@@ -13,23 +13,6 @@ namespace {
 
 using geometry::Transform;
 
-// The piece as a GJK proxy, in its body's centre-of-mass frame.
-geometry::ShapeProxy ProxyOf(const BodyGeometry& g, const Piece& piece) {
-  switch (piece.kind) {
-    case Piece::Kind::kCircle: {
-      const Vec2 center[1] = {piece.center};
-      return geometry::MakeProxy(center, piece.radius);
-    }
-    case Piece::Kind::kSegment: {
-      const geometry::ChainSegment& s = g.segments[piece.index];
-      const Vec2 ends[2] = {s.point1, s.point2};
-      return geometry::MakeProxy(ends, 0.0);
-    }
-    default:
-      return geometry::MakeProxy(g.polygons[piece.index]);
-  }
-}
-
 // The mover as a proxy in its own frame (centred at the origin).
 geometry::ShapeProxy MoverProxy(const Shape& shape) {
   if (shape.type == ShapeType::kCircle) {
