@@ -1,5 +1,6 @@
 // CheckShapePart: a part checked as CreateBody requires it, each problem named by the scene
 // format's key, so a loader can report it instead of the engine stopping.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,10 +43,15 @@ std::optional<PartProblem> CheckPolygon(const ShapePart& part) {
   std::vector<Vec2> placed;
   const geometry::Transform xf{part.offset, MakeRot(part.angle)};
   for (const Vec2 p : part.points) placed.push_back(geometry::TransformPoint(xf, p));
-  if (geometry::CheckOutline(placed).problem != geometry::OutlineProblem::kNone ||
-      geometry::DecomposeConvex(geometry::NormaliseOutline(placed)).empty()) {
+  if (geometry::CheckOutline(placed).problem != geometry::OutlineProblem::kNone) {
     return Problem("vertices", "is too thin to split into convex pieces");
   }
+  // A corner a rounding error away from an edge can leave an ear of no area, or none at all.
+  const std::vector<geometry::Outline> pieces = geometry::DecomposeConvex(geometry::NormaliseOutline(placed));
+  const bool degenerate = std::any_of(pieces.begin(), pieces.end(), [](const geometry::Outline& piece) {
+    return piece.count < 3 || !(geometry::TwiceSignedArea(piece.View()) > 0.0);
+  });
+  if (pieces.empty() || degenerate) return Problem("vertices", "is too thin to split into convex pieces");
   return std::nullopt;
 }
 

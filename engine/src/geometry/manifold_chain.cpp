@@ -56,8 +56,9 @@ bool OnLeft(const ChainSegment& s, Vec2 c) {
 // `direction` runs along the neighbour away from (into) the segment's end; `turn_sign` makes a
 // turn away from the left side negative at either end.
 SegmentEnd MakeEnd(bool free, Vec2 direction, Vec2 tangent, double turn_sign) {
-  if (free) return {};
-  const Vec2 t = direction / Length(direction);
+  const double length = Length(direction);
+  if (free || !(length > 0.0)) return {};  // a neighbour of no length (rounding) continues nothing
+  const Vec2 t = direction / length;
   return {false, turn_sign * Cross(t, tangent) < -kFlatSin, LeftPerp(t)};
 }
 

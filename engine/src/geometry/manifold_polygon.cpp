@@ -159,9 +159,10 @@ bool CollideCirclePolygon(Vec2 center_a, double radius_a, const Polygon& b, cons
   Vec2 n = b.normals[face];  // from the polygon to the circle
   double gap = separation;
   if (at_corner) {
-    gap = Length(c - corner);
-    if (gap - radii > margin) return false;
-    n = (c - corner) / gap;
+    const double distance = Length(c - corner);
+    if (distance - radii > margin) return false;
+    // On the corner itself (rounding put it a hair outside the face) the face's normal serves.
+    if (distance > 0.0) gap = distance, n = (c - corner) / distance;
   }
   const Vec2 surface_b = c - gap * n + b.radius * n, surface_a = c - radius_a * n;
   const auto id = static_cast<std::uint8_t>(at_corner ? 0x40 | (corner == v1 ? face : (face + 1) % b.count) : face);
