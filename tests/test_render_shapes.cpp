@@ -516,7 +516,7 @@ TEST_CASE("window child: the shapes drawn in a window's context (run by render s
       .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
 }
 
-TEST_CASE("render shapes: a window's context draws them as the offscreen one does",
+TEST_CASE("play window: the part shapes drawn in a window's context (as play draws) match the offscreen ones",
           "[render][xvfb]") {
   const bool have = std::system("command -v xvfb-run >/dev/null 2>&1 && command -v flock "
                                 ">/dev/null 2>&1") == 0;
