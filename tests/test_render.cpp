@@ -14,6 +14,7 @@
 #include "render/context.h"
 #include "render/image.h"
 #include "render/renderer.h"
+#include "offscreen_gl.h"
 #include "world_builders.h"
 
 using render::Color;
@@ -30,39 +31,15 @@ constexpr int kWidth = 200;
 constexpr int kHeight = 150;
 const render::Camera kCamera{{0.0, 0.0}, 20.0};
 
-// The context is created first and destroyed last: the renderer's GL objects live in it.
-struct Gl {
-  std::unique_ptr<render::GlContext> context;
-  std::unique_ptr<render::Renderer> renderer;
-};
+using Gl = testing::OffscreenGl;
 
-Gl MakeGl(int width = kWidth, int height = kHeight) {
-  Gl gl;
-  std::string error;
-  gl.context = render::CreateOffscreenContext(error);
-  INFO(error);
-  REQUIRE(gl.context);
-  gl.renderer = render::Renderer::Create(*gl.context, width, height, error);
-  INFO(error);
-  REQUIRE(gl.renderer);
-  return gl;
-}
+Gl MakeGl(int width = kWidth, int height = kHeight) { return testing::MakeOffscreenGl(width, height); }
 
 Image Draw(Gl& gl, const engine::World& world, const std::vector<Color>& colors) {
-  gl.renderer->Draw(world, colors, kCamera);
-  Image image;
-  gl.renderer->ReadImage(image);
-  REQUIRE(image.width == gl.renderer->Width());
-  REQUIRE(image.height == gl.renderer->Height());
-  REQUIRE(image.rgb.size() == static_cast<std::size_t>(image.width * image.height * 3));
-  return image;
+  return testing::DrawFrame(gl, world, colors, kCamera);
 }
 
-engine::WorldDef Still(bool rotation) {
-  engine::WorldDef def = testing::NoGravity();
-  def.rotation = rotation;
-  return def;
-}
+using testing::Still;
 
 engine::BodyDef Turned(engine::BodyDef def, double angle) {
   def.angle = angle;

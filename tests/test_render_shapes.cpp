@@ -27,6 +27,7 @@
 #include "render/renderer.h"
 #include "render/window.h"
 #include "run_program.h"
+#include "offscreen_gl.h"
 #include "world_builders.h"
 
 using engine::Vec2;
@@ -51,37 +52,15 @@ const render::Camera kCamera{{0.0, 0.0}, 20.0};
 
 Vec2 PixelCentre(int i, int j) { return {(i + 0.5 - 100.0) * kPixel, (75.0 - j - 0.5) * kPixel}; }
 
-struct Gl {
-  std::unique_ptr<render::GlContext> context;
-  std::unique_ptr<render::Renderer> renderer;
-};
+using Gl = testing::OffscreenGl;
 
-Gl MakeGl() {
-  Gl gl;
-  std::string error;
-  gl.context = render::CreateOffscreenContext(error);
-  INFO(error);
-  REQUIRE(gl.context);
-  gl.renderer = render::Renderer::Create(*gl.context, kWidth, kHeight, error);
-  INFO(error);
-  REQUIRE(gl.renderer);
-  return gl;
-}
+Gl MakeGl(int width = kWidth, int height = kHeight) { return testing::MakeOffscreenGl(width, height); }
 
 Image Draw(Gl& gl, const engine::World& world, const std::vector<Color>& colors) {
-  gl.renderer->Draw(world, colors, kCamera);
-  Image image;
-  gl.renderer->ReadImage(image);
-  REQUIRE(image.width == kWidth);
-  REQUIRE(image.height == kHeight);
-  return image;
+  return testing::DrawFrame(gl, world, colors, kCamera);
 }
 
-engine::WorldDef Still(bool rotation) {
-  engine::WorldDef def = testing::NoGravity();
-  def.rotation = rotation;
-  return def;
-}
+using testing::Still;
 
 std::string Show(Color c) {
   char text[24];
