@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/time_of_impact.h"
 #include "wakefulness.h"
@@ -14,9 +15,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A body's pieces as proxies in its centre-of-mass frame, with their bounding circles.
+// A body's pieces by their bounding circles in its centre-of-mass frame (a lone circle or box
+// is one piece); the GJK proxy is built only for pieces whose swept bounds meet.
 struct SweptPiece {
-  geometry::ShapeProxy proxy;
   Vec2 center;
   double reach;
 };
@@ -24,18 +25,22 @@ struct SweptPiece {
 std::vector<SweptPiece> PiecesOf(const Bodies& bodies, BodyIndex i) {
   std::vector<SweptPiece> out;
   if (const BodyGeometry* g = bodies.geometries[i].get()) {
-    for (const Piece& piece : g->pieces) out.push_back({ProxyOf(*g, piece), piece.center, piece.reach});
+    for (const Piece& piece : g->pieces) out.push_back({piece.center, piece.reach});
     return out;
   }
   const Shape& shape = bodies.infos[i].shape;
+  out.push_back({{}, shape.type == ShapeType::kCircle ? shape.radius : Length(shape.half_extents)});
+  return out;
+}
+
+geometry::ShapeProxy ProxyAt(const Bodies& bodies, BodyIndex i, std::size_t piece) {
+  if (const BodyGeometry* g = bodies.geometries[i].get()) return ProxyOf(*g, g->pieces[piece]);
+  const Shape& shape = bodies.infos[i].shape;
   if (shape.type == ShapeType::kCircle) {
     const Vec2 center[1] = {{0.0, 0.0}};
-    out.push_back({geometry::MakeProxy(center, shape.radius), {}, shape.radius});
-  } else {
-    out.push_back({geometry::MakeProxy(geometry::MakeBox(shape.half_extents.x, shape.half_extents.y)), {},
-                   Length(shape.half_extents)});
+    return geometry::MakeProxy(center, shape.radius);
   }
-  return out;
+  return geometry::MakeProxy(geometry::MakeBox(shape.half_extents.x, shape.half_extents.y));
 }
 
 // A body's motion over the part [t0, t1] of the step: its centre along the straight line, its
@@ -79,11 +84,14 @@ double FirstImpact(const Bodies& bodies, std::span<const double> start_angles, B
     const geometry::Sweep sweep_other = SweepBetween(PoseAt(bodies, start_angles, other, t0),
                                                      PoseAt(bodies, start_angles, other, t1));
     double first = 1.0;
-    for (const SweptPiece& a : pieces_fast) {
-      const AABB box_a = SweptBounds(sweep_fast, a);
-      for (const SweptPiece& b : pieces_other) {
-        if (!Overlaps(box_a, SweptBounds(sweep_other, b))) continue;
-        const geometry::ToiOutput toi = geometry::TimeOfImpact(a.proxy, sweep_fast, b.proxy, sweep_other, settings);
+    for (std::size_t i = 0; i < pieces_fast.size(); ++i) {
+      const AABB box_a = SweptBounds(sweep_fast, pieces_fast[i]);
+      std::optional<geometry::ShapeProxy> proxy_a;
+      for (std::size_t j = 0; j < pieces_other.size(); ++j) {
+        if (!Overlaps(box_a, SweptBounds(sweep_other, pieces_other[j]))) continue;
+        if (!proxy_a) proxy_a = ProxyAt(bodies, fast, i);
+        const geometry::ToiOutput toi =
+            geometry::TimeOfImpact(*proxy_a, sweep_fast, ProxyAt(bodies, other, j), sweep_other, settings);
         // A pair touching where the part begins is the contact solver's (or was stopped by an
         // earlier part); a hit, or an advancement that ran out of iterations (its fraction is
         // still safe: no touch before it), stops the body there.

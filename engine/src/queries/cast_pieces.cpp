@@ -48,14 +48,17 @@ geometry::CastOutput GrownRayCast(const BodyGeometry& g, const Piece& piece, con
 std::optional<RayHit> CastAgainstPieces(const Cast& cast, const BodyGeometry& g, const BodyState& state) {
   const Transform xf = FrameOf(state);
   const Transform mover{cast.position, RotationOf(cast.angle)};
-  const geometry::ShapeProxy mover_proxy = MoverProxy(cast.shape);
+  // GJK's proxies serve shape casts only (the start's overlap, a box's advance); rays and
+  // circles are crossed exactly without them.
+  const bool gjk = cast.starts_inside_counts || cast.shape.type != ShapeType::kCircle;
+  const geometry::ShapeProxy mover_proxy = gjk ? MoverProxy(cast.shape) : geometry::ShapeProxy{};
   const Vec2 p = cast.position, d = cast.translation;
   std::optional<RayHit> first;
   auto offer = [&](double fraction, Vec2 point, Vec2 normal) {
     if (!first || fraction < first->fraction) first = RayHit{{}, point, normal, fraction};
   };
   for (const Piece& piece : g.pieces) {
-    const geometry::ShapeProxy proxy = ProxyOf(g, piece);
+    const geometry::ShapeProxy proxy = gjk ? ProxyOf(g, piece) : geometry::ShapeProxy{};
     if (cast.starts_inside_counts) {
       // A shape cast meets a piece it starts overlapping at once.
       const geometry::DistanceOutput start = geometry::ShapeDistance(proxy, xf, mover_proxy, mover);
