@@ -3,6 +3,7 @@
 #include "narrow_phase/collide_pieces.h"
 
 #include <cmath>
+#include <optional>
 
 #include "geometry/manifold.h"
 #include "narrow_phase/collide.h"
@@ -34,7 +35,7 @@ class Pieces {
   explicit Pieces(const PieceBody& body) : body_(body) {
     if (body.geometry) return;
     const Shape& shape = body.info.shape;
-    if (shape.type == ShapeType::kBox) box_ = geometry::MakeBox(shape.half_extents.x, shape.half_extents.y);
+    if (shape.type == ShapeType::kBox) box_.emplace(geometry::MakeBox(shape.half_extents.x, shape.half_extents.y));
   }
   std::size_t Count() const { return body_.geometry ? body_.geometry->pieces.size() : 1; }
   PieceRef operator[](std::size_t i) const {
@@ -44,7 +45,7 @@ class Pieces {
         return {Kind::kCircle, {}, shape.radius, shape.radius, nullptr, nullptr, body_.info.friction,
                 body_.info.restitution};
       }
-      return {Kind::kPolygon, {}, 0.0, Length(shape.half_extents), &box_, nullptr, body_.info.friction,
+      return {Kind::kPolygon, {}, 0.0, Length(shape.half_extents), &*box_, nullptr, body_.info.friction,
               body_.info.restitution};
     }
     const BodyGeometry& g = *body_.geometry;
@@ -62,7 +63,7 @@ class Pieces {
 
  private:
   const PieceBody& body_;
-  Polygon box_;
+  std::optional<Polygon> box_;  ///< a lone box's outline (2 KB: made only for a box)
 };
 
 geometry::Capsule CapsuleOf(const Polygon& p) { return {p.vertices[0], p.vertices[1], p.radius}; }
