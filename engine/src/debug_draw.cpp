@@ -13,6 +13,7 @@ void DebugDraw::DrawPolygon(BodyId, std::span<const Vec2>, double, BodyKind) {}
 void DebugDraw::DrawCapsule(BodyId, Vec2, Vec2, double, BodyKind) {}
 void DebugDraw::DrawSegment(BodyId, Vec2, Vec2, BodyKind) {}
 void DebugDraw::DrawSpring(Vec2, Vec2) {}
+void DebugDraw::DrawJoint(JointType, Vec2, Vec2, Vec2, Vec2) {}
 void DebugDraw::DrawBounds(BodyId, const AABB&, BodyKind) {}
 void DebugDraw::DrawContact(Vec2, Vec2, double, double) {}
 

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "engine/ids.h"
+#include "engine/joint.h"
 #include "engine/math.h"
 
 namespace engine {
@@ -20,10 +21,11 @@ enum class BodyKind : std::uint8_t {
   kAsleep,     ///< dynamic and asleep
 };
 
-/// What World::Draw describes, in this order: shapes, springs, bounds, contacts.
+/// What World::Draw describes, in this order: shapes, springs, joints, bounds, contacts.
 struct DrawOptions {
   bool shapes = true;
   bool springs = true;
+  bool joints = true;
   bool bounds = false;    ///< each body's bounding box (World::BodyBounds)
   bool contacts = false;  ///< the contact points of the last step (World::Contacts)
 };
@@ -48,6 +50,9 @@ class DebugDraw {
   virtual void DrawSegment(BodyId body, Vec2 a, Vec2 b, BodyKind kind);
   /// A spring from anchor `a` on its first body to `b`, on its second body or fixed in the world.
   virtual void DrawSpring(Vec2 a, Vec2 b);
+  /// A joint: its bodies' centres of mass and its points on them (World::Joint). A target
+  /// joint has no body A: `center_a` and `anchor_a` are then its target.
+  virtual void DrawJoint(JointType type, Vec2 center_a, Vec2 anchor_a, Vec2 anchor_b, Vec2 center_b);
   virtual void DrawBounds(BodyId body, const AABB& bounds, BodyKind kind);
   /// A contact point of World::Contacts: `normal` points from the lower slot's body to the
   /// other, `depth` is the overlap (m; negative: a speculative contact, still that far apart),

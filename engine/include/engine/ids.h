@@ -22,3 +22,15 @@ struct BodyId {
 };
 
 }  // namespace engine
+
+namespace engine {
+
+/// A handle to a joint, as BodyId is to a body: its slot and that slot's generation. Joints are
+/// solved in slot order; a fresh world's joints have generation 0, `JointId{2}` the third made.
+struct JointId {
+  std::uint32_t index = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(JointId, JointId) = default;
+};
+
+}  // namespace engine

@@ -14,6 +14,7 @@
 #include "engine/events.h"
 #include "engine/filter.h"
 #include "engine/ids.h"
+#include "engine/joint.h"
 #include "engine/math.h"
 #include "engine/queries.h"
 #include "engine/shape.h"
@@ -84,6 +85,28 @@ class World {
   /// from the next step on.
   void AddSpring(const SpringDef& def);
   const std::vector<SpringDef>& Springs() const;
+
+  // Joints (docs/joints.md): solved with the contacts, in slot order.
+
+  /// Preconditions: live bodies (body_b alone for kTarget), two different ones, not both of
+  /// infinite mass; finite points, a non-zero axis; limits lower ≤ upper; motor caps ≥ 0;
+  /// lengths ≥ 0 with min ≤ max; a spring with hertz > 0 and damping ≥ 0 (required by kTarget,
+  /// with max_force > 0). Takes the slot of the last destroyed joint, if any. The two bodies
+  /// wake; unless `collide`, they stop colliding with each other.
+  JointId CreateJoint(const JointDef& def);
+  /// Removes the joint; its bodies wake. Destroying a body destroys its joints.
+  void DestroyJoint(JointId id);
+  bool IsValid(JointId id) const;
+  /// The live joints, in slot order.
+  std::span<const JointId> JointIds() const;
+  /// The joint's definition as made (with the current target and motor speed).
+  const JointDef& GetJointDef(JointId id) const;
+  /// Where the joint's points are now, and how far it has turned or slid.
+  JointFrame Joint(JointId id) const;
+  /// Moves a target joint's target (the mouse moved); wakes its body.
+  void SetJointTarget(JointId id, Vec2 target);
+  /// Sets a motor's speed (rad/s or m/s; the joint must have a motor); wakes its bodies.
+  void SetMotorSpeed(JointId id, double speed);
 
   /// The live bodies, in slot order: the order bodies are stepped, dumped and hashed in.
   std::span<const BodyId> BodyIds() const;
