@@ -1,5 +1,5 @@
 // ballbox behind the side-by-side benchmark's engine interface: a peers::SceneSpec becomes an
-// engine::World with the scene's settings, sleeping off, and the default or a chosen solver.
+// engine::World with the scene's settings and joints, sleeping off, and the default or a chosen solver.
 #pragma once
 
 #include <memory>
@@ -44,6 +44,8 @@ class BallboxEngine : public PhysicsEngine {
 
   void Build(const SceneSpec& scene) override {
     world_.emplace(Def(scene));
+    std::vector<engine::BodyId> ids;
+    ids.reserve(scene.bodies.size());
     for (const BodySpec& b : scene.bodies) {
       engine::BodyDef def;
       def.shape.type = b.kind == Kind::kCircle ? engine::ShapeType::kCircle : engine::ShapeType::kBox;
@@ -61,7 +63,16 @@ class BallboxEngine : public PhysicsEngine {
       def.mass = b.mass;
       def.friction = scene.friction;
       def.restitution = scene.restitution;
-      world_->CreateBody(def);
+      def.filter.group_index = -b.group;
+      ids.push_back(world_->CreateBody(def));
+    }
+    for (const JointSpec& j : scene.joints) {
+      engine::JointDef def;  // a revolute joint; its bodies stop colliding with each other
+      def.type = engine::JointType::kRevolute;
+      def.body_a = ids[j.body_a];
+      def.body_b = ids[j.body_b];
+      def.anchor = j.anchor;
+      world_->CreateJoint(def);
     }
   }
 
@@ -74,6 +85,8 @@ class BallboxEngine : public PhysicsEngine {
       out[id.index] = {s.position, s.velocity, s.angle, s.angular_velocity};
     }
   }
+
+  std::size_t JointCount() const override { return world_->JointIds().size(); }
 
   const engine::World& World() const { return *world_; }
 

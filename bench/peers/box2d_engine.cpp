@@ -1,5 +1,6 @@
 // Box2D 2.4.1 (Debian's libbox2d-dev) behind the benchmark's engine interface: 8 velocity and
-// 3 position iterations (its documented recommendation), warm starting and continuous on, no sleep.
+// 3 position iterations (its documented recommendation), warm starting and continuous on, no sleep;
+// revolute joints through b2RevoluteJointDef::Initialize.
 #include <box2d/box2d.h>
 
 #include <memory>
@@ -41,6 +42,7 @@ class Box2dEngine : public PhysicsEngine {
       fixture.density = 1.0f;
       fixture.friction = static_cast<float>(scene.friction);
       fixture.restitution = static_cast<float>(scene.restitution);
+      fixture.filter.groupIndex = static_cast<int16>(-spec.group);
       b2PolygonShape box;
       b2CircleShape circle;
       if (spec.kind == Kind::kBox) {
@@ -70,9 +72,17 @@ class Box2dEngine : public PhysicsEngine {
       }
       bodies_.push_back(body);
     }
+    for (const JointSpec& j : scene.joints) {
+      b2RevoluteJointDef def;  // collideConnected false by default: the pair stops colliding, as in ballbox
+      def.Initialize(bodies_[j.body_a], bodies_[j.body_b],
+                     b2Vec2(static_cast<float>(j.anchor.x), static_cast<float>(j.anchor.y)));
+      world_->CreateJoint(&def);
+    }
   }
 
   void Step() override { world_->Step(dt_, kVelocityIterations, kPositionIterations); }
+
+  std::size_t JointCount() const override { return static_cast<std::size_t>(world_->GetJointCount()); }
 
   void Read(std::vector<State>& out) const override {
     out.resize(bodies_.size());

@@ -1,5 +1,6 @@
 // Chipmunk 7.0.3 (Debian's libchipmunk-dev) behind the benchmark's engine interface: 10 solver
-// iterations (its default), collision slop 5 mm like ballbox and Box2D, the default bounding-box tree.
+// iterations (its default), collision slop 5 mm like ballbox and Box2D, the default bounding-box tree;
+// revolute joints as pivot joints.
 #include <chipmunk/chipmunk.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -85,14 +86,33 @@ class ChipmunkEngine : public PhysicsEngine {
       }
       cpShapeSetFriction(shape, friction);
       cpShapeSetElasticity(shape, elasticity);
+      cpShapeSetFilter(shape, cpShapeFilterNew(static_cast<cpGroup>(spec.group), CP_ALL_CATEGORIES, CP_ALL_CATEGORIES));
       cpSpaceAddShape(space_, shape);
       shapes_.push_back(shape);
       bodies_.push_back(spec.is_static ? nullptr : body);
       static_positions_.push_back(spec.position);
     }
+    // Every static shape hangs on the space's one static body, which sits at the origin unturned,
+    // so a world point is also its point in that body's frame.
+    const auto body_of = [&](std::size_t i) { return bodies_[i] != nullptr ? bodies_[i] : cpSpaceGetStaticBody(space_); };
+    for (const JointSpec& j : scene.joints) {
+      cpConstraint* joint = cpPivotJointNew(body_of(j.body_a), body_of(j.body_b), cpv(j.anchor.x, j.anchor.y));
+      // Chipmunk's constraints leave their bodies colliding unless told; ballbox's and Box2D's do
+      // not. (Against the static body this stops the link colliding with every static shape: the
+      // joint scenes have only the anchor's.)
+      cpConstraintSetCollideBodies(joint, cpFalse);
+      cpSpaceAddConstraint(space_, joint);
+      constraints_.push_back(joint);
+    }
   }
 
   void Step() override { cpSpaceStep(space_, dt_); }
+
+  std::size_t JointCount() const override {
+    std::size_t count = 0;
+    cpSpaceEachConstraint(space_, [](cpConstraint*, void* n) { ++*static_cast<std::size_t*>(n); }, &count);
+    return count;
+  }
 
   void Read(std::vector<State>& out) const override {
     out.resize(bodies_.size());
@@ -111,6 +131,10 @@ class ChipmunkEngine : public PhysicsEngine {
   // cpSpaceFree leaves the bodies and shapes to their owner.
   void Free() {
     if (space_ == nullptr) return;
+    for (cpConstraint* joint : constraints_) {
+      cpSpaceRemoveConstraint(space_, joint);
+      cpConstraintFree(joint);
+    }
     for (cpShape* shape : shapes_) {
       cpSpaceRemoveShape(space_, shape);
       cpShapeFree(shape);
@@ -121,6 +145,7 @@ class ChipmunkEngine : public PhysicsEngine {
     }
     cpSpaceFree(space_);
     space_ = nullptr;
+    constraints_.clear();
     shapes_.clear();
     owned_bodies_.clear();
     bodies_.clear();
@@ -129,6 +154,7 @@ class ChipmunkEngine : public PhysicsEngine {
 
   cpSpace* space_ = nullptr;
   double dt_ = 1.0 / 60.0;
+  std::vector<cpConstraint*> constraints_;
   std::vector<cpShape*> shapes_;
   std::vector<cpBody*> owned_bodies_;
   std::vector<cpBody*> bodies_;  ///< scene order; nullptr for a static body

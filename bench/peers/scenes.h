@@ -1,5 +1,6 @@
-// Engine-neutral scenes for the side-by-side benchmark (accuracy.md §3 and two analytic ones),
-// the interface every engine adapter implements, and figures measured from body states alone.
+// Engine-neutral scenes for the side-by-side benchmark (accuracy.md §3, two analytic ones and
+// jointed chains and grids), the interface every engine adapter implements, and figures measured
+// from body states alone.
 #pragma once
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -41,6 +43,18 @@ struct BodySpec {
   /// ballbox's polygon path instead of its box path. Box2D and Chipmunk collide boxes as
   /// polygons anyway, so for them it is the same body.
   bool as_polygon = false;
+  /// > 0: never collides with a body of the same group (ballbox's and Box2D's negative group
+  /// index, Chipmunk's shape-filter group); 0: collides with everything.
+  int group = 0;
+};
+
+/// A revolute joint: the two bodies (scene indices, at most one static) share a point and turn
+/// freely about it. The bodies stop colliding with each other, in every engine (ballbox's joints
+/// by default, Box2D's collideConnected false, Chipmunk's collideBodies false).
+struct JointSpec {
+  std::size_t body_a = 0;
+  std::size_t body_b = 0;
+  Vec2 anchor;  ///< the shared point, world, at the start (every body starts unturned)
 };
 
 /// One scene as every engine builds it: the same bodies, one material for every shape (so the
@@ -55,6 +69,7 @@ struct SceneSpec {
   double friction = 0.6;
   double restitution = 0.2;
   std::vector<BodySpec> bodies;
+  std::vector<JointSpec> joints;
   engine::AABB bounds{{-1e9, -1e9}, {1e9, 1e9}};  ///< a dynamic body outside has escaped
 };
 
@@ -75,6 +90,8 @@ class PhysicsEngine {
   virtual void Build(const SceneSpec& scene) = 0;
   virtual void Step() = 0;
   virtual void Read(std::vector<State>& out) const = 0;
+  /// The joints the engine holds, so a test can see every adapter built the scene's.
+  virtual std::size_t JointCount() const = 0;
 };
 
 using EngineFactory = std::function<std::unique_ptr<PhysicsEngine>()>;
@@ -267,6 +284,30 @@ inline int Escaped(const SceneSpec& scene, const std::vector<State>& states) {
   return escaped;
 }
 
+/// A joint's point on each body now, from the bodies' states alone: its offset from the body's
+/// centre at the start (every body starts unturned), turned with the body.
+inline std::pair<Vec2, Vec2> JointAnchors(const SceneSpec& scene, const JointSpec& joint, const std::vector<State>& states) {
+  const auto on = [&](std::size_t i) {
+    return states[i].position + engine::Rotate(engine::MakeRot(states[i].angle), joint.anchor - scene.bodies[i].position);
+  };
+  return {on(joint.body_a), on(joint.body_b)};
+}
+
+/// The larger of two figures, NaN if either is: a run that blew up must not read as a good one.
+inline double MaxOrNaN(double a, double b) {
+  return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::max(a, b);
+}
+
+/// The widest gap between a joint's two points over every joint, m: how far the joints came apart.
+inline double MaxJointGap(const SceneSpec& scene, const std::vector<State>& states) {
+  double widest = 0;
+  for (const JointSpec& joint : scene.joints) {
+    const auto [a, b] = JointAnchors(scene, joint, states);
+    widest = MaxOrNaN(widest, engine::Length(b - a));
+  }
+  return widest;
+}
+
 /// FNV-1a 64 over the raw bits of every position and velocity: a timed run must end where the
 /// figure run ended, or it did different work.
 inline std::uint64_t Hash(const std::vector<State>& states) {
@@ -313,8 +354,107 @@ inline std::vector<Figure> ContainedFigures(PhysicsEngine& engine, const SceneSp
           {"kinetic energy", "J", KineticEnergy(scene, s)}};
 }
 
+// --- Joint scenes (issue 17): chains and a grid held by revolute joints.
+
+/// A small static anchor at `pivot` and `links` boxes of `size` (world axes) and `density` laid
+/// end to end from it along `direction` (a unit axis), each joined to the one before at their
+/// shared end, the first to the anchor. Returns the last link's index.
+inline std::size_t AddChain(SceneSpec& s, Vec2 pivot, Vec2 direction, int links, Vec2 size, double density) {
+  s.bodies.push_back(Box(pivot, {0.1, 0.1}, 1, true));
+  const double length = std::abs(engine::Dot(size, direction));
+  for (int i = 0; i < links; ++i) {
+    s.bodies.push_back(Box(pivot + (length * (i + 0.5)) * direction, size, density));
+    s.joints.push_back({s.bodies.size() - 2, s.bodies.size() - 1, pivot + (length * i) * direction});
+  }
+  return s.bodies.size() - 1;
+}
+
+/// The joint scenes' figures, sampled after every step: the widest joint gap over the run and at
+/// the end, and, for a scene with a `weight` (body index), how far the weight sank below where it
+/// started (its rigid position: the chain starts straight and unstretched) at its lowest.
+inline std::vector<Figure> JointFigures(PhysicsEngine& engine, const SceneSpec& scene, int steps,
+                                        std::optional<std::size_t> weight = std::nullopt) {
+  std::vector<State> s;
+  double widest = 0, sank = 0;
+  for (int i = 0; i < steps; ++i) {
+    engine.Step();
+    engine.Read(s);
+    widest = MaxOrNaN(widest, MaxJointGap(scene, s));
+    if (weight) sank = MaxOrNaN(sank, scene.bodies[*weight].position.y - s[*weight].position.y);
+  }
+  std::vector<Figure> figures = {{"max joint gap", "mm", 1000 * widest},
+                                 {"joint gap at end", "mm", 1000 * MaxJointGap(scene, s)}};
+  if (weight) figures.push_back({"weight sank (max)", "mm", 1000 * sank});
+  return figures;
+}
+
+/// The joint scenes: a chain falling from horizontal, a heavy weight on a light chain, and Box2D's
+/// joint grid benchmark (its "joint_grid": 100 × 100 circles of radius 0.4 m, 1 m apart, each
+/// joined to its right and lower neighbours, the seven middle bodies of the top row static, no
+/// contacts), under gravity. Bodies turn.
+inline std::vector<Scene> JointScenes() {
+  std::vector<Scene> out;
+  Scene chain;
+  chain.spec.name = "chain 20 horizontal";
+  chain.spec.rotation = true;
+  AddChain(chain.spec, {0, 0}, {1, 0}, 20, {0.5, 0.1}, 1.0);
+  chain.measure = [](PhysicsEngine& engine, const SceneSpec& scene, int steps) {
+    return JointFigures(engine, scene, steps);
+  };
+  out.push_back(chain);
+
+  // Ten 50 g links of 4 × 25 cm and a 50 kg box of 50 × 50 cm hanging straight from the anchor,
+  // at rest: the weight's own joint carries 1000 times a link's weight.
+  Scene heavy;
+  heavy.spec.name = "heavy chain 1000:1";
+  heavy.spec.rotation = true;
+  const Vec2 link{0.04, 0.25};
+  const std::size_t last = AddChain(heavy.spec, {0, 0}, {0, -1}, 10, link, 0.05 / (link.x * link.y));
+  const Vec2 end = heavy.spec.bodies[last].position - Vec2{0, 0.5 * link.y};
+  heavy.spec.bodies.push_back(Box(end - Vec2{0, 0.25}, {0.5, 0.5}, 50.0 / 0.25));
+  heavy.spec.joints.push_back({last, heavy.spec.bodies.size() - 1, end});
+  heavy.measure = [weight = heavy.spec.bodies.size() - 1](PhysicsEngine& engine, const SceneSpec& scene, int steps) {
+    return JointFigures(engine, scene, steps, weight);
+  };
+  out.push_back(heavy);
+
+  // Box2D's layout, body k·N + i at (k, −i); a joint between two static bodies holds nothing
+  // (and ballbox refuses one), so the six along the static stretch of the top row are left out.
+  constexpr int kGrid = 100;
+  Scene grid;
+  grid.spec.name = "joint grid 100 x 100";
+  grid.spec.rotation = true;
+  grid.spec.steps = 120;
+  for (int k = 0; k < kGrid; ++k) {
+    for (int i = 0; i < kGrid; ++i) {
+      const Vec2 at{static_cast<double>(k), -static_cast<double>(i)};
+      BodySpec body = Circle(at, 0.4);
+      body.group = 1;
+      if (i == 0 && k >= kGrid / 2 - 3 && k <= kGrid / 2 + 3) {
+        body.is_static = true;
+        body.mass = body.inertia = 0;
+      }
+      grid.spec.bodies.push_back(body);
+      const std::size_t index = grid.spec.bodies.size() - 1;
+      const auto join = [&](std::size_t other, Vec2 anchor) {
+        if (!(grid.spec.bodies[other].is_static && body.is_static)) grid.spec.joints.push_back({other, index, anchor});
+      };
+      if (i > 0) join(index - 1, at + Vec2{0, 0.5});
+      if (k > 0) join(index - kGrid, at - Vec2{0.5, 0});
+    }
+  }
+  grid.measure = [](PhysicsEngine& engine, const SceneSpec& scene, int steps) {
+    std::vector<Figure> figures = JointFigures(engine, scene, steps);
+    std::swap(figures[0], figures[1]);  // the end state is the headline: it is the cost scene
+    return figures;
+  };
+  out.push_back(grid);
+  return out;
+}
+
 /// Every scene of the side-by-side table: the stress scenes of bench_solver (same names, same
-/// parameters), confined circles, the turning versions of the box scenes, and two analytic ones.
+/// parameters), confined circles, the turning versions of the box scenes, two analytic ones, and
+/// the joint scenes.
 inline std::vector<Scene> Scenes() {
   std::vector<Scene> out;
   const auto resting = [&](std::string name, bool rotation, std::function<void(SceneSpec&)> build) {
@@ -468,6 +608,7 @@ inline std::vector<Scene> Scenes() {
     return std::vector<Figure>{{"position error", "m", engine::Length(s[0].position - exact)}};
   };
   out.push_back(projectile);
+  for (Scene& scene : JointScenes()) out.push_back(std::move(scene));
   return out;
 }
 
