@@ -29,6 +29,7 @@ class GlfwWindow final : public Window {
     glfwSetWindowUserPointer(window_, this);
     glfwSetKeyCallback(window_, OnKey);
     glfwSetMouseButtonCallback(window_, OnMouseButton);
+    glfwSetCursorPosCallback(window_, OnCursorMove);
   }
   ~GlfwWindow() override {
     glfwDestroyWindow(window_);
@@ -96,14 +97,30 @@ class GlfwWindow final : public Window {
   }
 
   static void OnMouseButton(GLFWwindow* window, int button, int action, int) {
-    if (action != GLFW_PRESS) return;
+    if (action != GLFW_PRESS && action != GLFW_RELEASE) return;
     WindowEvent event;
-    event.type = WindowEvent::Type::kMouseDown;
+    event.type = action == GLFW_PRESS ? WindowEvent::Type::kMouseDown : WindowEvent::Type::kMouseUp;
     event.button = button;
     double x = 0.0;
     double y = 0.0;
     glfwGetCursorPos(window, &x, &y);
-    // The cursor comes in screen coordinates; pictures are laid out in framebuffer pixels.
+    ToFramebuffer(window, x, y, event);
+    Self(window).events_.push_back(std::move(event));
+  }
+
+  static void OnCursorMove(GLFWwindow* window, double x, double y) {
+    std::vector<WindowEvent>& events = Self(window).events_;
+    // Only where the cursor ended up matters between two looks: one event, not hundreds.
+    if (events.empty() || events.back().type != WindowEvent::Type::kMouseMove) {
+      WindowEvent event;
+      event.type = WindowEvent::Type::kMouseMove;
+      events.push_back(std::move(event));
+    }
+    ToFramebuffer(window, x, y, events.back());
+  }
+
+  // The cursor comes in screen coordinates; pictures are laid out in framebuffer pixels.
+  static void ToFramebuffer(GLFWwindow* window, double x, double y, WindowEvent& event) {
     int window_width = 0;
     int window_height = 0;
     int framebuffer_width = 0;
@@ -112,7 +129,6 @@ class GlfwWindow final : public Window {
     glfwGetFramebufferSize(window, &framebuffer_width, &framebuffer_height);
     event.x = window_width > 0 ? x * framebuffer_width / window_width : x;
     event.y = window_height > 0 ? y * framebuffer_height / window_height : y;
-    Self(window).events_.push_back(std::move(event));
   }
 
   GLFWwindow* window_;
