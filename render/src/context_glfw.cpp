@@ -101,15 +101,23 @@ class GlfwWindow final : public Window {
     WindowEvent event;
     event.type = action == GLFW_PRESS ? WindowEvent::Type::kMouseDown : WindowEvent::Type::kMouseUp;
     event.button = button;
-    double x = 0.0;
-    double y = 0.0;
-    glfwGetCursorPos(window, &x, &y);
+    GlfwWindow& self = Self(window);
+    // Where the cursor was when the button changed: the last move reported before it, in event
+    // order. glfwGetCursorPos would say where it is by the time events are read, which after a
+    // quick press-and-drag is already the drag's end.
+    double x = self.cursor_x_;
+    double y = self.cursor_y_;
+    if (!self.cursor_known_) glfwGetCursorPos(window, &x, &y);
     ToFramebuffer(window, x, y, event);
-    Self(window).events_.push_back(std::move(event));
+    self.events_.push_back(std::move(event));
   }
 
   static void OnCursorMove(GLFWwindow* window, double x, double y) {
-    std::vector<WindowEvent>& events = Self(window).events_;
+    GlfwWindow& self = Self(window);
+    self.cursor_known_ = true;
+    self.cursor_x_ = x;
+    self.cursor_y_ = y;
+    std::vector<WindowEvent>& events = self.events_;
     // Only where the cursor ended up matters between two looks: one event, not hundreds.
     if (events.empty() || events.back().type != WindowEvent::Type::kMouseMove) {
       WindowEvent event;
@@ -133,6 +141,9 @@ class GlfwWindow final : public Window {
 
   GLFWwindow* window_;
   std::vector<WindowEvent> events_;
+  bool cursor_known_ = false;  // a move was reported: cursor_x_, cursor_y_ hold where
+  double cursor_x_ = 0.0;      // screen coordinates, as GLFW reports them
+  double cursor_y_ = 0.0;
 };
 
 }  // namespace
