@@ -12,9 +12,9 @@ namespace engine::detail {
 namespace {
 
 // The equality rows of a joint (at most three), from where its frames stand now.
-int EqualityRows(const Joint& j, JointWork& w, std::uint32_t work, JointRow* out) {
+int EqualityRows(Joint& j, const JointWork& w, std::uint32_t work, JointRow* out) {
   const bool turns = w.ia + w.ib > 0.0;
-  JointImpulses& p = const_cast<Joint&>(j).impulses;
+  JointImpulses& p = j.impulses;
   int n = 0;
   auto point_rows = [&] {
     out[n++] = {work, {1.0, 0.0}, Cross(w.ra, {1.0, 0.0}), Cross(w.rb, {1.0, 0.0}), w.separation.x,
