@@ -39,24 +39,3 @@ cat >"$out/scene/all_shape_keys.json" <<'JSON'
   {"position": [0, 5], "static": true, "shapes": [
     {"shape": "segment", "points": [[0, 0], [2, 0]]}, {"shape": "box", "size": [0.5, 0.5], "offset": [1, 1]}]}]}
 JSON
-# Joints at the edges the loader allows (tests/data/scene_joints.json has every key in an
-# ordinary scene): an axis-aligned scene of fixed-rotation bodies, a kinematic partner, lengths of
-# 0, a limit of one value, a motor with no force, a 1 nm axis, a joint that starts violated.
-cat >"$out/scene/joint_edges.json" <<'JSON'
-{"rotation": false, "gravity": [0, -9.8], "bodies": [
-  {"id": "ground", "shape": "box", "size": [10, 1], "position": [0, -0.5], "static": true},
-  {"id": "lift", "shape": "box", "size": [1, 0.2], "position": [3, 1], "kinematic": true, "velocity": [0, 1],
-   "fixed_rotation": true},
-  {"id": "a", "shape": "box", "size": [1, 1], "position": [0, 2], "fixed_rotation": true},
-  {"id": "b", "shape": "circle", "radius": 0.5, "position": [0, 2], "fixed_rotation": true},
-  {"id": "c", "shape": "capsule", "length": 1, "radius": 0.2, "position": [3, 3], "fixed_rotation": true}],
- "joints": [
-  {"type": "distance", "bodies": ["a", "b"], "anchors": [[0, 2], [0, 2]], "length": 0, "min_length": 0,
-   "max_length": 0, "spring": {"hertz": 1e9, "damping_ratio": 0}},
-  {"type": "revolute", "bodies": ["ground", "a"], "anchor": [0, 0], "limits": [0.5, 0.5],
-   "motor": {"speed": 1e9, "max_torque": 0}},
-  {"type": "prismatic", "bodies": ["lift", "c"], "anchor": [3, 3], "axis": [1e-9, 0], "limits": [2, 3],
-   "motor": {"speed": -5, "max_force": 1e9}, "collide": true},
-  {"type": "weld", "bodies": ["c", "b"], "anchor": [-1e9, 1e9], "spring": {"hertz": 1e-9, "damping_ratio": 1e9}},
-  {"type": "distance", "bodies": ["ground", "c"], "anchors": [[1e9, 0], [3, 3]], "min_length": 5}]}
-JSON

@@ -531,3 +531,244 @@ TEST_CASE("scene joints error: more joints than the limit are refused before any
   json += "]}";
   RequireError(json, "joints: 1000001 joints, more than the limit of 1000000 (docs/limits.md)");
 }
+
+// --- Through BuildWorld and the engine: the joints hold their bodies as the keys say.
+
+namespace {
+
+engine::World BuildScene(const std::string& json) { return game::BuildWorld(RequireParsed(json)); }
+
+double Gap(const engine::JointFrame& frame) { return engine::Length(frame.anchor_b - frame.anchor_a); }
+
+bool AllFinite(const engine::World& world) {
+  for (const engine::BodyId id : world.BodyIds()) {
+    const engine::BodyState& s = world.State(id);
+    for (const double v : {s.position.x, s.position.y, s.velocity.x, s.velocity.y, s.angle, s.angular_velocity}) {
+      if (!std::isfinite(v)) return false;
+    }
+  }
+  return true;
+}
+
+constexpr engine::JointId kFirstJoint{0, 0};
+
+}  // namespace
+
+TEST_CASE("scene joints: BuildWorld makes the joints in file order, as the scene gives them", "[scene][joints]") {
+  const game::Scene scene = RequireParsed(SceneWithJoints(R"([
+    {"type": "weld", "bodies": ["slider", "a"], "anchor": [1, 3]},
+    {"type": "revolute", "bodies": ["body2", "floor"], "anchor": [3, 2], "limits": [-1, 1], "collide": true},
+    {"type": "distance", "bodies": ["lift", "a"], "anchors": [[5, 0], [0, 2]], "max_length": 7}])"));
+  const engine::World world = game::BuildWorld(scene);
+  REQUIRE(world.JointIds().size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    INFO("joint " << i);
+    const engine::JointId id = world.JointIds()[i];
+    CHECK(id.index == i);
+    const engine::JointDef& made = world.GetJointDef(id);
+    const engine::JointDef& given = scene.joints[i].def;
+    CHECK(made.type == given.type);
+    CHECK(made.body_a == given.body_a);
+    CHECK(made.body_b == given.body_b);
+    CHECK(made.collide == given.collide);
+    CHECK(made.limits.has_value() == given.limits.has_value());
+    CHECK(made.max_length == given.max_length);
+  }
+}
+
+TEST_CASE("scene joints: a scene without joints builds the same world with or without an empty list",
+          "[scene][joints]") {
+  const std::string bodies = R"({"rotation": true, "bodies": [
+    {"shape": "box", "size": [10, 1], "position": [0, -0.5], "static": true},
+    {"shape": "box", "size": [1, 1], "position": [0.2, 3], "angle": 0.3},
+    {"shape": "circle", "radius": 0.5, "position": [0, 5], "velocity": [1, 0]}])";
+  engine::World without = BuildScene(bodies + "}");
+  engine::World empty = BuildScene(bodies + ", \"joints\": []}");
+  CHECK(empty.JointIds().empty());
+  for (int step = 0; step < 240; ++step) {
+    without.Step();
+    empty.Step();
+  }
+  CHECK(empty.StateHash() == without.StateHash());
+}
+
+TEST_CASE("scene joints: a revolute pendulum keeps its anchors together and swings down to the bottom",
+          "[scene][joints]") {
+  // A bob 2 m from its pivot, released level with it: with no friction it swings down to 2 m below.
+  engine::World world = BuildScene(R"({"rotation": true, "bodies": [
+    {"id": "pivot", "shape": "box", "size": [0.2, 0.2], "position": [0, 5], "static": true},
+    {"id": "bob", "shape": "circle", "radius": 0.2, "position": [2, 5]}],
+    "joints": [{"type": "revolute", "bodies": ["pivot", "bob"], "anchor": [0, 5]}]})");
+  const engine::BodyId bob{1};
+  double lowest = 5.0, widest_gap = 0.0;
+  for (int step = 0; step < 180; ++step) {
+    world.Step();
+    lowest = std::min(lowest, world.State(bob).position.y);
+    widest_gap = std::max(widest_gap, Gap(world.Joint(kFirstJoint)));
+    INFO("step " << step);
+    REQUIRE(engine::Length(world.State(bob).position - Vec2{0, 5}) == Approx(2.0).margin(0.01));
+  }
+  CHECK(widest_gap < 0.01);
+  CHECK(lowest == Approx(3.0).margin(0.02));
+}
+
+TEST_CASE("scene joints: collide false lets the joined bodies overlap, collide true pushes them apart",
+          "[scene][joints]") {
+  // A ball half inside a wall, tied to it by a slack rope: the rope pulls nothing, so only a
+  // contact could move the ball.
+  auto ball_x_after = [](const char* collide) {
+    engine::World world = BuildScene(std::string(R"({"gravity": [0, 0], "rotation": true, "bodies": [
+      {"id": "wall", "shape": "box", "size": [1, 4], "position": [0, 0], "static": true},
+      {"id": "ball", "shape": "circle", "radius": 0.5, "position": [0.6, 0]}],
+      "joints": [{"type": "distance", "bodies": ["wall", "ball"], "anchors": [[0, 0], [0.6, 0]],
+                  "max_length": 5, "collide": )") + collide + "}]}");
+    for (int step = 0; step < 60; ++step) world.Step();
+    return world.State(engine::BodyId{1}).position.x;
+  };
+  CHECK(ball_x_after("false") == 0.6);
+  CHECK(ball_x_after("true") > 0.95);  // out of the wall, whose face is at 0.5
+}
+
+TEST_CASE("scene joints: a distance joint holds the length it starts with", "[scene][joints]") {
+  // Anchors 3-4-5 apart: the default length is 5.
+  engine::World world = BuildScene(R"({"rotation": true, "bodies": [
+    {"id": "hook", "shape": "box", "size": [0.2, 0.2], "position": [0, 8], "static": true},
+    {"id": "load", "shape": "box", "size": [0.5, 0.5], "position": [3, 4]}],
+    "joints": [{"type": "distance", "bodies": ["hook", "load"], "anchors": [[0, 8], [3, 4.25]]}]})");
+  const engine::JointFrame start = world.Joint(kFirstJoint);
+  CHECK(start.translation == Approx(5.0).margin(1e-12));
+  for (int step = 0; step < 180; ++step) world.Step();
+  const engine::JointFrame end = world.Joint(kFirstJoint);
+  CHECK(end.translation == Approx(5.0).margin(0.01));
+  CHECK(Gap(end) == Approx(5.0).margin(0.01));
+  CHECK(world.State(engine::BodyId{1}).position.x < 2.5);  // it swung
+}
+
+TEST_CASE("scene joints: a prismatic motor drives the body along its axis up to its limit", "[scene][joints]") {
+  // No gravity: only the motor (1 m/s along [3, 4] / 5) moves the block, until the upper limit 1.5 m.
+  engine::World world = BuildScene(R"({"gravity": [0, 0], "rotation": true, "bodies": [
+    {"id": "base", "shape": "box", "size": [0.5, 0.5], "position": [0, 0], "static": true},
+    {"id": "block", "shape": "box", "size": [0.5, 0.5], "position": [2, 2]}],
+    "joints": [{"type": "prismatic", "bodies": ["base", "block"], "anchor": [2, 2], "axis": [3, 4],
+                "limits": [-1, 1.5], "motor": {"speed": 1, "max_force": 1000}}]})");
+  const engine::BodyId block{1};
+  for (int step = 0; step < 60; ++step) world.Step();  // 1 s
+  CHECK(world.Joint(kFirstJoint).translation == Approx(1.0).margin(0.02));
+  CHECK(world.State(block).position.x == Approx(2.6).margin(0.02));
+  CHECK(world.State(block).position.y == Approx(2.8).margin(0.02));
+  for (int step = 0; step < 120; ++step) world.Step();  // 3 s: it would be at 3 m without the limit
+  CHECK(world.Joint(kFirstJoint).translation == Approx(1.5).margin(0.01));
+  CHECK(world.State(block).angle == Approx(0.0).margin(1e-6));
+}
+
+TEST_CASE("scene joints: a revolute joint's limits stop a falling arm", "[scene][joints]") {
+  // A 2 m arm hinged at its left end falls; its angle may not go below -0.4 rad.
+  engine::World world = BuildScene(R"({"rotation": true, "bodies": [
+    {"id": "post", "shape": "box", "size": [0.2, 0.2], "position": [0, 5], "static": true},
+    {"id": "arm", "shape": "box", "size": [2, 0.2], "position": [1, 5]}],
+    "joints": [{"type": "revolute", "bodies": ["post", "arm"], "anchor": [0, 5], "limits": [-0.4, 0.4]}]})");
+  double least = 0.0;
+  for (int step = 0; step < 180; ++step) {
+    world.Step();
+    least = std::min(least, world.Joint(kFirstJoint).angle);
+  }
+  CHECK(least > -0.42);
+  CHECK(world.Joint(kFirstJoint).angle == Approx(-0.4).margin(0.01));
+  CHECK(world.State(engine::BodyId{1}).angle == Approx(-0.4).margin(0.01));
+}
+
+TEST_CASE("scene joints: an axis-aligned scene of fixed-rotation bodies holds its rope", "[scene][joints]") {
+  engine::World world = BuildScene(R"({"bodies": [
+    {"id": "ceiling", "shape": "box", "size": [4, 0.2], "position": [0, 6], "static": true},
+    {"id": "crate", "shape": "box", "size": [1, 1], "position": [1.5, 3], "fixed_rotation": true}],
+    "joints": [{"type": "distance", "bodies": ["ceiling", "crate"], "anchors": [[0, 5.9], [1.5, 3.5]],
+                "max_length": 3}]})");
+  double longest = 0.0;
+  for (int step = 0; step < 240; ++step) {
+    world.Step();
+    longest = std::max(longest, Gap(world.Joint(kFirstJoint)));
+  }
+  CHECK(longest < 3.01);  // it starts at 2.83 and falls until the rope is taut
+  CHECK(Gap(world.Joint(kFirstJoint)) == Approx(3.0).margin(0.01));
+  CHECK(world.State(engine::BodyId{1}).angle == 0.0);
+}
+
+TEST_CASE("scene joints: joints at the loader's edges step without faults", "[scene][joints]") {
+  // Lengths of 0, a limit it starts outside, a motor with no force, a 1 nm axis, springs at
+  // 1e-9 and 1e9 Hz, a kinematic partner, in an axis-aligned scene.
+  const game::Expected<game::Scene> scene = game::LoadScene(DataPath("scene_joint_edges.json"));
+  if (!scene.HasValue()) FAIL(scene.Error().message);
+  engine::World world = game::BuildWorld(scene.Value());
+  CHECK(world.JointIds().size() == scene.Value().joints.size());
+  for (int step = 0; step < 120; ++step) world.Step();
+  CHECK(AllFinite(world));
+}
+
+TEST_CASE("scene joints: the example scene in docs/scene-format.md is assets/scenes/joints.json, and it works",
+          "[scene][joints]") {
+  const std::string doc = testing::ReadFile(std::string(BALLBOX_ASSETS) + "/../docs/scene-format.md");
+  const std::size_t section = doc.find("\n## Joints\n");
+  REQUIRE(section != std::string::npos);
+  const std::size_t start = doc.find("```json\n", section);
+  REQUIRE(start != std::string::npos);
+  const std::size_t end = doc.find("```\n", start + 8);
+  const game::Scene documented = RequireParsed(doc.substr(start + 8, end - start - 8));
+  const game::Expected<game::Scene> asset = game::LoadScene(std::string(BALLBOX_ASSETS) + "/scenes/joints.json");
+  if (!asset.HasValue()) FAIL(asset.Error().message);
+  const game::Scene& scene = asset.Value();
+  REQUIRE(documented.joints.size() == scene.joints.size());
+  REQUIRE(documented.bodies.size() == scene.bodies.size());
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    INFO("joint " << i);
+    CHECK(documented.joints[i].id == scene.joints[i].id);
+    CHECK(documented.joints[i].def.type == scene.joints[i].def.type);
+    CHECK(Same(documented.joints[i].def.anchor, scene.joints[i].def.anchor));
+    CHECK(Same(documented.joints[i].def.anchor_b, scene.joints[i].def.anchor_b));
+  }
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) CHECK(Same(documented.bodies[i].def.position, scene.bodies[i].def.position));
+
+  // What the page says it shows, over 10 s.
+  engine::World world = game::BuildWorld(scene);
+  const engine::JointId pivot{static_cast<std::uint32_t>(*game::FindJoint(scene, "pivot"))};
+  const engine::JointId cord{static_cast<std::uint32_t>(*game::FindJoint(scene, "cord"))};
+  const engine::JointId hinge{static_cast<std::uint32_t>(*game::FindJoint(scene, "hinge"))};
+  const engine::BodyId bob{2}, cart{4};
+  double bob_lowest = 10.0, cord_longest = 0.0, pivot_gap = 0.0, hinge_gap = 0.0, lean = 0.0;
+  for (int step = 0; step < 600; ++step) {
+    world.Step();
+    bob_lowest = std::min(bob_lowest, world.State(bob).position.y);
+    cord_longest = std::max(cord_longest, Gap(world.Joint(cord)));
+    pivot_gap = std::max(pivot_gap, Gap(world.Joint(pivot)));
+    hinge_gap = std::max(hinge_gap, Gap(world.Joint(hinge)));
+    lean = std::max(lean, std::abs(world.Joint(hinge).angle));
+  }
+  CHECK(AllFinite(world));
+  CHECK(pivot_gap < 0.01);
+  CHECK(hinge_gap < 0.01);
+  CHECK(bob_lowest == Approx(6.0 - std::sqrt(8.0)).margin(0.03));  // down to the full rod length below the pivot
+  CHECK(cord_longest < 2.01);
+  CHECK(lean < 0.62);
+  CHECK(world.State(cart).position.x < -2.0);  // driven left at 1 m/s to its lower limit, at x = -3
+  CHECK(world.State(cart).position.x > -3.02);
+}
+
+TEST_CASE("scene joints: a scene with joints saves and resumes to the same state, at any thread count",
+          "[scene][joints][cli]") {
+  const auto dir = testing::FreshTestDir("scene_joints", "resume");
+  const std::string scene = "'" + DataPath("scene_joints.json") + "'";
+  auto last_line = [](const std::string& out) {
+    const std::size_t end = out.find_last_not_of('\n');
+    return out.substr(out.rfind('\n', end) + 1, end - out.rfind('\n', end));
+  };
+  const testing::ProgramRun straight = testing::Ballbox("sim " + scene + " --steps 150 --threads 1", dir);
+  REQUIRE(straight.exit_code == 0);
+  const testing::ProgramRun threads = testing::Ballbox("sim " + scene + " --steps 150 --threads 2", dir);
+  const testing::ProgramRun first = testing::Ballbox("sim " + scene + " --steps 90 --save-state s.state", dir);
+  REQUIRE(first.exit_code == 0);
+  const testing::ProgramRun resumed = testing::Ballbox("sim " + scene + " --load-state s.state --steps 60", dir);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(last_line(straight.out).rfind("state-hash: ", 0) == 0);
+  CHECK(last_line(threads.out) == last_line(straight.out));
+  CHECK(last_line(resumed.out) == last_line(straight.out));
+  CHECK(last_line(first.out) != last_line(straight.out));  // the joints moved the bodies on
+}
