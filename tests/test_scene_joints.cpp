@@ -772,3 +772,25 @@ TEST_CASE("scene joints: a scene with joints saves and resumes to the same state
   CHECK(last_line(resumed.out) == last_line(straight.out));
   CHECK(last_line(first.out) != last_line(straight.out));  // the joints moved the bodies on
 }
+
+TEST_CASE("scene joints: a state saved from a scene does not load into one whose joints differ",
+          "[scene][joints][cli]") {
+  const auto dir = testing::FreshTestDir("scene_joints", "other_joints");
+  std::string text = testing::ReadFile(DataPath("scene_joints.json"));
+  const std::size_t speed = text.find("\"speed\": 0.5");
+  REQUIRE(speed != std::string::npos);
+  text.replace(speed, 12, "\"speed\": 0.6");  // the shoulder's motor only
+  {
+    std::FILE* f = std::fopen((dir / "other.json").c_str(), "w");
+    REQUIRE(f);
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+  }
+  const testing::ProgramRun save =
+      testing::Ballbox("sim '" + DataPath("scene_joints.json") + "' --steps 10 --save-state s.state", dir);
+  REQUIRE(save.exit_code == 0);
+  const testing::ProgramRun load = testing::Ballbox("sim other.json --load-state s.state --steps 10", dir);
+  CHECK(load.exit_code == 2);
+  CHECK(load.err ==
+        "error: s.state: saved from another scene (a state loads only into the scene it was saved from)\n");
+}
