@@ -76,6 +76,16 @@ void DrawSprings(const detail::Bodies& bodies, std::span<const SpringDef> spring
   }
 }
 
+void DrawJoints(const World& world, const detail::Bodies& bodies, const detail::JointTable& joints,
+                DebugDraw& draw) {
+  for (const JointId id : joints.live_ids) {
+    const detail::Joint& j = joints.joints[id.index];
+    const JointFrame frame = world.Joint(id);
+    const Vec2 center_a = j.a == kNoBody ? frame.anchor_a : bodies.states[j.a].position;
+    draw.DrawJoint(j.def.type, center_a, frame.anchor_a, frame.anchor_b, bodies.states[j.b].position);
+  }
+}
+
 void DrawBounds(const detail::Bodies& bodies, std::span<const std::uint8_t> awake, DebugDraw& draw) {
   for (BodyIndex slot = 0; slot < bodies.states.size(); ++slot) {
     if (!bodies.alive[slot]) continue;
@@ -100,6 +110,7 @@ void World::Draw(DebugDraw& draw, const DrawOptions& options) const {
   // Shapes first and contacts last, so that what is drawn later lies on top.
   if (options.shapes) DrawShapes(bodies, impl_->sleep.awake, draw);
   if (options.springs) DrawSprings(bodies, impl_->springs.all, draw);
+  if (options.joints) DrawJoints(*this, bodies, impl_->joints, draw);
   if (options.bounds) DrawBounds(bodies, impl_->sleep.awake, draw);
   if (options.contacts) DrawContacts(impl_->narrow_phase.Contacts(), draw);
 }

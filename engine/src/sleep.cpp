@@ -10,6 +10,7 @@
 namespace engine::detail {
 
 void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> springs,
+                 std::span<const BodyPair> joint_links,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep) {
   const std::size_t n = states.size();
@@ -32,6 +33,11 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> spri
     hold(c.a, c.b);
     hold(c.b, c.a);
   }
+  // A joint holds its bodies as a touching contact does (a pendulum at rest hangs, held).
+  for (const BodyPair& link : joint_links) {
+    hold(link.a, link.b);
+    hold(link.b, link.a);
+  }
   const double speed_squared = def.sleep_speed * def.sleep_speed;
   for (std::size_t i = 0; i < n; ++i) {
     if (sleep.awake[i] != kAwake) continue;
@@ -53,6 +59,9 @@ void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> spri
     if (spring.body_b && !HasInfiniteMass(infos[spring.body_a]) && !HasInfiniteMass(infos[*spring.body_b])) {
       islands.Join(spring.body_a, *spring.body_b);
     }
+  }
+  for (const BodyPair& link : joint_links) {
+    if (!HasInfiniteMass(infos[link.a]) && !HasInfiniteMass(infos[link.b])) islands.Join(link.a, link.b);
   }
   std::vector<double> island_rest(n, def.time_to_sleep);
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -90,6 +99,7 @@ void WakeIsland(BodyIndex body, std::span<const BodyInfo> infos, SleepState slee
 }
 
 void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
+                        std::span<const BodyPair> joint_links,
                         std::span<const BodyInfo> infos, SleepState sleep) {
   for (const BodyPair& p : *pairs) {
     if ((sleep.awake[p.a] != 0) != (sleep.awake[p.b] != 0)) {
@@ -101,6 +111,10 @@ void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> sp
     if (!spring.body_b || (sleep.awake[spring.body_a] != 0) == (sleep.awake[*spring.body_b] != 0)) continue;
     const BodyIndex sleeper = sleep.awake[spring.body_a] ? *spring.body_b : spring.body_a;
     WakeIsland(sleeper, infos, sleep);
+  }
+  for (const BodyPair& link : joint_links) {
+    if ((sleep.awake[link.a] != 0) == (sleep.awake[link.b] != 0)) continue;
+    WakeIsland(sleep.awake[link.a] ? link.b : link.a, infos, sleep);
   }
   std::erase_if(*pairs, [&](BodyPair p) { return !sleep.awake[p.a] && !sleep.awake[p.b]; });
 }

@@ -49,6 +49,7 @@ struct SleepTable {
 /// or an acting spring, wakes the sleeper's whole island; then the pairs where nothing moves
 /// (static with static, or with a sleeping body) are dropped: they need no contact.
 void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
+                        std::span<const BodyPair> joint_links,
                         std::span<const BodyInfo> infos, SleepState sleep);
 
 /// After a step: counts resting time (slow, and held by a contact or pushed by no force:
@@ -56,6 +57,7 @@ void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> sp
 /// linked by touching contacts or `springs`, the ones that act, static bodies excluded) whose
 /// bodies have all rested for `time_to_sleep`.
 void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> springs,
+                 std::span<const BodyPair> joint_links,
                  std::span<const Vec2> accelerations, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, const WorldDef& def, SleepState sleep);
 

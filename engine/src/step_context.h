@@ -12,6 +12,7 @@
 #include "engine/world_def.h"
 #include "forces/force_model.h"
 #include "integrate.h"
+#include "joints/joint_solver.h"
 
 namespace engine::detail {
 
@@ -30,6 +31,8 @@ struct StepContext {
   bool can_turn;                          ///< some body has finite inertia (rotation on)
   const ForceModel& forces;
   FreeMotion& free_motion;                ///< the integrators' scratch
+  /// The joints with a moving body, prepared for this step; null when there are none.
+  JointSolver* joints;
   std::int64_t step;                      ///< the step's number, for a fault report
   std::optional<NumericFault>& fault;
 

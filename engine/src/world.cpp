@@ -84,10 +84,13 @@ void World::Step() {
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
   w.candidates.Find(w.def, w.SpeculativeContacts(), bodies, w.sleep.awake);
+  // Bodies a joint holds together do not collide, unless the joint says they do.
+  detail::DropJoinedPairs(w.joints.no_collide, &w.candidates.Pairs());
   // Pairs with a sensor only report overlaps, after the step.
   if (bodies.sensors > 0) w.sensors.TakeSensorPairs(&w.candidates.Pairs(), bodies.infos);
   // A moving body reaching a sleeping one wakes its island; pairs where nothing moves drop out.
-  detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, bodies.infos, w.sleep.View());
+  detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, w.joints.links, bodies.infos,
+                             w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
                         w.candidates.Margins(), bodies.with_parts > 0);
@@ -103,6 +106,11 @@ void World::Step() {
                               .can_turn = bodies.turnable > 0,
                               .forces = forces,
                               .free_motion = w.free_motion,
+                              .joints = w.joints.acting.empty() ||
+                                                !w.joint_solver.Prepare(&w.joints, bodies.states, bodies.infos,
+                                                                        w.sleep.awake)
+                                            ? nullptr
+                                            : &w.joint_solver,
                               .step = w.step_count,
                               .fault = w.fault};
   std::visit([&](auto& solver) { solver.Step(context); }, w.solver);
@@ -133,7 +141,7 @@ void World::Impl::UpdateSleep() {
   sleep.accelerations.resize(bodies.states.size());
   sleep.angular_accelerations.resize(bodies.states.size());
   Forces().Evaluate(bodies.states, sleep.accelerations, sleep.angular_accelerations);
-  detail::UpdateSleep(narrow_phase.Contacts(), springs.acting, sleep.accelerations, bodies.states,
+  detail::UpdateSleep(narrow_phase.Contacts(), springs.acting, joints.links, sleep.accelerations, bodies.states,
                       bodies.infos, def, sleep.View());
 }
 

@@ -138,6 +138,7 @@ void World::DestroyBody(BodyId id) {
   const bool had_springs = std::erase_if(w.springs.all, [&](const SpringDef& s) {
                              return s.body_a == id || (s.body_b && *s.body_b == id);
                            }) > 0;
+  w.DestroyJointsOf(index);
   if (w.bodies.enabled[index]) w.Withdraw(index);
   w.bodies.Count(index, -1);
   w.bodies.Free(index);
@@ -159,6 +160,7 @@ void World::SetEnabled(BodyId id, bool enabled) {
     w.WakeTouching(index);  // sleepers where it reappears: nothing else would push them
   }
   w.RebuildActingSprings();
+  if (!w.joints.joints.empty()) w.RebuildJoints();
 }
 
 bool World::IsEnabled(BodyId id) const { return impl_->bodies.enabled[impl_->Slot(id, "IsEnabled")] != 0; }

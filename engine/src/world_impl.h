@@ -12,6 +12,8 @@
 #include "forces/force_model.h"
 #include "forces/springs.h"
 #include "integrate.h"
+#include "joints/joint_solver.h"
+#include "joints/joint_table.h"
 #include "sensor_overlaps.h"
 #include "snapshot/byte_stream.h"
 #include "narrow_phase/narrow_phase.h"
@@ -50,13 +52,23 @@ struct World::Impl {
   /// world must share (checked by a fingerprint).
   void Save(detail::ByteWriter& out) const;
   bool Load(detail::ByteReader& in);
+  /// The joints' part of a snapshot (present only in worlds that ever had a joint).
+  bool LoadJoints(detail::ByteReader& in);
   /// The springs that act: those with something to pull, between enabled bodies.
   void RebuildActingSprings();
+  /// The live joint `id` names; a stale or unknown id stops the program, naming `call`.
+  std::uint32_t JointSlot(JointId id, const char* call) const;
+  /// After joints or bodies come, go, or are enabled or disabled: the joints' lists.
+  void RebuildJoints();
+  /// Destroys the joints of a body that goes; their other bodies wake.
+  void DestroyJointsOf(BodyIndex body);
 
   WorldDef def;                       ///< with the automatic settings filled in
   detail::Bodies bodies;
   detail::SleepTable sleep;
   detail::Springs springs;
+  detail::JointTable joints;
+  detail::JointSolver joint_solver;    ///< the joints' passes, run inside the contact solver
   detail::CandidatePairs candidates;  ///< the broad phase
   detail::NarrowPhase narrow_phase;   ///< this step's contacts
   detail::FreeMotion free_motion;     ///< the integrators' scratch

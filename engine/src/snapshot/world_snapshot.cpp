@@ -73,6 +73,73 @@ Vec2 ReadVec(ByteReader& in) {
   return {x, in.F64()};
 }
 
+void WriteOptional(ByteWriter& out, const std::optional<double>& v) {
+  out.U8(v ? 1 : 0);
+  if (v) out.F64(*v);
+}
+
+std::optional<double> ReadOptional(ByteReader& in) {
+  if (!in.U8()) return std::nullopt;
+  return in.F64();
+}
+
+// A joint slot: its definition, its frames and the impulses it carries.
+void WriteJoint(ByteWriter& out, const detail::Joint& j) {
+  const JointDef& d = j.def;
+  out.U8(static_cast<std::uint8_t>(d.type));
+  WriteId(out, d.body_a);
+  WriteId(out, d.body_b);
+  for (const Vec2 v : {d.anchor, d.anchor_b, d.axis, d.target, j.local_a, j.local_b, j.local_axis}) WriteVec(out, v);
+  out.U8(d.collide ? 1 : 0);
+  out.U8(d.limits ? 1 : 0);
+  if (d.limits) out.F64(d.limits->lower), out.F64(d.limits->upper);
+  out.U8(d.motor ? 1 : 0);
+  if (d.motor) out.F64(d.motor->speed), out.F64(d.motor->max_force);
+  out.U8(d.spring ? 1 : 0);
+  if (d.spring) out.F64(d.spring->hertz), out.F64(d.spring->damping_ratio);
+  for (const std::optional<double>& v : {d.length, d.min_length, d.max_length}) WriteOptional(out, v);
+  out.F64(d.max_force);
+  out.U8(j.rigid_length ? 1 : 0);
+  const detail::JointImpulses& p = j.impulses;
+  WriteVec(out, p.point);
+  for (const double v : {j.reference_angle, j.length, j.min_length, j.max_length, p.angle, p.axial, p.lower,
+                         p.upper, p.motor}) {
+    out.F64(v);
+  }
+}
+
+bool ReadJoint(ByteReader& in, const detail::Bodies& bodies, detail::Joint* j) {
+  JointDef& d = j->def;
+  const std::uint8_t type = in.U8();
+  if (!in.Check(type <= static_cast<std::uint8_t>(JointType::kTarget))) return false;
+  d.type = static_cast<JointType>(type);
+  d.body_a = ReadId(in);
+  d.body_b = ReadId(in);
+  for (Vec2* v : {&d.anchor, &d.anchor_b, &d.axis, &d.target, &j->local_a, &j->local_b, &j->local_axis}) {
+    *v = ReadVec(in);
+  }
+  d.collide = in.U8() != 0;
+  if (in.U8()) d.limits = JointLimits{in.F64(), in.F64()};
+  if (in.U8()) d.motor = JointMotor{in.F64(), in.F64()};
+  if (in.U8()) d.spring = JointSpring{in.F64(), in.F64()};
+  for (std::optional<double>* v : {&d.length, &d.min_length, &d.max_length}) *v = ReadOptional(in);
+  d.max_force = in.F64();
+  j->rigid_length = in.U8() != 0;
+  detail::JointImpulses& p = j->impulses;
+  p.point = ReadVec(in);
+  for (double* v : {&j->reference_angle, &j->length, &j->min_length, &j->max_length, &p.angle, &p.axial,
+                    &p.lower, &p.upper, &p.motor}) {
+    *v = in.F64();
+  }
+  const bool target = d.type == JointType::kTarget;
+  if (!in.Check(bodies.IsLive(d.body_b) && (target || (bodies.IsLive(d.body_a) && d.body_a != d.body_b)))) {
+    return false;
+  }
+  j->b = d.body_b.index;
+  j->a = target ? kNoBody : d.body_a.index;
+  return true;
+}
+
 void WritePairs(ByteWriter& out, std::span<const BodyPair> pairs) {
   out.U32(static_cast<std::uint32_t>(pairs.size()));
   for (const BodyPair p : pairs) out.U32(p.a), out.U32(p.b);
@@ -308,6 +375,41 @@ void World::Impl::Save(ByteWriter& out) const {
   sensors.Save(out);
   out.U8(static_cast<std::uint8_t>(solver.index()));
   std::visit([&](const auto& s) { s.Save(out); }, solver);
+  // Joints last, and only in worlds that ever had one (others' snapshots stay as they were).
+  if (joints.joints.empty()) return;
+  out.U32(static_cast<std::uint32_t>(joints.joints.size()));
+  for (std::uint32_t slot = 0; slot < joints.joints.size(); ++slot) {
+    out.U32(joints.generations[slot]);
+    out.U8(joints.alive[slot]);
+    if (joints.alive[slot]) WriteJoint(out, joints.joints[slot]);
+  }
+  out.U32(static_cast<std::uint32_t>(joints.free_slots.size()));
+  for (const std::uint32_t slot : joints.free_slots) out.U32(slot);
+}
+
+bool World::Impl::LoadJoints(ByteReader& in) {
+  const std::uint32_t count = in.Count(5);
+  if (!in.Check(count > 0)) return false;
+  for (std::uint32_t slot = 0; slot < count && in.Ok(); ++slot) {
+    joints.Allocate();
+    joints.generations[slot] = in.U32();
+    joints.alive[slot] = in.U8();
+    if (!in.Check(joints.alive[slot] <= 1)) return false;
+    if (joints.alive[slot] && !ReadJoint(in, bodies, &joints.joints[slot])) return false;
+  }
+  joints.free_slots.assign(in.Count(4), 0);
+  for (std::uint32_t& slot : joints.free_slots) {
+    slot = in.U32();
+    in.Check(slot < count && !joints.alive[slot]);
+  }
+  std::vector<std::uint32_t> sorted = joints.free_slots;
+  std::sort(sorted.begin(), sorted.end());
+  const auto dead = static_cast<std::size_t>(std::count(joints.alive.begin(), joints.alive.end(), 0));
+  if (!in.Check(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() && sorted.size() == dead)) {
+    return false;
+  }
+  RebuildJoints();
+  return true;
 }
 
 bool World::Impl::Load(ByteReader& in) {
@@ -427,7 +529,8 @@ bool World::Impl::Load(ByteReader& in) {
   }
   if (!in.Ok() || !contact_events.Load(in, bodies) || !sensors.Load(in, bodies)) return false;
   if (!in.Check(in.U8() == solver.index())) return false;
-  return std::visit([&](auto& s) { return s.Load(in, n); }, solver) && in.Ok();
+  if (!std::visit([&](auto& s) { return s.Load(in, n); }, solver) || !in.Ok()) return false;
+  return in.Remaining() == 0 || LoadJoints(in);
 }
 
 std::vector<std::uint8_t> World::TakeSnapshot() const {

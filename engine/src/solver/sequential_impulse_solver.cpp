@@ -98,12 +98,32 @@ void SequentialImpulseSolver::Step(StepContext& context) {
   if (context.StopIfNonFinite()) return;  // the forces overflowed: name the body now
   PrepareContacts(context.contacts, context.states, context.infos, def.restitution_threshold,
                   &constraints_);
-  SolveVelocities(constraints_, context.states, context.infos, def.velocity_iterations);
+  JointSolver* joints = context.joints;
+  if (!joints) {
+    SolveVelocities(constraints_, context.states, context.infos, def.velocity_iterations);
+  } else {
+    // The joints' rows go first in every pass, as in the substep solver.
+    joints->Begin(context.states, def.dt);
+    for (int pass = 0; pass < def.velocity_iterations; ++pass) {
+      joints->Solve(context.states, 1.0 / def.dt);
+      SolveVelocities(constraints_, context.states, context.infos, 1);
+    }
+  }
   MarkPushed<ImpulseConstraint>(constraints_, def.integrator, context.states.size(), &pushed_);
+  if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, context.states, context.moving, pushed_, def.rotation,
              context.free_motion, def.dt);
   CorrectPositions(context.contacts, context.start_positions, context.states, context.infos,
                    def.linear_slop, def.position_correction);
+  if (joints) {
+    // The joints' errors, projected out the way the overlap is: by a position change that
+    // leaves the velocities alone.
+    push_linear_.assign(context.states.size(), Vec2{});
+    push_angular_.assign(def.rotation ? context.states.size() : 0, 0.0);
+    const PushVelocities push{push_linear_, push_angular_};
+    joints->PushOut(context.states, push, 1.0 / def.dt, def.velocity_iterations);
+    MoveByPush(context.states, push, def.rotation, def.dt);
+  }
 }
 
 }  // namespace engine::detail

@@ -10,6 +10,7 @@
 #include "engine/contact.h"
 #include "snapshot/byte_stream.h"
 #include "step_context.h"
+#include "solver/substep_passes.h"
 
 namespace engine {
 
@@ -67,6 +68,8 @@ class SequentialImpulseSolver {
  private:
   std::vector<ImpulseConstraint> constraints_;
   std::vector<std::uint8_t> pushed_;
+  std::vector<Vec2> push_linear_;  ///< the joints' push-out (JointSolver::PushOut)
+  std::vector<double> push_angular_;
 };
 
 }  // namespace engine::detail

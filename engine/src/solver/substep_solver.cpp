@@ -43,7 +43,9 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   FindLoadedBodies(context);
   // Nothing loaded at all: a closed world without applied forces.
   const bool all_loaded = loaded_.empty();
-  plan.energy_limit = !all_loaded && std::find(loaded_.begin(), loaded_.end(), 1) == loaded_.end();
+  // Joints do work (a motor drives, a limit stops): the contacts' energy bound would count it.
+  plan.energy_limit = !all_loaded && context.joints == nullptr &&
+                      std::find(loaded_.begin(), loaded_.end(), 1) == loaded_.end();
   plan.block_solver = features.block_solver;
   plan.check_forces = context.forces.BeyondGravity();
   plan.track_turning = def.rotation;
@@ -112,8 +114,11 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
+  JointSolver* joints = context.joints;
+  if (joints) joints->Begin(states, h);  // springs, then the joints' warm start
   WarmStart(constraints, states, context.infos, loaded_, start, inv_h, warm);
   for (int pass = 0; pass < def.velocity_iterations; ++pass) {
+    if (joints) joints->Solve(states, inv_h);
     SolveContacts(constraints, states, start, inv_h, plan.block_solver);
   }
   if constexpr (kCanTurn<C>) {
@@ -124,6 +129,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     PropagateShock(shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
   }
   MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
+  if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h);
   if (plan.track_turning) UpdateTurned(context);
   PushOut(constraints, states, start, push, plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
@@ -133,6 +139,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
                     def.max_push_out_speed, def.linear_slop);
     }
   }
+  if (joints) joints->PushOut(states, push, inv_h, def.velocity_iterations);
   MoveByPush(states, push, def.rotation, h);
   if (plan.track_turning) UpdateTurned(context);
 }
@@ -153,6 +160,8 @@ void SubstepSolver::FindLoadedBodies(const StepContext& context) {
     loaded_[spring.body_a] = context.moving[spring.body_a];
     if (spring.body_b) loaded_[*spring.body_b] = context.moving[*spring.body_b];
   }
+  // A joint's bodies may carry a load too (a motor pushes, a spring pulls).
+  if (context.joints) context.joints->MarkBodies(&loaded_);
 }
 
 void SubstepSolver::UpdateTurned(const StepContext& context) {

@@ -1,0 +1,72 @@
+// The joints' passes, run inside either contact solver: rigid rows solved with the contacts
+// (warm started, Gauss-Seidel), errors pushed out through the contacts' push velocities (a split
+// impulse: it never adds energy), springs as one implicit-or-symplectic impulse per substep.
+// Internal to the engine; docs/joints.md explains the choices.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/body.h"
+#include "joints/joint_table.h"
+#include "solver/substep_passes.h"
+
+namespace engine::detail {
+
+/// The fraction of a joint's remaining error pushed out per push pass. Equality rows have no
+/// slop and nothing to keep quiet, so they take more than the contacts' per-substep share.
+inline constexpr double kJointPushFraction = 0.5;
+
+/// A spring whose ω·h is at most this is integrated symplectically (explicit in position, so
+/// its energy neither drains nor grows: an undamped 1 Hz spring keeps its amplitude); stiffer,
+/// implicitly (stable at any stiffness, with some numerical damping). docs/joints.md.
+inline constexpr double kExplicitSpringLimit = 0.5;
+
+/// One acting joint in the current substep: its bodies' inverse masses and where its frames are.
+struct JointWork {
+  std::uint32_t slot;
+  BodyIndex a, b;           ///< a: kNoBody for a target joint
+  double ma, mb, ia, ib;    ///< inverse masses and inertias (0 for static, kinematic, no turning)
+  Vec2 ra, rb;              ///< from each centre of mass to the anchor, world axes
+  Vec2 separation;          ///< anchor_b − anchor_a
+  double angle;             ///< angle_b − angle_a − reference
+  Vec2 axis;                ///< prismatic: the unit axis, world
+  double push_lower, push_upper;  ///< the limits' push impulses this push pass (≥ 0)
+  /// What the substep's motion adds to each row's error beyond its linear part J·v·h (the arms
+  /// turning, the anchors passing each other): the rows aim to cancel it, so a body swinging on
+  /// a joint ends each substep on its circle instead of drifting out and being pulled back,
+  /// which drained a pendulum's energy (docs/joints.md, "Curvature").
+  Vec2 drift_point;         ///< revolute, weld: the separation's; prismatic: x across the axis
+  double drift_axis;        ///< prismatic: along the axis; distance: of the length
+};
+
+class JointSolver {
+ public:
+  /// Per step: the acting joints with a moving body, in slot order. False when there are none.
+  bool Prepare(JointTable* table, std::span<const BodyState> states, std::span<const BodyInfo> infos,
+               std::span<const std::uint8_t> moving);
+  /// Per (sub)step of length h, after the free motion: the frames where the bodies are now, the
+  /// springs' impulses, then the warm start.
+  void Begin(std::span<BodyState> states, double h);
+  /// One Gauss-Seidel pass over the rigid rows (run before each contact pass).
+  void Solve(std::span<BodyState> states, double inv_h);
+  /// After the bodies moved: `passes` Gauss-Seidel passes that push the joints' errors out
+  /// (kJointPushFraction of each per pass) through the push velocities.
+  void PushOut(std::span<const BodyState> states, PushVelocities push, double inv_h, int passes);
+  /// Marks both bodies of every solved joint (the integrators move those by h·v).
+  void MarkBodies(std::vector<std::uint8_t>* pushed) const;
+
+ private:
+  void UpdateFrames(std::span<const BodyState> states);
+  /// Each row's drift (JointWork::drift_*) over a (sub)step of h at the current velocities.
+  void PredictDrift(std::span<BodyState> states, double h);
+  BodyState& StateA(const JointWork& w, std::span<BodyState> states);
+
+  JointTable* table_ = nullptr;
+  std::vector<JointWork> work_;
+  double h_ = 0.0;
+  BodyState ground_;  ///< what a target joint's missing body A reads and (with zero mass) writes
+};
+
+}  // namespace engine::detail
