@@ -129,6 +129,19 @@ void ReadDistanceKeys(const Json& joint, const std::string& path, engine::JointD
     throw SceneError{key("min_length"), "must not be above \"max_length\""};
   }
   if (const Json* v = Find(joint, "spring")) def->spring = ReadJointSpring(*v, key("spring"));
+  // A joint that holds its anchors (next to) together has no line to pull along: the engine's
+  // solver breaks down there (docs/limits.md). Springs may pull them together.
+  if (def->max_length && !(*def->max_length >= kMinBodySize)) throw SceneError{key("max_length"), TooSmall()};
+  if (def->min_length || def->max_length || def->spring) return;
+  if (def->length && !(*def->length >= kMinBodySize)) {
+    throw SceneError{key("length"), "must be at least 1e-09 m unless the joint has a range or a spring; anchors "
+                                    "held together are a revolute joint (docs/limits.md)"};
+  }
+  // The engine's own default, computed the same way.
+  if (!def->length && !(engine::Length(def->anchor_b - def->anchor) >= kMinBodySize)) {
+    throw SceneError{key("anchors"), "are within 1e-09 m of each other, the length the joint would hold: give a "
+                                     "\"length\", or use a revolute joint to hold them together (docs/limits.md)"};
+  }
 }
 
 void ReadTypeKeys(const Json& joint, const std::string& path, engine::JointDef* def) {
