@@ -23,14 +23,32 @@ void EventLog::Record(const InputEvent& event, engine::Vec2 world, bool hit,
   misses_.push_back(miss);
 }
 
+namespace {
+
+std::string Count(std::int64_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
 std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed) {
   const std::int64_t applied = log.Applied();
-  if (applied == 0 && late.count == 0) return "events: none";
-  const std::size_t missed = log.Misses().size();
-  std::string line = "events: " + std::to_string(applied) + (applied == 1 ? " click" : " clicks") +
-                     " applied, " + std::to_string(log.Hits()) + " hit a ball, " +
-                     std::to_string(missed) + " missed";
-  if (missed > 0 && !misses_listed) line += " (--misses lists where)";
+  const bool dragging = log.Grabs() + log.Drags() + log.Releases() > 0;
+  if (applied == 0 && !dragging && late.count == 0) return "events: none";
+  std::string line = "events: ";
+  // A run of drags alone says nothing of clicks; any other run says how its clicks went.
+  if (applied > 0 || !dragging) {
+    const std::size_t missed = log.Misses().size();
+    line += Count(applied, "click", "clicks") + " applied, " + std::to_string(log.Hits()) +
+            " hit a ball, " + std::to_string(missed) + " missed";
+    if (missed > 0 && !misses_listed) line += " (--misses lists where)";
+    if (dragging) line += "; ";
+  }
+  if (dragging) {
+    line += Count(log.Grabs(), "grab", "grabs") + " (" + std::to_string(log.Held()) +
+            " took hold of a body), " + Count(log.Drags(), "drag", "drags") + ", " +
+            Count(log.Releases(), "release", "releases");
+  }
   if (late.count > 0) {
     line += "; " + std::to_string(late.count) + (late.count == 1 ? " event" : " events") +
             " after the end of the run (the first at step " + std::to_string(late.first_step) +

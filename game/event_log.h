@@ -1,5 +1,6 @@
-// What became of a run's clicks: how many were applied, hit a ball or missed, where each miss
-// was, and how many events the run ended before. Commands print it as their events summary.
+// What became of a run's events: how many clicks were applied, hit a ball or missed, where each
+// miss was, how many grabs took hold of a body, the drags and releases, and how many events the
+// run ended before. Commands print it as their events summary.
 #pragma once
 
 #include <cstddef>
@@ -28,13 +29,28 @@ class EventLog {
   void Record(const InputEvent& event, engine::Vec2 world, bool hit,
               const engine::World& world_state);
 
+  /// Notes a grab, which took hold of a body or found none under it.
+  void RecordGrab(bool held) { ++grabs_, held_ += held ? 1 : 0; }
+  void RecordDrag() { ++drags_; }
+  void RecordRelease() { ++releases_; }
+
+  /// Clicks applied.
   std::int64_t Applied() const { return hits_ + static_cast<std::int64_t>(misses_.size()); }
   std::int64_t Hits() const { return hits_; }
   const std::vector<MissedClick>& Misses() const { return misses_; }
+  std::int64_t Grabs() const { return grabs_; }
+  /// Grabs that took hold of a body.
+  std::int64_t Held() const { return held_; }
+  std::int64_t Drags() const { return drags_; }
+  std::int64_t Releases() const { return releases_; }
 
  private:
   std::int64_t hits_ = 0;
   std::vector<MissedClick> misses_;
+  std::int64_t grabs_ = 0;
+  std::int64_t held_ = 0;
+  std::int64_t drags_ = 0;
+  std::int64_t releases_ = 0;
 };
 
 /// Events a run never applied because it ended first.
@@ -45,8 +61,9 @@ struct EventsAfterEnd {
 };
 
 /// The summary line, e.g. "events: 6 clicks applied, 5 hit a ball, 1 missed (--misses lists
-/// where)", or "events: none" for a run without any. `misses_listed`: the misses are printed
-/// above it, so the hint is left out.
+/// where)", with "; 1 grab (1 took hold of a body), 40 drags, 1 release" when the run had any,
+/// or "events: none" for a run without any. `misses_listed`: the misses are printed above it,
+/// so the hint is left out.
 std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed);
 
 /// One line per miss, e.g. "miss: step 40, click 361 231 (pixels at 800x600) -> world (-1.07,

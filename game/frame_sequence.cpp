@@ -37,6 +37,12 @@ FilmOutputOptions OutputOptions(const Session& session, const FrameSequenceOptio
     // A GIF palette holds the colours known to fill large areas exactly.
     out.video.gif_keep = {render::kBackgroundColor, render::kPanelBackdrop, render::kPanelText};
     for (const SceneBody& body : session.SceneDef().bodies) out.video.gif_keep.push_back(body.color);
+    // Only where there are links, so a film without them keeps its palette, byte for byte.
+    const engine::World& world = session.World();
+    if (!world.Springs().empty() || !world.JointIds().empty()) {
+      out.video.gif_keep.insert(out.video.gif_keep.end(),
+                                {render::kSpringColor, render::kJointColor});
+    }
   }
   return out;
 }

@@ -1,5 +1,6 @@
 // `ballbox play`: the scene in a window in real time, drawn by the same renderer as `ballbox
-// render` (its picture copied to the window), with clicks, keys, recording and replay.
+// render` (its picture copied to the window), with clicks, right-button drags, keys, recording
+// and replay.
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
@@ -115,9 +116,48 @@ std::string RecordingHeader(const PlayOptions& options, const PlayController& co
   // The recording holds world points, which need no size; the size line says what the window
   // showed, and a pixel click added by hand below it maps at that size.
   return "# recorded by ballbox play: " + scene + "\n" + line +
-         "# every click applied, live or scripted, as the world point it acted on\n" +
+         "# every event applied, live or scripted, as the world point it acted on\n" +
          SizeLine(session.ImageWidth(), session.ImageHeight());
 }
+
+constexpr int kClickButton = 0;  // left
+constexpr int kGrabButton = 1;   // right
+
+// The right button's drag: a grab where it goes down, the target following the cursor (also off
+// the picture, and as a followed camera moves) while it is held, a release where it goes up.
+class DragInput {
+ public:
+  void Press(PlayController& controller, engine::Vec2 p) {
+    controller.Grab(p);
+    held_ = true;
+    target_ = p;
+  }
+  void Let(PlayController& controller) {
+    if (!held_) return;  // pressed on a bar: nothing was grabbed
+    controller.Release();
+    held_ = false;
+  }
+  void Move(PlayController& controller, const render::PixelRect& picture, double x, double y) {
+    cursor_x_ = x;
+    cursor_y_ = y;
+    cursor_known_ = true;
+    Follow(controller, picture);
+  }
+  void Follow(PlayController& controller, const render::PixelRect& picture) {
+    if (!held_ || !cursor_known_ || picture.width == 0) return;
+    const engine::Vec2 p = PicturePointToWorld(controller.Camera(), picture, cursor_x_, cursor_y_);
+    if (p == target_) return;  // a drag only when the target moves
+    controller.Drag(p);
+    target_ = p;
+  }
+
+ private:
+  bool held_ = false;
+  engine::Vec2 target_;
+  bool cursor_known_ = false;
+  double cursor_x_ = 0.0;
+  double cursor_y_ = 0.0;
+};
 
 // The window loop. Returns when the user quits, the stop step is reached, or GL fails.
 Status RunWindow(render::Window& window, render::Renderer& renderer, PlayController& controller,
@@ -133,6 +173,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
                                         renderer.Height());
   const int image_width = controller.GetSession().ImageWidth();
   const int image_height = controller.GetSession().ImageHeight();
+  DragInput drag;
 
   while (!Interrupted()) {
     // Nothing changes before the next step is due, so wait for it (or for input) rather than
@@ -144,11 +185,15 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       if (event.type == render::WindowEvent::Type::kClose) {
         quit = true;
       } else if (event.type == render::WindowEvent::Type::kMouseDown) {
-        if (event.button != 0) continue;
         // Clicks on the letterbox bars are on no part of the picture and do nothing.
-        if (auto p = WindowPointToWorld(controller.Camera(), picture, event.x, event.y)) {
-          controller.Click(*p);
-        }
+        const auto p = WindowPointToWorld(controller.Camera(), picture, event.x, event.y);
+        if (!p) continue;
+        if (event.button == kClickButton) controller.Click(*p);
+        if (event.button == kGrabButton) drag.Press(controller, *p);
+      } else if (event.type == render::WindowEvent::Type::kMouseUp) {
+        if (event.button == kGrabButton) drag.Let(controller);
+      } else if (event.type == render::WindowEvent::Type::kMouseMove) {
+        drag.Move(controller, picture, event.x, event.y);
       } else if (event.key == "escape") {
         quit = true;
       } else if (event.key == ".") {
@@ -170,6 +215,8 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       if (quit) break;  // what follows Esc in the same batch is not acted on
     }
     if (quit) break;
+    // A camera that follows a body moves the world under a cursor that holds still.
+    drag.Follow(controller, picture);
 
     const Clock::time_point now = Clock::now();
     controller.Advance(std::chrono::duration<double>(now - last).count());
@@ -286,6 +333,11 @@ Status RunPlay(const PlayOptions& options) {
     std::printf("play: %zu click%s at step %" PRId64
                 " not applied (the run ended before that step), so not recorded\n",
                 clicks, clicks == 1 ? "" : "s", session.StepIndex());
+  }
+  if (const std::size_t others = controller.PendingEvents() - controller.PendingClicks(); others > 0) {
+    std::printf("play: %zu grab, drag or release event%s at step %" PRId64
+                " not applied (the run ended before that step), so not recorded\n",
+                others, others == 1 ? "" : "s", session.StepIndex());
   }
   std::printf("play: stopped at step %" PRId64 " (%.3f s simulated)\n", session.StepIndex(),
               static_cast<double>(session.StepIndex()) * session.World().Def().dt);

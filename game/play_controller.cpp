@@ -1,8 +1,9 @@
-// The play loop's logic. Every click, live or scripted, goes through Apply right before its step
+// The play loop's logic. Every event, live or scripted, goes through Apply right before its step
 // is simulated, which turns it into the world point it acts on and records exactly that point:
 // replay cannot depend on window size, camera fitting or rounding of pixels.
 #include "game/play_controller.h"
 
+#include <algorithm>
 
 namespace game {
 
@@ -56,9 +57,25 @@ int PlayController::Advance(double frame_seconds) {
   return taken;
 }
 
-void PlayController::Click(engine::Vec2 p) {
+void PlayController::Click(engine::Vec2 p) { Queue(EventKind::kClickWorld, p); }
+void PlayController::Grab(engine::Vec2 p) { Queue(EventKind::kGrabWorld, p); }
+void PlayController::Drag(engine::Vec2 p) { Queue(EventKind::kDragWorld, p); }
+void PlayController::Release() { Queue(EventKind::kRelease, {}); }
+
+void PlayController::Queue(EventKind kind, engine::Vec2 p) {
   if (Finished()) return;
-  pending_clicks_.push_back(p);
+  // A target set twice before a step acts as the last one alone: keep one drag, not hundreds.
+  if (kind == EventKind::kDragWorld && !pending_.empty() &&
+      pending_.back().kind == EventKind::kDragWorld) {
+    pending_.back().at = p;
+    return;
+  }
+  pending_.push_back(InputEvent{0, kind, p});
+}
+
+std::size_t PlayController::PendingClicks() const {
+  return static_cast<std::size_t>(std::count_if(
+      pending_.begin(), pending_.end(), [](const InputEvent& e) { return IsClick(e.kind); }));
 }
 
 void PlayController::TogglePause() {
@@ -89,7 +106,7 @@ void PlayController::Restart() {
                                        image_height_);
   camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
   next_script_event_ = 0;
-  pending_clicks_.clear();
+  pending_.clear();
   recorded_.clear();
   clock_.Reset();
   rewind_points_.clear();
@@ -103,10 +120,11 @@ void PlayController::StepOne() {
          script_[next_script_event_].step <= session_->StepIndex()) {
     Apply(script_[next_script_event_++]);
   }
-  for (const engine::Vec2& p : pending_clicks_) {
-    Apply(InputEvent{session_->StepIndex(), EventKind::kClickWorld, p});
+  for (InputEvent& event : pending_) {
+    event.step = session_->StepIndex();
+    Apply(event);
   }
-  pending_clicks_.clear();
+  pending_.clear();
   session_->Step();
   camera_.Advance(session_->World());
   if (session_->StepIndex() % kRewindEvery == 0) KeepRewindPoint();
@@ -139,7 +157,7 @@ bool PlayController::Rewind() {
   std::erase_if(recorded_, [&](const InputEvent& e) { return e.step >= point.step; });
   next_script_event_ = 0;
   while (next_script_event_ < script_.size() && script_[next_script_event_].step < point.step) ++next_script_event_;
-  pending_clicks_.clear();
+  pending_.clear();
   camera_ = FilmCamera(view_.camera.value_or(session_->View()), view_.follow, session_->World());
   return true;
 }
@@ -157,12 +175,12 @@ render::Camera PlayController::Camera() const {
 void PlayController::Apply(const InputEvent& event) {
   // The session maps a pixel click as it maps a script's, so the point is bit-identical.
   const engine::Vec2 p = session_->ApplyEvent(event);
-  recorded_.push_back(InputEvent{session_->StepIndex(), EventKind::kClickWorld, p});
+  recorded_.push_back(InputEvent{session_->StepIndex(), WorldKind(event.kind), p});
 }
 
 EventsAfterEnd PlayController::EventsLeft() const {
   EventsAfterEnd late;
-  late.count = script_.size() - next_script_event_ + pending_clicks_.size();
+  late.count = script_.size() - next_script_event_ + pending_.size();
   late.first_step = session_->StepIndex();
   if (next_script_event_ < script_.size()) late.first_step = script_[next_script_event_].step;
   late.end_step = session_->StepIndex();

@@ -44,6 +44,12 @@ class PlayController {
   /// then. A run that ends first never applies it, so the live state and a replay of the
   /// recording agree at every step. Ignored once finished.
   void Click(engine::Vec2 p);
+  /// Live drag input (the right button, game/grab.h), queued and applied as clicks are: the
+  /// button went down at `p`, the cursor moved to `p` while it is held, the button went up.
+  /// Moves queued for one step come down to the last, which is all that step would see of them.
+  void Grab(engine::Vec2 p);
+  void Drag(engine::Vec2 p);
+  void Release();
 
   void TogglePause();
   /// While paused and not finished: one step. Returns whether it stepped.
@@ -72,9 +78,12 @@ class PlayController {
   /// The camera of the picture the window shows (framed at the session's image size).
   render::Camera Camera() const;
   /// Live clicks not applied yet (they wait for the current step to be simulated).
-  std::size_t PendingClicks() const { return pending_clicks_.size(); }
-  /// Every event applied since the last start, in the order applied, as world-point clicks:
-  /// FormatScript of this replays to the same state in sim and render, at any --size.
+  std::size_t PendingClicks() const;
+  /// Live events of any kind not applied yet.
+  std::size_t PendingEvents() const { return pending_.size(); }
+  /// Every event applied since the last start, in the order applied, as world-point events
+  /// (click-world, grab-world, drag-world, release): FormatScript of this replays to the same
+  /// state in sim and render, at any --size.
   const std::vector<InputEvent>& Recorded() const { return recorded_; }
   /// Script events and live clicks not applied yet: late, once the run has ended.
   EventsAfterEnd EventsLeft() const;
@@ -83,9 +92,11 @@ class PlayController {
   int MaxStepsPerFrame() const { return clock_.MaxStepsPerFrame(); }
 
  private:
-  /// Applies the script events due now, then the live clicks, then simulates one step.
+  /// Applies the script events due now, then the live input, then simulates one step.
   void StepOne();
-  /// Applies `event` at the current step as a world-point click and records it.
+  /// Queues a live event for the current step (nothing once finished).
+  void Queue(EventKind kind, engine::Vec2 p);
+  /// Applies `event` at the current step as a world-point event and records it.
   void Apply(const InputEvent& event);
   bool PauseDue() const;
   /// Keeps a rewind point at the current step (called at start and every kRewindEvery steps).
@@ -108,7 +119,7 @@ class PlayController {
   FilmCamera camera_;
   FrameClock clock_;
   bool paused_ = false;
-  std::vector<engine::Vec2> pending_clicks_;  ///< live clicks waiting for the next step
+  std::vector<InputEvent> pending_;  ///< live world-point events waiting for the next step
   std::vector<InputEvent> recorded_;
   std::deque<RewindPoint> rewind_points_;  ///< oldest first
   std::size_t rewind_bytes_ = 0;

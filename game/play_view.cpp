@@ -32,9 +32,14 @@ std::optional<engine::Vec2> WindowPointToWorld(const render::Camera& camera,
       px >= picture.width || py >= picture.height) {
     return std::nullopt;
   }
+  return PicturePointToWorld(camera, picture, x, y);
+}
+
+engine::Vec2 PicturePointToWorld(const render::Camera& camera, const render::PixelRect& picture,
+                                 double x, double y) {
   // The picture is drawn at its own size through the camera, so its pixels map as an image
   // of that size does (the contract's pixel rule).
-  return render::PixelToWorld(camera, picture.width, picture.height, px, py);
+  return render::PixelToWorld(camera, picture.width, picture.height, x - picture.x, y - picture.y);
 }
 
 std::string StatusLine(std::int64_t step, double time, double frames_per_second, bool paused) {

@@ -24,6 +24,11 @@ std::optional<engine::Vec2> WindowPointToWorld(const render::Camera& camera,
                                                const render::PixelRect& picture, double x,
                                                double y);
 
+/// The world point under framebuffer pixel (x, y) when `picture` shows `camera`'s view, also
+/// beyond the picture's edges (a drag goes on over the bars). Precondition: a picture with area.
+engine::Vec2 PicturePointToWorld(const render::Camera& camera, const render::PixelRect& picture,
+                                 double x, double y);
+
 /// The status line drawn over the picture, e.g. "STEP 120  T 2.00 S  60 FPS  PAUSED".
 std::string StatusLine(std::int64_t step, double time, double frames_per_second, bool paused);
 

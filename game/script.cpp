@@ -1,5 +1,6 @@
-// Input script parsing and writing: `STEP EVENT X Y` per line, `#` comments, blank lines ignored,
-// and one optional `size W H` line before any pixel click.
+// Input script parsing and writing: `STEP EVENT X Y` per line (`STEP release` alone has no
+// coordinates), `#` comments, blank lines ignored, and one optional `size W H` line before any
+// pixel event.
 #include "game/script.h"
 
 #include <charconv>
@@ -34,12 +35,14 @@ struct ImageSize {
   int height = 0;
 };
 
-// `size W H`: the image size the pixel clicks below it were made for.
+// `size W H`: the image size the pixel events below it were made for. `first_pixel_event`:
+// the name of the first pixel event above it, if any.
 Expected<ImageSize> ParseSizeLine(const std::vector<std::string>& tokens, const std::string& where,
-                                  bool size_seen, bool pixel_click_seen) {
+                                  bool size_seen, const char* first_pixel_event) {
   if (size_seen) return BadInput(where + "a second size line (a script has at most one)");
-  if (pixel_click_seen) {
-    return BadInput(where + "the size line must come before the first pixel click");
+  if (first_pixel_event != nullptr) {
+    return BadInput(where + "the size line must come before the first pixel " +
+                    first_pixel_event);
   }
   if (tokens.size() != 3) {
     return BadInput(where + "expected \"size W H\" (the image size in pixels), got " +
@@ -55,24 +58,47 @@ Expected<ImageSize> ParseSizeLine(const std::vector<std::string>& tokens, const 
   return ImageSize{static_cast<int>(side[0]), static_cast<int>(side[1])};
 }
 
+// The events a line may name, as its second field.
+struct EventSpelling {
+  const char* name;
+  EventKind kind;
+};
+constexpr EventSpelling kEventSpellings[] = {
+    {"click", EventKind::kClickPixel}, {"click-world", EventKind::kClickWorld},
+    {"grab", EventKind::kGrabPixel},   {"grab-world", EventKind::kGrabWorld},
+    {"drag", EventKind::kDragPixel},   {"drag-world", EventKind::kDragWorld},
+    {"release", EventKind::kRelease},
+};
+
+std::string FieldCount(std::size_t count) {
+  return std::to_string(count) + (count == 1 ? " field" : " fields");
+}
+
 Expected<InputEvent> ParseEventLine(const std::vector<std::string>& tokens,
                                     const std::string& where) {
-  if (tokens.size() != 4) {
-    return BadInput(where + "expected \"STEP EVENT X Y\", got " + std::to_string(tokens.size()) +
-                    (tokens.size() == 1 ? " field" : " fields"));
+  // `release` alone has no coordinates; every other event is STEP EVENT X Y.
+  if (tokens.size() >= 2 && tokens[1] == "release" && tokens.size() != 2) {
+    return BadInput(where + "expected \"STEP release\" (no coordinates), got " +
+                    FieldCount(tokens.size()));
+  }
+  if (tokens.size() != 4 && !(tokens.size() == 2 && tokens[1] == "release")) {
+    return BadInput(where + "expected \"STEP EVENT X Y\", got " + FieldCount(tokens.size()));
   }
   InputEvent event;
   if (!ParseWholeNumber(tokens[0], &event.step)) {
     return BadInput(where + "step \"" + tokens[0] + "\" is not a whole number >= 0");
   }
-  if (tokens[1] == "click") {
-    event.kind = EventKind::kClickPixel;
-  } else if (tokens[1] == "click-world") {
-    event.kind = EventKind::kClickWorld;
-  } else {
-    return BadInput(where + "unknown event \"" + tokens[1] +
-                    "\" (expected \"click\" or \"click-world\")");
+  const EventSpelling* spelling = nullptr;
+  for (const EventSpelling& candidate : kEventSpellings) {
+    if (tokens[1] == candidate.name) spelling = &candidate;
   }
+  if (spelling == nullptr) {
+    return BadInput(where + "unknown event \"" + tokens[1] +
+                    "\" (expected click, click-world, grab, grab-world, drag, drag-world or "
+                    "release)");
+  }
+  event.kind = spelling->kind;
+  if (event.kind == EventKind::kRelease) return event;
   for (int axis = 0; axis < 2; ++axis) {
     double* coordinate = axis == 0 ? &event.at.x : &event.at.y;
     if (!ParseFiniteNumber(tokens[2 + axis], coordinate)) {
@@ -99,7 +125,7 @@ Expected<std::vector<InputEvent>> ParseScript(std::string_view text, const std::
   if (text.starts_with(kByteOrderMark)) text.remove_prefix(kByteOrderMark.size());
   std::vector<InputEvent> events;
   std::optional<ImageSize> size;
-  bool pixel_click_seen = false;
+  const char* first_pixel_event = nullptr;
   std::istringstream lines{std::string(text)};
   std::string line;
   int line_number = 0;
@@ -109,7 +135,7 @@ Expected<std::vector<InputEvent>> ParseScript(std::string_view text, const std::
     const std::vector<std::string> tokens = Fields(line);
     if (tokens.empty()) continue;
     if (tokens[0] == "size") {
-      Expected<ImageSize> parsed = ParseSizeLine(tokens, where, size.has_value(), pixel_click_seen);
+      Expected<ImageSize> parsed = ParseSizeLine(tokens, where, size.has_value(), first_pixel_event);
       if (!parsed.HasValue()) return parsed.Error();
       size = parsed.Value();
       continue;
@@ -122,8 +148,8 @@ Expected<std::vector<InputEvent>> ParseScript(std::string_view text, const std::
                       " comes before the previous event's step " +
                       std::to_string(events.back().step) + " (steps must not decrease)");
     }
-    if (event.kind == EventKind::kClickPixel) {
-      pixel_click_seen = true;
+    if (IsPixelEvent(event.kind)) {
+      if (first_pixel_event == nullptr) first_pixel_event = EventName(event.kind);
       if (size) event.image_width = size->width, event.image_height = size->height;
     }
     events.push_back(event);
@@ -137,6 +163,26 @@ Expected<std::vector<InputEvent>> LoadScript(const std::string& path) {
   return ParseScript(text.Value(), path);
 }
 
+const char* EventName(EventKind kind) {
+  for (const EventSpelling& spelling : kEventSpellings) {
+    if (spelling.kind == kind) return spelling.name;
+  }
+  return "?";
+}
+
+EventKind WorldKind(EventKind kind) {
+  switch (kind) {
+    case EventKind::kClickPixel:
+      return EventKind::kClickWorld;
+    case EventKind::kGrabPixel:
+      return EventKind::kGrabWorld;
+    case EventKind::kDragPixel:
+      return EventKind::kDragWorld;
+    default:
+      return kind;
+  }
+}
+
 std::string SizeLine(int image_width, int image_height) {
   return "size " + std::to_string(image_width) + " " + std::to_string(image_height) + "\n";
 }
@@ -144,7 +190,7 @@ std::string SizeLine(int image_width, int image_height) {
 std::string FormatScript(const std::vector<InputEvent>& events) {
   std::string out;
   for (const InputEvent& e : events) {
-    if (e.kind == EventKind::kClickPixel && e.image_width > 0) {
+    if (IsPixelEvent(e.kind) && e.image_width > 0) {
       out += SizeLine(e.image_width, e.image_height);
       break;
     }
@@ -152,9 +198,13 @@ std::string FormatScript(const std::vector<InputEvent>& events) {
   out += "# step  event  x  y\n";
   char line[128];
   for (const InputEvent& e : events) {
-    // %.17g prints every double so that parsing it back gives the same bits.
-    std::snprintf(line, sizeof line, "%lld %s %.17g %.17g\n", static_cast<long long>(e.step),
-                  e.kind == EventKind::kClickPixel ? "click" : "click-world", e.at.x, e.at.y);
+    if (e.kind == EventKind::kRelease) {
+      std::snprintf(line, sizeof line, "%lld release\n", static_cast<long long>(e.step));
+    } else {
+      // %.17g prints every double so that parsing it back gives the same bits.
+      std::snprintf(line, sizeof line, "%lld %s %.17g %.17g\n", static_cast<long long>(e.step),
+                    EventName(e.kind), e.at.x, e.at.y);
+    }
     out += line;
   }
   return out;

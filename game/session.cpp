@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "game/click.h"
+#include "game/grab.h"
 #include "game/saved_state.h"
 
 namespace game {
@@ -62,7 +63,7 @@ Status Session::Fault() const {
 }
 
 engine::Vec2 Session::EventPoint(const InputEvent& event) const {
-  if (event.kind != EventKind::kClickPixel) return event.at;
+  if (!IsPixelEvent(event.kind)) return event.at;
   if (event.image_width == 0) {
     return render::PixelToWorld(camera_, image_width_, image_height_, event.at.x, event.at.y);
   }
@@ -73,8 +74,18 @@ engine::Vec2 Session::EventPoint(const InputEvent& event) const {
 
 engine::Vec2 Session::ApplyEvent(const InputEvent& event) {
   const engine::Vec2 p = EventPoint(event);
-  const bool hit = ApplyClick(world_, p, scene_.click_max_impulse).has_value();
-  log_.Record(event, p, hit, world_);
+  if (IsClick(event.kind)) {
+    const bool hit = ApplyClick(world_, p, scene_.click_max_impulse).has_value();
+    log_.Record(event, p, hit, world_);
+  } else if (IsGrab(event.kind)) {
+    log_.RecordGrab(Grab(world_, p).has_value());
+  } else if (IsDrag(event.kind)) {
+    Drag(world_, p);
+    log_.RecordDrag();
+  } else {
+    Release(world_);
+    log_.RecordRelease();
+  }
   return p;
 }
 

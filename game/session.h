@@ -24,11 +24,12 @@ class Session {
   /// Applies the events due at the current step, then simulates it.
   void Step();
 
-  /// Applies one event now, at the current step (live input), and logs whether it hit a ball.
-  /// Returns the world point it acted on.
+  /// Applies one event now, at the current step (live input): a click by the click rule, a
+  /// grab, drag or release by the drag rule (game/grab.h); logs what it did. Returns the world
+  /// point it acted on ({0, 0} for a release).
   engine::Vec2 ApplyEvent(const InputEvent& event);
 
-  /// The world point a click event acts on: a pixel goes through the view framed at the size
+  /// The world point an event acts on: a pixel goes through the view framed at the size
   /// the script names (its `size` line), else at this session's image size.
   engine::Vec2 EventPoint(const InputEvent& event) const;
 

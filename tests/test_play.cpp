@@ -18,6 +18,7 @@
 #include "game/click.h"
 #include "game/commands.h"
 #include "game/frame_clock.h"
+#include "game/grab.h"
 #include "game/play_controller.h"
 #include "game/play_view.h"
 #include "game/screenshot.h"
@@ -422,4 +423,92 @@ TEST_CASE("play controller: rewinding goes back through kept points, and a recor
   CHECK(controller.GetSession().StepIndex() == 0);
   CHECK(controller.GetSession().World().StateHash() == plain[0]);
   CHECK(controller.RewindSteps() == std::vector<std::int64_t>{0});
+}
+
+TEST_CASE("play controller: a live drag is recorded as grab-world, drag-world and release and "
+          "replays to the live state; rewinding brings back the grab of that moment",
+          "[play][record][drag]") {
+  const game::RunInput input = DefaultInput();
+  const auto heavy = static_cast<engine::BodyId>(BodyIndex(input.scene, "heavy_ball"));
+  game::PlayController controller(input.scene, input.events, 640, 480);
+  auto centre = [&] { return controller.GetSession().World().State(heavy).position; };
+  using game::EventKind;
+
+  controller.Advance(0.1);  // 6 steps
+  const engine::Vec2 grabbed = centre();
+  controller.Grab(grabbed);
+  controller.Drag(grabbed + engine::Vec2{0.5, 1.0});
+  controller.Drag(grabbed + engine::Vec2{1.0, 2.0});  // the same step: only this one counts
+  CHECK(controller.PendingEvents() == 2);
+  CHECK(controller.PendingClicks() == 0);
+  controller.Advance(0.05);
+  REQUIRE(controller.Recorded().size() >= 2);
+  const auto& first = controller.Recorded();
+  CHECK(first[first.size() - 2].kind == EventKind::kGrabWorld);
+  CHECK(first[first.size() - 2].step == 6);
+  CHECK(first[first.size() - 2].at == grabbed);
+  CHECK(first.back().kind == EventKind::kDragWorld);
+  CHECK(first.back().at == grabbed + engine::Vec2{1.0, 2.0});
+  REQUIRE(game::CurrentGrab(controller.GetSession().World()));
+
+  // The target moves over later frames, while paused and stepped by hand too; a click meanwhile.
+  for (int i = 1; i <= 20; ++i) {
+    controller.Drag(grabbed + engine::Vec2{1.0 - 0.1 * i, 2.0 + 0.05 * i});
+    controller.Advance(0.0167);
+  }
+  controller.TogglePause();
+  controller.Drag(grabbed + engine::Vec2{-2.0, 1.0});
+  controller.StepOnce();
+  controller.TogglePause();
+  while (controller.GetSession().StepIndex() < 70) controller.Advance(0.0167);
+  const std::int64_t held_step = controller.GetSession().StepIndex();
+  const std::uint64_t held_hash = controller.GetSession().World().StateHash();
+  controller.Release();
+  controller.Advance(0.0167);
+  CHECK_FALSE(game::CurrentGrab(controller.GetSession().World()));
+  while (controller.GetSession().StepIndex() < 200) controller.Advance(0.0167);
+  const std::int64_t steps = controller.GetSession().StepIndex();
+  const std::uint64_t live = controller.GetSession().World().StateHash();
+
+  // Exactly one grab and one release, drags in between, steps in order.
+  const std::vector<game::InputEvent>& recorded = controller.Recorded();
+  CHECK(std::count_if(recorded.begin(), recorded.end(), [](const auto& e) { return e.kind == EventKind::kGrabWorld; }) == 1);
+  CHECK(std::count_if(recorded.begin(), recorded.end(), [](const auto& e) { return e.kind == EventKind::kRelease; }) == 1);
+  CHECK(std::count_if(recorded.begin(), recorded.end(), [](const auto& e) { return e.kind == EventKind::kDragWorld; }) >= 20);
+  CHECK(std::is_sorted(recorded.begin(), recorded.end(),
+                       [](const auto& a, const auto& b) { return a.step < b.step; }));
+  // The drag moved heavy_ball: the run without it ends elsewhere.
+  game::PlayController untouched(input.scene, input.events, 640, 480);
+  while (untouched.GetSession().StepIndex() < steps) untouched.Advance(0.0167);
+  CHECK(untouched.GetSession().World().StateHash() != live);
+
+  // Written, read back and replayed as sim and render replay a script, at other sizes.
+  const std::string text = game::FormatScript(recorded);
+  CHECK_THAT(text, Catch::Contains(" release\n"));
+  game::Expected<std::vector<game::InputEvent>> parsed = game::ParseScript(text, "recorded");
+  REQUIRE(parsed.HasValue());
+  for (const auto& [width, height] : {std::pair{640, 480}, {800, 600}, {123, 77}}) {
+    INFO("replayed at " << width << "x" << height);
+    CHECK(ReplayHash(input.scene, parsed.Value(), width, height, steps) == live);
+  }
+  CHECK(ReplayHash(input.scene, parsed.Value(), 640, 480, held_step) == held_hash);
+
+  // Rewinding: to step 60 the grab is held (the snapshot has the joint), before step 6 it is not;
+  // a recording made after the rewind still replays to the live state.
+  controller.TogglePause();
+  while (controller.GetSession().StepIndex() > 60) REQUIRE(controller.Rewind());
+  REQUIRE(controller.GetSession().StepIndex() == 60);
+  CHECK(game::CurrentGrab(controller.GetSession().World()));
+  CHECK(controller.GetSession().World().StateHash() ==
+        ReplayHash(input.scene, parsed.Value(), 640, 480, 60));
+  while (controller.GetSession().StepIndex() > 0) REQUIRE(controller.Rewind());
+  CHECK_FALSE(game::CurrentGrab(controller.GetSession().World()));
+  for (int i = 0; i < 30; ++i) controller.StepOnce();
+  controller.Grab(centre());
+  controller.Drag(centre() + engine::Vec2{0.0, 3.0});
+  for (int i = 0; i < 30; ++i) controller.StepOnce();
+  controller.Release();
+  for (int i = 0; i < 30; ++i) controller.StepOnce();
+  CHECK(ReplayHash(input.scene, controller.Recorded(), 800, 600, 90) ==
+        controller.GetSession().World().StateHash());
 }

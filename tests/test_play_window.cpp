@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "game/click.h"
+#include "game/grab.h"
 #include "game/commands.h"
 #include "game/script.h"
 #include "game/session.h"
@@ -313,4 +314,84 @@ TEST_CASE("play window: R restarts the scene, the script and the recording", "[p
   const Run replay = Shell(Exe() + " sim --script rec.script --steps 50", dir);
   CHECK(StateHash(out) == StateHash(fresh.out));
   CHECK(StateHash(out) == StateHash(replay.out));
+}
+
+TEST_CASE("play window: a right-button drag with xdotool lifts the crate, and the recording "
+          "replays to the live hash in sim and play", "[play][xvfb][record][drag]") {
+  if (!WindowTestsCanRun()) return;
+  const fs::path dir = FreshDir("drag");
+  // A 1 kg crate on a floor; at 400x300 the camera's 8 m make 50 pixels a metre, so the crate's
+  // centre (0, 0.5) is pixel (200, 225) and pixel (260, 100) is the world point (1.2, 3).
+  std::ofstream(dir / "drag.json") << R"({
+    "name": "drag",
+    "camera": { "center": [0, 2], "width": 8 },
+    "bodies": [
+      { "id": "floor", "shape": "box", "size": [8, 1], "position": [0, -0.5], "static": true },
+      { "id": "crate", "shape": "box", "size": [1, 1], "position": [0, 0.5], "mass": 1 }
+    ]
+  })";
+  // Paused at step 10: the right button goes down on the crate and drags it up and right; 20
+  // single steps ('.') with the button held, then it goes up, one more step, and on to step 100.
+  std::string steps;
+  for (int i = 0; i < 20; ++i) steps += " period";
+  const Run session = UnderXvfb(
+      StartPausedPlay("BALLBOX_PLAY_PAUSE_AT=10 BALLBOX_PLAY_STOP_AT=100",
+                      "drag.json --record rec.script --size 400x300", 10) +
+          "timeout 30 xdotool mousemove --window \"$wid\" 200 225 mousedown 3 "
+          "mousemove --window \"$wid\" 230 160 mousemove --window \"$wid\" 260 100\n"
+          "timeout 30 xdotool key --delay 40" + steps + "\n"
+          "timeout 30 xdotool mouseup 3 key --delay 40 period space\n" + EndPlay(),
+      dir);
+  CheckPlayEnded(dir, session);
+  const std::string out = ReadFile(dir / "play.out");
+  INFO("play: " << out);
+  CHECK_THAT(out, Catch::Contains("play: stopped at step 100"));
+  CHECK_THAT(out, Catch::Contains("events: 1 grab (1 took hold of a body), "));
+  CHECK_THAT(out, Catch::Contains(", 1 release\nstate-hash: "));
+  const std::string live = StateHash(out);
+  REQUIRE(live.size() == 16);
+
+  // The recording: the grab and the drag at step 10, the release at step 30, as world points.
+  game::Expected<std::vector<game::InputEvent>> recorded = game::LoadScript((dir / "rec.script").string());
+  REQUIRE(recorded.HasValue());
+  const std::vector<game::InputEvent>& events = recorded.Value();
+  REQUIRE(events.size() >= 3);
+  CHECK(events.front().kind == game::EventKind::kGrabWorld);
+  CHECK(events.front().step == 10);
+  CHECK(events.front().at.x == Approx(0.0).margin(1e-9));
+  CHECK(events.front().at.y == Approx(0.5).margin(1e-9));
+  CHECK(events[events.size() - 2].kind == game::EventKind::kDragWorld);
+  CHECK(events[events.size() - 2].step == 10);
+  CHECK(events[events.size() - 2].at.x == Approx(1.2).margin(1e-9));
+  CHECK(events[events.size() - 2].at.y == Approx(3.0).margin(1e-9));
+  CHECK(events.back().kind == game::EventKind::kRelease);
+  CHECK(events.back().step == 30);
+
+  // sim replays it to the live hash, at any --size; the crate was lifted while held.
+  const Run sim = Shell(Exe() + " sim drag.json --script rec.script --steps 100 --dump d.csv", dir);
+  INFO("sim: " << sim.out << sim.err);
+  REQUIRE(sim.exit_code == 0);
+  CHECK(StateHash(sim.out) == live);
+  CHECK(StateHash(Shell(Exe() + " sim drag.json --script rec.script --steps 100 --size 97x61", dir).out) == live);
+  CHECK(StateHash(Shell(Exe() + " sim drag.json --steps 100", dir).out) != live);
+  std::ifstream csv(dir / "d.csv");
+  std::string line;
+  double lifted_y = 0.0;
+  while (std::getline(csv, line)) {
+    if (line.rfind("30,", 0) == 0 && line.find(",crate,") != std::string::npos) {
+      std::vector<std::string> fields;
+      std::stringstream row(line);
+      for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+      lifted_y = std::stod(fields[4]);
+    }
+  }
+  CHECK(lifted_y > 2.5);  // held 20 steps under the target at y = 3
+
+  // play replays the recording in the window too, to the same hash.
+  const Run replay = UnderXvfb(
+      "BALLBOX_PLAY_STOP_AT=100 timeout 120 " + Exe() + " play drag.json --script rec.script --size 400x300",
+      dir);
+  INFO("replay: " << replay.out << replay.err);
+  REQUIRE(replay.exit_code == 0);
+  CHECK(StateHash(replay.out) == live);
 }

@@ -98,7 +98,8 @@ TEST_CASE("script error: step with letters or out of range", "[script]") {
 
 TEST_CASE("script error: unknown event", "[script]") {
   RequireScriptError("script_unknown_event.txt", 2,
-                     "unknown event \"tap\" (expected \"click\" or \"click-world\")");
+                     "unknown event \"tap\" (expected click, click-world, grab, grab-world, drag, "
+                     "drag-world or release)");
 }
 
 TEST_CASE("script error: non-finite x", "[script]") {
@@ -205,4 +206,80 @@ TEST_CASE("FormatScript writes the size line, and the round trip keeps it", "[sc
   CHECK(parsed.Value()[1].image_width == 640);
   CHECK(parsed.Value()[1].image_height == 480);
   CHECK(game::SizeLine(800, 600) == "size 800 600\n");
+}
+
+TEST_CASE("script: grab, drag and release events, pixel and world, and the size line over them",
+          "[script][drag]") {
+  const auto events = game::LoadScript(DataPath("script_drag_good.txt"));
+  REQUIRE(events.HasValue());
+  const std::vector<game::InputEvent>& e = events.Value();
+  REQUIRE(e.size() == 7);
+  using game::EventKind;
+  const EventKind kinds[] = {EventKind::kGrabPixel, EventKind::kDragPixel,  EventKind::kDragPixel,
+                             EventKind::kRelease,   EventKind::kGrabWorld,  EventKind::kDragWorld,
+                             EventKind::kRelease};
+  const std::int64_t steps[] = {10, 10, 12, 40, 40, 41, 90};
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    INFO("event " << i);
+    CHECK(e[i].kind == kinds[i]);
+    CHECK(e[i].step == steps[i]);
+    // The size line maps pixel grabs and drags as it maps pixel clicks; world events need none.
+    CHECK(e[i].image_width == (game::IsPixelEvent(kinds[i]) ? 640 : 0));
+    CHECK(e[i].image_height == (game::IsPixelEvent(kinds[i]) ? 480 : 0));
+  }
+  CHECK((e[0].at.x == 320.0 && e[0].at.y == 400.5));
+  CHECK((e[2].at.x == 330.25 && e[2].at.y == -12.0));  // a drag may leave the picture
+  CHECK((e[3].at.x == 0.0 && e[3].at.y == 0.0));       // a release has no point
+  CHECK((e[5].at.x == -1.5 && e[5].at.y == 2.0));
+}
+
+TEST_CASE("script error: malformed grab, drag and release lines name file and line",
+          "[script][drag]") {
+  RequireScriptError("script_drag_bad.txt", 4,
+                     "expected \"STEP release\" (no coordinates), got 4 fields");
+  RequireParseError("5 release 1\n", "s.txt:1: expected \"STEP release\" (no coordinates), got 3 fields");
+  RequireParseError("5 grab 1\n", "s.txt:1: expected \"STEP EVENT X Y\", got 3 fields");
+  RequireParseError("5 drag-world 1 2 3\n", "s.txt:1: expected \"STEP EVENT X Y\", got 5 fields");
+  RequireParseError("5 drag-world nan 2\n", "s.txt:1: x \"nan\" is not a finite number");
+  RequireParseError("5 grab-world 1 inf\n", "s.txt:1: y \"inf\" is not a finite number");
+  RequireParseError("x release\n", "s.txt:1: step \"x\" is not a whole number >= 0");
+  RequireParseError("5 drop 1 2\n",
+                    "s.txt:1: unknown event \"drop\" (expected click, click-world, grab, "
+                    "grab-world, drag, drag-world or release)");
+  RequireParseError("9 release\n8 grab-world 0 0\n",
+                    "s.txt:2: step 8 comes before the previous event's step 9 (steps must not decrease)");
+  // The size line comes before every pixel event, and says which came first.
+  RequireParseError("5 grab 1 2\nsize 800 600\n",
+                    "s.txt:2: the size line must come before the first pixel grab");
+  RequireParseError("5 grab-world 1 2\n6 drag 3 4\nsize 800 600\n",
+                    "s.txt:3: the size line must come before the first pixel drag");
+}
+
+TEST_CASE("FormatScript then ParseScript keeps grab, drag and release events bit for bit",
+          "[script][drag]") {
+  using game::EventKind;
+  const std::vector<game::InputEvent> events = {
+      {0, EventKind::kGrabWorld, {1.0 / 3.0, -2.5e-7}},
+      {0, EventKind::kDragWorld, {0.1, 1e-300}},
+      {7, EventKind::kClickWorld, {2.0, 3.0}},
+      {7, EventKind::kRelease, {}},
+      {9, EventKind::kGrabPixel, {10.5, 20.25}, 640, 480},
+      {12, EventKind::kDragPixel, {-3.0, 700.0}, 640, 480},
+      {12, EventKind::kRelease, {}},
+  };
+  const std::string text = game::FormatScript(events);
+  CHECK_THAT(text, Catch::StartsWith("size 640 480\n"));
+  CHECK_THAT(text, Catch::Contains("\n7 release\n"));
+  CHECK_THAT(text, Catch::Contains("\n0 grab-world 0.33333333333333331 -2.4999999999999999e-07\n"));
+  const auto parsed = game::ParseScript(text, "round-trip");
+  REQUIRE(parsed.HasValue());
+  REQUIRE(parsed.Value().size() == events.size());
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    INFO("event " << i);
+    CHECK(parsed.Value()[i].step == events[i].step);
+    CHECK(parsed.Value()[i].kind == events[i].kind);
+    CHECK(Bits(parsed.Value()[i].at.x) == Bits(events[i].at.x));
+    CHECK(Bits(parsed.Value()[i].at.y) == Bits(events[i].at.y));
+    CHECK(parsed.Value()[i].image_width == events[i].image_width);
+  }
 }

@@ -29,6 +29,7 @@ class GlfwWindow final : public Window {
     glfwSetWindowUserPointer(window_, this);
     glfwSetKeyCallback(window_, OnKey);
     glfwSetMouseButtonCallback(window_, OnMouseButton);
+    glfwSetCursorPosCallback(window_, OnCursorMove);
   }
   ~GlfwWindow() override {
     glfwDestroyWindow(window_);
@@ -96,14 +97,38 @@ class GlfwWindow final : public Window {
   }
 
   static void OnMouseButton(GLFWwindow* window, int button, int action, int) {
-    if (action != GLFW_PRESS) return;
+    if (action != GLFW_PRESS && action != GLFW_RELEASE) return;
     WindowEvent event;
-    event.type = WindowEvent::Type::kMouseDown;
+    event.type = action == GLFW_PRESS ? WindowEvent::Type::kMouseDown : WindowEvent::Type::kMouseUp;
     event.button = button;
-    double x = 0.0;
-    double y = 0.0;
-    glfwGetCursorPos(window, &x, &y);
-    // The cursor comes in screen coordinates; pictures are laid out in framebuffer pixels.
+    GlfwWindow& self = Self(window);
+    // Where the cursor was when the button changed: the last move reported before it, in event
+    // order. glfwGetCursorPos would say where it is by the time events are read, which after a
+    // quick press-and-drag is already the drag's end.
+    double x = self.cursor_x_;
+    double y = self.cursor_y_;
+    if (!self.cursor_known_) glfwGetCursorPos(window, &x, &y);
+    ToFramebuffer(window, x, y, event);
+    self.events_.push_back(std::move(event));
+  }
+
+  static void OnCursorMove(GLFWwindow* window, double x, double y) {
+    GlfwWindow& self = Self(window);
+    self.cursor_known_ = true;
+    self.cursor_x_ = x;
+    self.cursor_y_ = y;
+    std::vector<WindowEvent>& events = self.events_;
+    // Only where the cursor ended up matters between two looks: one event, not hundreds.
+    if (events.empty() || events.back().type != WindowEvent::Type::kMouseMove) {
+      WindowEvent event;
+      event.type = WindowEvent::Type::kMouseMove;
+      events.push_back(std::move(event));
+    }
+    ToFramebuffer(window, x, y, events.back());
+  }
+
+  // The cursor comes in screen coordinates; pictures are laid out in framebuffer pixels.
+  static void ToFramebuffer(GLFWwindow* window, double x, double y, WindowEvent& event) {
     int window_width = 0;
     int window_height = 0;
     int framebuffer_width = 0;
@@ -112,11 +137,13 @@ class GlfwWindow final : public Window {
     glfwGetFramebufferSize(window, &framebuffer_width, &framebuffer_height);
     event.x = window_width > 0 ? x * framebuffer_width / window_width : x;
     event.y = window_height > 0 ? y * framebuffer_height / window_height : y;
-    Self(window).events_.push_back(std::move(event));
   }
 
   GLFWwindow* window_;
   std::vector<WindowEvent> events_;
+  bool cursor_known_ = false;  // a move was reported: cursor_x_, cursor_y_ hold where
+  double cursor_x_ = 0.0;      // screen coordinates, as GLFW reports them
+  double cursor_y_ = 0.0;
 };
 
 }  // namespace

@@ -40,6 +40,7 @@ namespace render {
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)              \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                \
+  X(PFNGLUNIFORM3FPROC, Uniform3f)                                \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                    \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                    \

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "gl_functions.h"
+#include "link_lines.h"
+#include "link_program.h"
 #include "part_batch.h"
 #include "part_program.h"
 #include "shader_build.h"
@@ -167,6 +169,8 @@ struct Renderer::Gl {
   std::vector<Instance> instances;     // reused every frame
   PartProgram parts;
   PartBatch part_batch;                // reused every frame
+  LinkProgram links;
+  LinkLines link_lines;                // reused every frame
   std::vector<std::uint8_t> readback;  // bottom-up rows, as GL returns them
 
   explicit Gl(const GlFunctions& functions) : fn(functions) {}
@@ -176,6 +180,7 @@ struct Renderer::Gl {
     // GL ignores the name 0, so a half-built renderer cleans up the same way.
     fn.DeleteProgram(program);
     parts.Destroy(fn);
+    links.Destroy(fn);
     fn.DeleteBuffers(1, &quad_buffer);
     fn.DeleteBuffers(1, &instance_buffer);
     fn.DeleteVertexArrays(1, &vertex_array);
@@ -217,6 +222,7 @@ std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, 
   SetInstanceAttribute(fn, 5, 1, GL_FLOAT, GL_FALSE, offsetof(Instance, kind));
 
   if (!gl->parts.Create(fn, gl->quad_buffer, error)) return nullptr;
+  if (!gl->links.Create(fn, gl->quad_buffer, error)) return nullptr;
 
   fn.GenRenderbuffers(1, &gl->color_buffer);
   fn.BindRenderbuffer(GL_RENDERBUFFER, gl->color_buffer);
@@ -252,12 +258,18 @@ std::string Renderer::Description() const {
 }
 
 void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
-                    const Camera& camera) {
+                    const Camera& camera, LinkLayers links) {
   assert(colors.size() == world.BodyCount());
   if (HasParts(world)) {
     DrawWithParts(world, colors, camera);
-    return;
+  } else {
+    DrawBodies(world, colors, camera);
   }
+  DrawLinks(world, camera, links);
+}
+
+void Renderer::DrawBodies(const engine::World& world, std::span<const Color> colors,
+                          const Camera& camera) {
   Gl& gl = *gl_;
   const GlFunctions& fn = gl.fn;
   // With rotation off the engine does no angular work, so angles are not part of the picture.
@@ -329,6 +341,15 @@ void Renderer::DrawWithParts(const engine::World& world, std::span<const Color> 
     if (batch.TexelCount() > gl.parts.MaxTexels()) batch.Clear();
   }
   gl.parts.Draw(fn, batch, half_width, half_height, static_cast<float>(pixel_size), rotation);
+}
+
+void Renderer::DrawLinks(const engine::World& world, const Camera& camera, LinkLayers links) {
+  Gl& gl = *gl_;
+  const double pixel_size = camera.width / gl.width;
+  gl.link_lines.Build(world, camera, pixel_size, links);
+  // A world without links makes no GL call here: its pictures stay what they were.
+  gl.links.Draw(gl.fn, gl.link_lines, static_cast<float>(0.5 * camera.width),
+                static_cast<float>(0.5 * pixel_size * gl.height), static_cast<float>(pixel_size));
 }
 
 void Renderer::ReadImage(Image& image) {

@@ -165,7 +165,12 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     w.ib = infos[j.b].inv_inertia;
     work_.push_back(w);
   }
-  (void)states;
+  joined_.assign(states.size(), 0);
+  for (const JointWork& w : work_) {
+    if (w.a != kNoBody) joined_[w.a] = 1;
+    joined_[w.b] = 1;
+  }
+  PrepareDirect(infos);
   return !work_.empty();
 }
 
@@ -199,7 +204,7 @@ void JointSolver::UpdateFrames(std::span<const BodyState> states) {
   }
 }
 
-void JointSolver::Begin(std::span<BodyState> states, double h) {
+void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift) {
   h_ = h;
   UpdateFrames(states);
   for (JointWork& w : work_) {
@@ -267,13 +272,21 @@ void JointSolver::Begin(std::span<BodyState> states, double h) {
       case JointType::kTarget: break;
     }
   }
-  PredictDrift(states, h);
+  if (aim_at_drift) {
+    PredictDrift(states, h);
+  } else {
+    for (JointWork& w : work_) w.drift_point = {}, w.drift_axis = 0.0;
+  }
 }
 
 void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
-  // Where each anchor would be after h at today's velocities, to second order in h (the arms
-  // turn by ω·h: r + ω·h·r⊥ − ½(ω·h)²·r), less where the rows' linear part puts it.
-  auto turned = [](Vec2 r, double turn) { return r + turn * LeftPerp(r) - (0.5 * turn * turn) * r; };
+  // Where each anchor would be after h at today's velocities, less where the rows' linear part
+  // puts it. The arms turn by ω·h: to second order r + ω·h·r⊥ − ½(ω·h)²·r while that is within
+  // (ω·h)³/6 ≈ 2e-5 of the turn, exactly beyond (a whipping link, a long step).
+  auto turned = [](Vec2 r, double turn) {
+    if (std::abs(turn) > 0.05) return Rotate(MakeRot(turn), r);
+    return r + turn * LeftPerp(r) - (0.5 * turn * turn) * r;
+  };
   for (JointWork& w : work_) {
     const Joint& j = table_->joints[w.slot];
     w.drift_point = {};
@@ -498,6 +511,7 @@ void JointSolver::PushOut(std::span<const BodyState> states, PushVelocities push
       store(w.b, b);
     }
   }
+  SolveDirect({}, &push, rate);
 }
 
 void JointSolver::MarkBodies(std::vector<std::uint8_t>* pushed) const {

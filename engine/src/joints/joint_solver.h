@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/body.h"
+#include "joints/joint_direct.h"
 #include "joints/joint_table.h"
 #include "solver/substep_passes.h"
 
@@ -47,18 +48,28 @@ class JointSolver {
   bool Prepare(JointTable* table, std::span<const BodyState> states, std::span<const BodyInfo> infos,
                std::span<const std::uint8_t> moving);
   /// Per (sub)step of length h, after the free motion: the frames where the bodies are now, the
-  /// springs' impulses, then the warm start.
-  void Begin(std::span<BodyState> states, double h);
+  /// springs' impulses, then the warm start. `aim_at_drift`: the rows aim to cancel the drift of
+  /// the substep's curved motion (PredictDrift); that is a correction of order h², for small
+  /// steps only: over a whole 1/60 s step it made a whipping chain blow up.
+  void Begin(std::span<BodyState> states, double h, bool aim_at_drift);
   /// One Gauss-Seidel pass over the rigid rows (run before each contact pass).
   void Solve(std::span<BodyState> states, double inv_h);
+  /// After the passes: each small island's equality rows made exact (JointDirect).
+  void SolveDirect(std::span<BodyState> states, double inv_h) { SolveDirect(states, nullptr, inv_h); }
   /// After the bodies moved: `passes` Gauss-Seidel passes that push the joints' errors out
   /// (kJointPushFraction of each per pass) through the push velocities.
   void PushOut(std::span<const BodyState> states, PushVelocities push, double inv_h, int passes);
   /// Marks both bodies of every solved joint (the integrators move those by h·v).
   void MarkBodies(std::vector<std::uint8_t>* pushed) const;
+  /// Per body: 1 if a joint solved this step holds it.
+  std::span<const std::uint8_t> Joined() const { return joined_; }
 
  private:
   void UpdateFrames(std::span<const BodyState> states);
+  void PrepareDirect(std::span<const BodyInfo> infos);
+  /// The velocities (push null; rate = 1/h) or the push velocities (rate: the push-out's) of
+  /// each direct island, solved.
+  void SolveDirect(std::span<BodyState> states, PushVelocities* push, double rate);
   /// Each row's drift (JointWork::drift_*) over a (sub)step of h at the current velocities.
   void PredictDrift(std::span<BodyState> states, double h);
   BodyState& StateA(const JointWork& w, std::span<BodyState> states);
@@ -66,6 +77,8 @@ class JointSolver {
   JointTable* table_ = nullptr;
   std::vector<JointWork> work_;
   double h_ = 0.0;
+  JointDirect direct_;
+  std::vector<std::uint8_t> joined_;
   BodyState ground_;  ///< what a target joint's missing body A reads and (with zero mass) writes
 };
 

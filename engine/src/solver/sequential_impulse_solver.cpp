@@ -103,11 +103,12 @@ void SequentialImpulseSolver::Step(StepContext& context) {
     SolveVelocities(constraints_, context.states, context.infos, def.velocity_iterations);
   } else {
     // The joints' rows go first in every pass, as in the substep solver.
-    joints->Begin(context.states, def.dt);
+    joints->Begin(context.states, def.dt, false);
     for (int pass = 0; pass < def.velocity_iterations; ++pass) {
       joints->Solve(context.states, 1.0 / def.dt);
       SolveVelocities(constraints_, context.states, context.infos, 1);
     }
+    joints->SolveDirect(context.states, 1.0 / def.dt);
   }
   MarkPushed<ImpulseConstraint>(constraints_, def.integrator, context.states.size(), &pushed_);
   if (joints) joints->MarkBodies(&pushed_);

@@ -1,8 +1,9 @@
 // Draws a world through a camera with OpenGL 3.3 core into an offscreen framebuffer and reads
 // the picture back. Balls are anti-aliased discs (a spoke shows the angle when rotation is on),
 // boxes filled rectangles, polygons (concave or rounded too) and capsules filled shapes, segment
-// polylines bands of a few pixels; each body outlined once around all its parts. No GL header
-// here: the GL state lives in renderer.cpp and part_program.cpp.
+// polylines bands of a few pixels; each body outlined once around all its parts. Springs and
+// joints are thin lines over the bodies. No GL header here: the GL state lives in renderer.cpp,
+// part_program.cpp and link_program.cpp.
 #pragma once
 
 #include <memory>
@@ -17,6 +18,12 @@
 #include "render/rect.h"
 
 namespace render {
+
+/// Which of the world's links (springs and joints) Renderer::Draw shows over the bodies.
+struct LinkLayers {
+  bool springs = true;
+  bool joints = true;
+};
 
 class Renderer {
  public:
@@ -34,9 +41,12 @@ class Renderer {
   /// What GL says it is, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
   std::string Description() const;
 
-  /// Draws every body in scene order (later bodies on top) over the background; `colors[i]` is
-  /// the colour of body i. Precondition: colors.size() == world.BodyCount().
-  void Draw(const engine::World& world, std::span<const Color> colors, const Camera& camera);
+  /// Draws every body in scene order (later bodies on top) over the background, then the
+  /// springs and joints `links` selects over them; `colors[i]` is the colour of body i. A world
+  /// with no springs or joints is drawn exactly as it was before links were drawn at all.
+  /// Precondition: colors.size() == world.BodyCount().
+  void Draw(const engine::World& world, std::span<const Color> colors, const Camera& camera,
+            LinkLayers links = {});
 
   /// The last drawn picture, rows top-down; reuses `image`'s storage.
   void ReadImage(Image& image);
@@ -55,9 +65,14 @@ class Renderer {
  private:
   struct Gl;  // the function table and the GL objects
   explicit Renderer(std::unique_ptr<Gl> gl);
+  // The bodies of a world with none made of parts, through the plain circle-and-box program.
+  void DrawBodies(const engine::World& world, std::span<const Color> colors,
+                  const Camera& camera);
   // Draw for a world with bodies made of parts: every body through the part program.
   void DrawWithParts(const engine::World& world, std::span<const Color> colors,
                      const Camera& camera);
+  // The springs and joints over what the body pass drew.
+  void DrawLinks(const engine::World& world, const Camera& camera, LinkLayers links);
   std::unique_ptr<Gl> gl_;
 };
 

@@ -16,6 +16,8 @@ struct WindowEvent {
   enum class Type {
     kKey,        ///< a key went down (or repeats while held)
     kMouseDown,  ///< a mouse button went down
+    kMouseUp,    ///< a mouse button went up
+    kMouseMove,  ///< the cursor moved (successive moves between two TakeEvents come as one)
     kClose,      ///< the user asked the window to close
   };
   Type type = Type::kKey;
@@ -23,8 +25,8 @@ struct WindowEvent {
   /// keyboard layout, lower case ("s", "."). Other keys are not reported.
   std::string key;
   bool repeat = false;  ///< kKey: the key is held and the system repeats it
-  int button = 0;       ///< kMouseDown: 0 left, 1 right, 2 middle
-  /// kMouseDown: where the cursor was, in framebuffer pixels from the top-left corner of the
+  int button = 0;       ///< kMouseDown, kMouseUp: 0 left, 1 right, 2 middle
+  /// Mouse events: where the cursor was, in framebuffer pixels from the top-left corner of the
   /// window's drawing area (continuous: (0, 0) is that corner). Window coordinates are scaled
   /// by framebuffer / window size, so this matches PixelRect on high-DPI screens too.
   double x = 0.0;
