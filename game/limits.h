@@ -10,8 +10,7 @@ namespace game {
 /// Bodies in one scene. A million load in ~1 GB; beyond, memory and load time run away first.
 inline constexpr std::size_t kMaxBodies = 1'000'000;
 
-/// Joints in one scene. The engine makes joints one at a time, each re-sorting its joint table,
-/// so loading grows with the square of the count: 100 000 load in about 2 minutes.
+/// Joints in one scene: 100 000 hinged balls load in 1.4 s and 0.3 GB (docs/limits.md).
 inline constexpr std::size_t kMaxJoints = 100'000;
 
 /// Every number in a scene, in magnitude (metres, m/s, kg, ...). Squares and products of such
