@@ -9,6 +9,7 @@
 #include <set>
 
 #include "game/limits.h"
+#include "game/scene_joints.h"
 #include "game/scene_json.h"
 #include "game/scene_shapes.h"
 #include "game/scene_values.h"
@@ -207,7 +208,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   RejectUnknownKeys(root, "",
                     {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
                      "broad_phase", "solver", "sleep", "springs", "fluid_density",
-                     "gravitational_constant", "continuous"});
+                     "gravitational_constant", "continuous", "joints"});
   Scene scene;
   scene.name = default_name;
   if (const Json* v = Find(root, "name")) {
@@ -287,6 +288,9 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
       scene.springs.push_back(ReadSpring((*springs)[i], "springs[" + std::to_string(i) + "]", first_use, scene.bodies));
     }
   }
+  if (const Json* joints = Find(root, "joints")) {
+    scene.joints = ReadJoints(*joints, scene.bodies, first_use, world.rotation);
+  }
   return scene;
 }
 
@@ -317,7 +321,17 @@ engine::World BuildWorld(const Scene& scene) {
   engine::World world(scene.world);
   for (const SceneBody& body : scene.bodies) world.CreateBody(body.def);
   for (const engine::SpringDef& spring : scene.springs) world.AddSpring(spring);
+  // After every body, since a joint may name a later one; in file order, so JointId{i} is
+  // joints[i].
+  for (const SceneJoint& joint : scene.joints) world.CreateJoint(joint.def);
   return world;
+}
+
+std::optional<std::size_t> FindJoint(const Scene& scene, std::string_view id) {
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    if (scene.joints[i].id == id) return i;
+  }
+  return std::nullopt;
 }
 
 }  // namespace game

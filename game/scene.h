@@ -1,6 +1,7 @@
 // Scene files (JSON, see docs/scene-format.md): parsed and validated into plain structs.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -20,6 +21,15 @@ struct SceneBody {
   render::Color color;
 };
 
+/// A joint of the scene's `joints` list (docs/scene-format.md#joints).
+struct SceneJoint {
+  /// Names the joint for programs that drive it (FindJoint, then World::SetMotorSpeed); unique
+  /// among the scene's joints (body ids are another list: a joint may share a body's id).
+  std::string id;
+  bool id_given = false;  ///< false: the id is the default joint<index>
+  engine::JointDef def;   ///< bodies as BodyId{index into Scene::bodies}
+};
+
 /// The scene's camera; what it leaves out comes from a fit of all bodies.
 struct CameraDef {
   std::optional<engine::Vec2> center;
@@ -33,6 +43,7 @@ struct Scene {
   double click_max_impulse = 10.0;       ///< N·s at a ball's rim
   std::vector<SceneBody> bodies;
   std::vector<engine::SpringDef> springs;  ///< bodies named by index into `bodies`
+  std::vector<SceneJoint> joints;          ///< in file order, made after every body
 };
 
 /// Parses scene JSON. `file_label` names the source in messages; `default_name` is used when
@@ -43,7 +54,12 @@ Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
 /// Reads and parses a scene file; its name defaults to the file's stem.
 Expected<Scene> LoadScene(const std::string& path);
 
-/// The engine world a scene describes, bodies in scene order (BodyId = index in `bodies`).
+/// The engine world a scene describes, bodies in scene order (BodyId = index in `bodies`), then
+/// its joints in file order (JointId = index in `joints`).
 engine::World BuildWorld(const Scene& scene);
+
+/// The index in `scene.joints` of the joint with this id, which is also its JointId's index in
+/// the world BuildWorld makes; none if no joint has it.
+std::optional<std::size_t> FindJoint(const Scene& scene, std::string_view id);
 
 }  // namespace game

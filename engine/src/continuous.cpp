@@ -107,7 +107,8 @@ double FirstImpact(const Bodies& bodies, std::span<const double> start_angles, B
 }  // namespace
 
 void SolveContinuous(Bodies& bodies, std::span<const double> start_angles, std::span<const BodyPair> pairs,
-                     std::span<const std::uint8_t> awake, const WorldDef& def) {
+                     std::span<const std::uint8_t> awake, std::span<const std::uint8_t> joined,
+                     const WorldDef& def) {
   const std::size_t n = bodies.states.size();
   // Which bodies are fast: moved or turned through more than half their thinnest width.
   std::vector<double> first(n, 2.0);  // 2: not a fast body of parts
@@ -116,6 +117,7 @@ void SolveContinuous(Bodies& bodies, std::span<const double> start_angles, std::
     const BodyGeometry* g = bodies.geometries[i].get();
     const BodyInfo& info = bodies.infos[i];
     if (!g || awake[i] != kAwake || HasInfiniteMass(info) || info.is_sensor || !bodies.enabled[i]) continue;
+    if (!joined.empty() && joined[i]) continue;
     const BodyState& s = bodies.states[i];
     const double turn = std::abs(s.angle - start_angles[i]);
     const double motion = Length(s.position - bodies.start_positions[i]) + turn * g->reach;

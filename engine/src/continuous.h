@@ -21,7 +21,11 @@ namespace engine::detail {
 /// Collision", GDC 2013). Speculative contacts alone miss a fast-turning thin body: the normal
 /// they take at the step's start is not the one it meets. `start_angles` holds each body's
 /// angle when the step began (start_positions its centre).
+/// Bodies a joint holds (`joined[i]` 1; empty: none) are left out: moving one back alone would
+/// tear it off its joint (a ragdoll's shin came 3 m off its knee); their joints and speculative
+/// contacts hold them.
 void SolveContinuous(Bodies& bodies, std::span<const double> start_angles, std::span<const BodyPair> pairs,
-                     std::span<const std::uint8_t> awake, const WorldDef& def);
+                     std::span<const std::uint8_t> awake, std::span<const std::uint8_t> joined,
+                     const WorldDef& def);
 
 }  // namespace engine::detail

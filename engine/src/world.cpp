@@ -84,6 +84,7 @@ void World::Step() {
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
   w.candidates.Find(w.def, w.SpeculativeContacts(), bodies, w.sleep.awake);
+  if (w.joints.stale) w.joints.Rebuild(bodies.enabled);
   // Bodies a joint holds together do not collide, unless the joint says they do.
   detail::DropJoinedPairs(w.joints.no_collide, &w.candidates.Pairs());
   // Pairs with a sensor only report overlaps, after the step.
@@ -118,7 +119,8 @@ void World::Step() {
   if (w.fault) return;                  // broken down mid-step: stop where it appeared
   // Fast bodies made of parts that the step carried through something go back to the touch.
   if (bodies.with_parts > 0 && w.def.continuous) {
-    detail::SolveContinuous(bodies, bodies.start_angles, w.candidates.Pairs(), w.sleep.awake, w.def);
+    detail::SolveContinuous(bodies, bodies.start_angles, w.candidates.Pairs(), w.sleep.awake,
+                            context.joints ? context.joints->Joined() : std::span<const std::uint8_t>(), w.def);
   }
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep
   // Events: contacts that began or ended touching, sensors that began or ended overlapping.

@@ -1,5 +1,6 @@
 // World's joint calls: making and destroying joints, reading where they stand, and what an
 // embedder (or the mouse) changes between steps.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -71,7 +72,7 @@ std::uint32_t World::Impl::JointSlot(JointId id, const char* call) const {
   return id.index;
 }
 
-void World::Impl::RebuildJoints() { joints.Rebuild(bodies.enabled); }
+void World::Impl::RebuildJoints() { joints.stale = true; }
 
 JointId World::CreateJoint(const JointDef& def) {
   Impl& w = *impl_;
@@ -103,6 +104,10 @@ JointId World::CreateJoint(const JointDef& def) {
     j.min_length = def.min_length.value_or(0.0);
     j.max_length = def.max_length.value_or(kUnbounded);
     j.rigid_length = !range && !def.spring;
+    // A length under the slop is held at the slop (as Box2D does): at 0 the anchors' line has no
+    // direction to pull along, and a rigid joint there diverged.
+    j.length = std::max(j.length, w.def.linear_slop);
+    if (def.max_length) j.max_length = std::max(j.max_length, w.def.linear_slop);
     if (j.rigid_length) j.min_length = j.max_length = j.length;
   }
   const std::uint32_t slot = w.joints.Allocate();

@@ -64,12 +64,30 @@ double Coupling(const JointRow& ri, const JointWork& wi, const JointRow& rj, con
   return k;
 }
 
-// In-place Cholesky factor (lower) of the n×n matrix; false unless positive definite.
-bool Factor(std::vector<double>& a, int n) {
+// In-place Cholesky factor (lower) of the n×n matrix. A row that depends on the rows before it
+// (its pivot falls below kDependent of its diagonal: a taut straight chain between two pins has
+// one more row along itself than its links have freedoms) is marked and left out: it gets no
+// impulse, the others carry its load. False if a pivot is not finite.
+constexpr double kDependent = 1e-9;
+
+// K's diagonal is raised by this fraction (damped least squares, as Levenberg-Marquardt): near a
+// singular pose (a taut straight chain between two pins, whose sag takes a tension growing
+// without bound) the exact answer's impulses blew the bridge up in one step; this bounds them.
+constexpr double kRegularisation = 1e-4;
+
+bool Factor(std::vector<double>& a, int n, std::vector<std::uint8_t>& dependent) {
+  dependent.assign(n, 0);
   for (int j = 0; j < n; ++j) {
-    double d = a[j * n + j];
+    const double diagonal = a[j * n + j];
+    double d = diagonal;
     for (int k = 0; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
-    if (!(d > 0.0)) return false;
+    if (!std::isfinite(d)) return false;
+    if (!(d > kDependent * diagonal)) {
+      dependent[j] = 1;
+      a[j * n + j] = 1.0;
+      for (int i = j + 1; i < n; ++i) a[i * n + j] = 0.0;
+      continue;
+    }
     d = std::sqrt(d);
     a[j * n + j] = d;
     for (int i = j + 1; i < n; ++i) {
@@ -81,14 +99,20 @@ bool Factor(std::vector<double>& a, int n) {
   return true;
 }
 
-// Solves L·Lᵀ·x = b in place.
-void SolveFactored(const std::vector<double>& l, int n, std::vector<double>& b) {
+// Solves L·Lᵀ·x = b in place, x = 0 for the dependent rows.
+void SolveFactored(const std::vector<double>& l, int n, const std::vector<std::uint8_t>& dependent,
+                   std::vector<double>& b) {
   for (int i = 0; i < n; ++i) {
+    if (dependent[i]) {
+      b[i] = 0.0;
+      continue;
+    }
     double s = b[i];
     for (int k = 0; k < i; ++k) s -= l[i * n + k] * b[k];
     b[i] = s / l[i * n + i];
   }
   for (int i = n - 1; i >= 0; --i) {
+    if (dependent[i]) continue;
     double s = b[i];
     for (int k = i + 1; k < n; ++k) s -= l[k * n + i] * b[k];
     b[i] = s / l[i * n + i];
@@ -153,10 +177,9 @@ void JointSolver::SolveDirect(std::span<BodyState> states, PushVelocities* push,
         const double k = Coupling(d.rows[i], work_[d.rows[i].work], d.rows[j], work_[d.rows[j].work]);
         d.matrix[i * n + j] = d.matrix[j * n + i] = k;
       }
-      // A hair of regularisation: redundant rows (a closed loop of welds) stay solvable.
-      d.matrix[i * n + i] *= 1.0 + 1e-10;
+      d.matrix[i * n + i] *= 1.0 + kRegularisation;
     }
-    if (!Factor(d.matrix, n)) continue;  // singular: Gauss-Seidel's answer stands
+    if (!Factor(d.matrix, n, d.dependent)) continue;  // Gauss-Seidel's answer stands
     // The residual: each row's velocity less its target (push: its push velocity less the
     // fraction of its error pushed out).
     d.residual.resize(n);
@@ -173,7 +196,7 @@ void JointSolver::SolveDirect(std::span<BodyState> states, PushVelocities* push,
       const double velocity = Dot(r.d, vb - va) + r.arm_b * wb - r.arm_a * wa;
       d.residual[i] = -(velocity + (push ? rate * r.error : r.drift * rate));
     }
-    SolveFactored(d.matrix, n, d.residual);
+    SolveFactored(d.matrix, n, d.dependent, d.residual);
     for (int i = 0; i < n; ++i) {
       const JointRow& r = d.rows[i];
       const JointWork& w = work_[r.work];

@@ -40,6 +40,7 @@ struct JointDirect {
   std::vector<std::uint32_t> island_starts; ///< per island: into island_works (one past the end last)
   std::vector<JointRow> rows;
   std::vector<double> matrix, residual;
+  std::vector<std::uint8_t> dependent;      ///< per row of the island being solved
   UnionFind linked;
   std::vector<std::uint32_t> root_island;   ///< scratch: island by union-find root
 };

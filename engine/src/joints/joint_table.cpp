@@ -5,33 +5,44 @@
 
 namespace engine::detail {
 
+namespace {
+bool SlotBefore(JointId x, JointId y) { return x.index < y.index; }
+}  // namespace
+
 std::uint32_t JointTable::Allocate() {
+  stale = true;
+  std::uint32_t slot;
   if (!free_slots.empty()) {
-    const std::uint32_t slot = free_slots.back();
+    slot = free_slots.back();
     free_slots.pop_back();
     alive[slot] = 1;
-    return slot;
+  } else {
+    joints.emplace_back();
+    generations.push_back(0);
+    alive.push_back(1);
+    slot = static_cast<std::uint32_t>(joints.size() - 1);
   }
-  joints.emplace_back();
-  generations.push_back(0);
-  alive.push_back(1);
-  return static_cast<std::uint32_t>(joints.size() - 1);
+  const JointId id{slot, generations[slot]};
+  live_ids.insert(std::lower_bound(live_ids.begin(), live_ids.end(), id, SlotBefore), id);
+  return slot;
 }
 
 void JointTable::Free(std::uint32_t slot) {
+  stale = true;
+  const auto at = std::lower_bound(live_ids.begin(), live_ids.end(), JointId{slot, 0}, SlotBefore);
+  live_ids.erase(at);
   alive[slot] = 0;
   ++generations[slot];
   free_slots.push_back(slot);
 }
 
 void JointTable::Rebuild(std::span<const std::uint8_t> body_enabled) {
+  stale = false;
   acting.clear();
   no_collide.clear();
   links.clear();
-  live_ids.clear();
   for (std::uint32_t slot = 0; slot < joints.size(); ++slot) {
     if (!alive[slot]) continue;
-    live_ids.push_back({slot, generations[slot]});
     const Joint& j = joints[slot];
     if (!body_enabled[j.b] || (j.a != kNoBody && !body_enabled[j.a])) continue;
     acting.push_back(slot);

@@ -46,21 +46,24 @@ struct JointTable {
   std::vector<std::uint32_t> generations;
   std::vector<std::uint8_t> alive;
   std::vector<std::uint32_t> free_slots;  ///< a stack: the last freed slot is reused first
-  std::vector<JointId> live_ids;          ///< in slot order
+  std::vector<JointId> live_ids;          ///< in slot order, kept up to date by Allocate and Free
   /// Slots of the joints that act (both bodies enabled), in slot order: the only ones a step sees.
   std::vector<std::uint32_t> acting;
   /// The body pairs of acting joints that keep their bodies from colliding, sorted.
   std::vector<BodyPair> no_collide;
   /// The body pairs of acting joints between two bodies (sleep joins and wakes islands by them).
   std::vector<BodyPair> links;
+  /// `acting`, `no_collide` and `links` wait for a Rebuild (joints or bodies changed since):
+  /// making n joints one by one rebuilds once, at the next step, not n times.
+  bool stale = false;
 
   bool IsLive(JointId id) const {
     return id.index < alive.size() && alive[id.index] && generations[id.index] == id.generation;
   }
   std::uint32_t Allocate();
   void Free(std::uint32_t slot);
-  /// Rebuilds `acting`, `no_collide`, `links` and `live_ids` (after joints or bodies come, go,
-  /// or are enabled or disabled).
+  /// Rebuilds `acting`, `no_collide` and `links` (after joints or bodies came, went, or were
+  /// enabled or disabled).
   void Rebuild(std::span<const std::uint8_t> body_enabled);
 };
 

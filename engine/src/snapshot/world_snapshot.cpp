@@ -408,6 +408,10 @@ bool World::Impl::LoadJoints(ByteReader& in) {
   if (!in.Check(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() && sorted.size() == dead)) {
     return false;
   }
+  joints.live_ids.clear();
+  for (std::uint32_t slot = 0; slot < count; ++slot) {
+    if (joints.alive[slot]) joints.live_ids.push_back({slot, joints.generations[slot]});
+  }
   RebuildJoints();
   return true;
 }
