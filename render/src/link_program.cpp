@@ -66,14 +66,6 @@ void main() {
 }
 )";
 
-void SetAttribute(const GlFunctions& fn, GLuint location, GLint size, GLenum type,
-                  GLboolean normalized, std::size_t offset) {
-  fn.EnableVertexAttribArray(location);
-  fn.VertexAttribPointer(location, size, type, normalized, sizeof(LinkInstance),
-                         reinterpret_cast<const void*>(offset));
-  fn.VertexAttribDivisor(location, 1);
-}
-
 }  // namespace
 
 bool LinkProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string& error) {
@@ -91,11 +83,11 @@ bool LinkProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string&
   fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
   fn.GenBuffers(1, &instance_buffer_);
   fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
-  SetAttribute(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, a));
-  SetAttribute(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, b));
-  SetAttribute(fn, 3, 1, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, radius));
+  SetInstanceAttribute<LinkInstance>(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, a));
+  SetInstanceAttribute<LinkInstance>(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, b));
+  SetInstanceAttribute<LinkInstance>(fn, 3, 1, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, radius));
   // Normalised bytes reach the shader as exactly c / 255: lines are their colour exactly.
-  SetAttribute(fn, 4, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(LinkInstance, color));
+  SetInstanceAttribute<LinkInstance>(fn, 4, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(LinkInstance, color));
   return true;
 }
 

@@ -202,14 +202,6 @@ void main() {
 }
 )";
 
-void SetAttribute(const GlFunctions& fn, GLuint location, GLint size, GLenum type,
-                  GLboolean normalized, std::size_t offset) {
-  fn.EnableVertexAttribArray(location);
-  fn.VertexAttribPointer(location, size, type, normalized, sizeof(PartInstance),
-                         reinterpret_cast<const void*>(offset));
-  fn.VertexAttribDivisor(location, 1);
-}
-
 }  // namespace
 
 bool PartProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string& error) {
@@ -227,15 +219,15 @@ bool PartProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string&
   fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
   fn.GenBuffers(1, &instance_buffer_);
   fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
-  SetAttribute(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, origin));
-  SetAttribute(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, rotation));
-  SetAttribute(fn, 3, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_center));
-  SetAttribute(fn, 4, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_axis));
-  SetAttribute(fn, 5, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_half));
+  SetInstanceAttribute<PartInstance>(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, origin));
+  SetInstanceAttribute<PartInstance>(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, rotation));
+  SetInstanceAttribute<PartInstance>(fn, 3, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_center));
+  SetInstanceAttribute<PartInstance>(fn, 4, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_axis));
+  SetInstanceAttribute<PartInstance>(fn, 5, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_half));
   // Normalised bytes reach the shader as exactly c / 255: fills are the scene colour exactly.
-  SetAttribute(fn, 6, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(PartInstance, color));
-  SetAttribute(fn, 7, 4, GL_FLOAT, GL_FALSE, offsetof(PartInstance, record));
-  SetAttribute(fn, 8, 1, GL_FLOAT, GL_FALSE, offsetof(PartInstance, only_own_group));
+  SetInstanceAttribute<PartInstance>(fn, 6, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(PartInstance, color));
+  SetInstanceAttribute<PartInstance>(fn, 7, 4, GL_FLOAT, GL_FALSE, offsetof(PartInstance, record));
+  SetInstanceAttribute<PartInstance>(fn, 8, 1, GL_FLOAT, GL_FALSE, offsetof(PartInstance, only_own_group));
 
   fn.GenBuffers(1, &texel_buffer_);
   fn.BindBuffer(GL_TEXTURE_BUFFER, texel_buffer_);

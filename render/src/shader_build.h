@@ -1,6 +1,8 @@
-// Compiling and linking a GLSL program, with the compiler's log as the error.
+// Compiling and linking a GLSL program, with the compiler's log as the error; the per-instance
+// attributes of the instanced programs.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "gl_functions.h"
@@ -11,5 +13,15 @@ namespace render {
 /// program failed, with the compiler's or linker's log.
 bool BuildProgram(const GlFunctions& fn, const char* vertex_source, const char* fragment_source,
                   const std::string& name, GLuint& program, std::string& error);
+
+/// Points attribute `location` at a field (`offset` bytes in) of the Instance records in the
+/// bound buffer, advancing once per instance.
+template <typename Instance>
+void SetInstanceAttribute(const GlFunctions& fn, GLuint location, GLint size, GLenum type, GLboolean normalized,
+                          std::size_t offset) {
+  fn.EnableVertexAttribArray(location);
+  fn.VertexAttribPointer(location, size, type, normalized, sizeof(Instance), reinterpret_cast<const void*>(offset));
+  fn.VertexAttribDivisor(location, 1);
+}
 
 }  // namespace render

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "joints/joint_solver.h"
+#include "solver/cholesky.h"
 
 namespace engine::detail {
 
@@ -64,60 +65,15 @@ double Coupling(const JointRow& ri, const JointWork& wi, const JointRow& rj, con
   return k;
 }
 
-// In-place Cholesky factor (lower) of the n×n matrix. A row that depends on the rows before it
-// (its pivot falls below kDependent of its diagonal: a taut straight chain between two pins has
-// one more row along itself than its links have freedoms) is marked and left out: it gets no
-// impulse, the others carry its load. False if a pivot is not finite.
+// A row whose pivot falls below this fraction of its diagonal depends on the rows before it (a
+// taut straight chain between two pins has one more row along itself than its links have
+// freedoms): it is left out of the factor and gets no impulse; the others carry its load.
 constexpr double kDependent = 1e-9;
 
 // K's diagonal is raised by this fraction (damped least squares, as Levenberg-Marquardt): near a
 // singular pose (a taut straight chain between two pins, whose sag takes a tension growing
 // without bound) the exact answer's impulses blew the bridge up in one step; this bounds them.
 constexpr double kRegularisation = 1e-4;
-
-bool Factor(std::vector<double>& a, int n, std::vector<std::uint8_t>& dependent) {
-  dependent.assign(n, 0);
-  for (int j = 0; j < n; ++j) {
-    const double diagonal = a[j * n + j];
-    double d = diagonal;
-    for (int k = 0; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
-    if (!std::isfinite(d)) return false;
-    if (!(d > kDependent * diagonal)) {
-      dependent[j] = 1;
-      a[j * n + j] = 1.0;
-      for (int i = j + 1; i < n; ++i) a[i * n + j] = 0.0;
-      continue;
-    }
-    d = std::sqrt(d);
-    a[j * n + j] = d;
-    for (int i = j + 1; i < n; ++i) {
-      double s = a[i * n + j];
-      for (int k = 0; k < j; ++k) s -= a[i * n + k] * a[j * n + k];
-      a[i * n + j] = s / d;
-    }
-  }
-  return true;
-}
-
-// Solves L·Lᵀ·x = b in place, x = 0 for the dependent rows.
-void SolveFactored(const std::vector<double>& l, int n, const std::vector<std::uint8_t>& dependent,
-                   std::vector<double>& b) {
-  for (int i = 0; i < n; ++i) {
-    if (dependent[i]) {
-      b[i] = 0.0;
-      continue;
-    }
-    double s = b[i];
-    for (int k = 0; k < i; ++k) s -= l[i * n + k] * b[k];
-    b[i] = s / l[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    if (dependent[i]) continue;
-    double s = b[i];
-    for (int k = i + 1; k < n; ++k) s -= l[k * n + i] * b[k];
-    b[i] = s / l[i * n + i];
-  }
-}
 
 }  // namespace
 
@@ -135,8 +91,10 @@ void JointSolver::PrepareDirect(std::span<const BodyInfo> infos) {
   }
   // Group the joints by island (the root of a moving body), islands in order of their first joint.
   d.root_island.assign(infos.size(), ~0u);
-  std::vector<std::uint32_t> island_of(work_.size());
-  std::vector<std::uint32_t> counts;
+  std::vector<std::uint32_t>& island_of = d.island_of;
+  std::vector<std::uint32_t>& counts = d.counts;
+  island_of.resize(work_.size());
+  counts.clear();
   for (std::uint32_t i = 0; i < work_.size(); ++i) {
     const JointWork& w = work_[i];
     const BodyIndex body = HasInfiniteMass(infos[w.b]) ? w.a : w.b;
@@ -151,7 +109,8 @@ void JointSolver::PrepareDirect(std::span<const BodyInfo> infos) {
   d.island_starts.assign(counts.size() + 1, 0);
   for (std::size_t k = 0; k < counts.size(); ++k) d.island_starts[k + 1] = d.island_starts[k] + counts[k];
   d.island_works.assign(work_.size(), 0);
-  std::vector<std::uint32_t> fill(d.island_starts.begin(), d.island_starts.end() - 1);
+  std::vector<std::uint32_t>& fill = d.fill;
+  fill.assign(d.island_starts.begin(), d.island_starts.end() - 1);
   for (std::uint32_t i = 0; i < work_.size(); ++i) d.island_works[fill[island_of[i]]++] = i;
 }
 
@@ -179,7 +138,9 @@ void JointSolver::SolveDirect(std::span<BodyState> states, PushVelocities* push,
       }
       d.matrix[i * n + i] *= 1.0 + kRegularisation;
     }
-    if (!Factor(d.matrix, n, d.dependent)) continue;  // Gauss-Seidel's answer stands
+    d.dependent.resize(n);
+    // A non-finite pivot: Gauss-Seidel's answer stands.
+    if (!CholeskyFactor(d.matrix.data(), n, n, d.dependent.data(), kDependent)) continue;
     // The residual: each row's velocity less its target (push: its push velocity less the
     // fraction of its error pushed out).
     d.residual.resize(n);
@@ -196,7 +157,7 @@ void JointSolver::SolveDirect(std::span<BodyState> states, PushVelocities* push,
       const double velocity = Dot(r.d, vb - va) + r.arm_b * wb - r.arm_a * wa;
       d.residual[i] = -(velocity + (push ? rate * r.error : r.drift * rate));
     }
-    SolveFactored(d.matrix, n, d.dependent, d.residual);
+    CholeskySolve(d.matrix.data(), n, n, d.residual.data(), d.dependent.data());
     for (int i = 0; i < n; ++i) {
       const JointRow& r = d.rows[i];
       const JointWork& w = work_[r.work];

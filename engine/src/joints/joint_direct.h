@@ -43,6 +43,7 @@ struct JointDirect {
   std::vector<std::uint8_t> dependent;      ///< per row of the island being solved
   UnionFind linked;
   std::vector<std::uint32_t> root_island;   ///< scratch: island by union-find root
+  std::vector<std::uint32_t> island_of, counts, fill;  ///< scratch: per joint, per island
 };
 
 }  // namespace engine::detail

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "engine/portable_math.h"
+#include "solver/cholesky.h"
 
 namespace engine::detail {
 
@@ -71,38 +72,6 @@ double Coupling(const SubstepConstraint& ci, const Jacobian& ji, const SubstepCo
   if (ci.inv_mass_a != 0.0) add(ci.a, -1.0, ji.ra, ci.inv_mass_a, ci.inv_inertia_a);
   if (ci.inv_mass_b != 0.0) add(ci.b, 1.0, ji.rb, ci.inv_mass_b, ci.inv_inertia_b);
   return k;
-}
-
-// In-place Cholesky factor (lower, row-major, rows `stride` apart) of the n×n matrix in `a`;
-// false unless positive definite.
-bool Factor(double* a, int n, int stride) {
-  for (int j = 0; j < n; ++j) {
-    double d = a[j * stride + j];
-    for (int k = 0; k < j; ++k) d -= a[j * stride + k] * a[j * stride + k];
-    if (!(d > 0.0)) return false;
-    d = std::sqrt(d);
-    a[j * stride + j] = d;
-    for (int i = j + 1; i < n; ++i) {
-      double s = a[i * stride + j];
-      for (int k = 0; k < j; ++k) s -= a[i * stride + k] * a[j * stride + k];
-      a[i * stride + j] = s / d;
-    }
-  }
-  return true;
-}
-
-// Solves L·Lᵀ·x = b in place.
-void Substitute(const double* l, int n, int stride, double* x) {
-  for (int i = 0; i < n; ++i) {
-    double s = x[i];
-    for (int k = 0; k < i; ++k) s -= l[i * stride + k] * x[k];
-    x[i] = s / l[i * stride + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    double s = x[i];
-    for (int k = i + 1; k < n; ++k) s -= l[k * stride + i] * x[k];
-    x[i] = s / l[i * stride + i];
-  }
 }
 
 // Removes row and column p from the n×n factor: the rows below move up one, and Givens
@@ -221,7 +190,7 @@ class BoxQp {
         for (int c = 0; c <= r; ++c) l[r * stride + c] = k_[order[r] * stride_ + order[c]];
         l[r * stride + r] *= 1.0 + rho_;
       }
-      s_->factor_valid[cache_] = Factor(l.data(), f, stride);
+      s_->factor_valid[cache_] = CholeskyFactor(l.data(), f, stride);
       if (!s_->factor_valid[cache_]) return false;
     }
     std::vector<double>& rhs = s_->rhs;
@@ -235,7 +204,7 @@ class BoxQp {
       }
       rhs[r] = v;
     }
-    Substitute(l.data(), f, stride, rhs.data());
+    CholeskySolve(l.data(), f, stride, rhs.data());
     for (int r = 0; r < f; ++r) x[order[r]] = rhs[r];
     return true;
   }
