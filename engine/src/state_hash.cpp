@@ -1,5 +1,6 @@
 // The state hash of the contract: FNV-1a 64 over the little-endian IEEE-754 bytes of
-// x, y, vx, vy, angle, ω of every live body in slot (scene) order.
+// x, y, vx, vy, angle, ω of every live body in slot (scene) order; then x, y, vx, vy of every
+// particle (soft bodies, effects, fluid), of which a world without particles has none.
 #include <bit>
 #include <cstdint>
 
@@ -33,6 +34,21 @@ std::uint64_t World::StateHash() const {
     HashDouble(s.velocity.y, &hash);
     HashDouble(s.angle, &hash);
     HashDouble(s.angular_velocity, &hash);
+  }
+  // Then the particles: soft bodies in slot order, effect particles oldest first, the fluid.
+  const auto hash_particle = [&hash](Vec2 x, Vec2 v) {
+    for (const double value : {x.x, x.y, v.x, v.y}) HashDouble(value, &hash);
+  };
+  const detail::ParticleSystem& particles = impl_->particles;
+  for (const SoftBodyId id : particles.SoftBodyIds()) {
+    const detail::SoftBody& soft = particles.Soft(id.index);
+    for (std::uint32_t i = soft.first; i < soft.first + soft.count; ++i) {
+      hash_particle(particles.Positions()[i], particles.Velocities()[i]);
+    }
+  }
+  for (const EffectParticle& p : impl_->effects.Particles()) hash_particle(p.position, p.velocity);
+  for (std::size_t i = particles.FluidFirst(); i < particles.Positions().size(); ++i) {
+    hash_particle(particles.Positions()[i], particles.Velocities()[i]);
   }
   return hash;
 }

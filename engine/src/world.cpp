@@ -81,6 +81,7 @@ void World::Step() {
   detail::Bodies& bodies = w.bodies;
   w.events.Clear();  // keeps the lists' storage from step to step
   bodies.MarkStepStart();  // contacts measure how far bodies move from here
+  if (!w.particles.Empty()) w.particles.MarkStepStart(bodies);  // particles see bodies move through the step
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
   w.candidates.Find(w.def, w.SpeculativeContacts(), bodies, w.sleep.awake);
@@ -122,6 +123,9 @@ void World::Step() {
     detail::SolveContinuous(bodies, bodies.start_angles, w.candidates.Pairs(), w.sleep.awake,
                             context.joints ? context.joints->Joined() : std::span<const std::uint8_t>(), w.def);
   }
+  // Soft bodies and fluid, two-way with the bodies they touch; then the effect particles.
+  w.StepParticles();
+  if (w.fault) return;
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep
   // Events: contacts that began or ended touching, sensors that began or ended overlapping.
   if (w.def.contact_events) {

@@ -139,6 +139,8 @@ void World::DestroyBody(BodyId id) {
                              return s.body_a == id || (s.body_b && *s.body_b == id);
                            }) > 0;
   w.DestroyJointsOf(index);
+  w.particles.DetachFrom(index);  // soft bodies fastened to it come free
+  w.effects.BodyGone(index);      // emitters riding on it stop
   if (w.bodies.enabled[index]) w.Withdraw(index);
   w.bodies.Count(index, -1);
   w.bodies.Free(index);

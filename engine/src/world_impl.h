@@ -17,6 +17,8 @@
 #include "sensor_overlaps.h"
 #include "snapshot/byte_stream.h"
 #include "narrow_phase/narrow_phase.h"
+#include "particles/effects.h"
+#include "particles/particle_system.h"
 #include "sleep.h"
 #include "solver/sequential_impulse_solver.h"
 #include "solver/substep_solver.h"
@@ -62,6 +64,13 @@ struct World::Impl {
   void RebuildJoints();
   /// Destroys the joints of a body that goes; their other bodies wake.
   void DestroyJointsOf(BodyIndex body);
+  /// Soft bodies and fluid, then effect particles: their step, after the bodies'.
+  void StepParticles();
+  /// The slots the particle calls name; a stale or unknown id stops the program, naming `call`.
+  std::uint32_t SoftBodySlot(SoftBodyId id, const char* call) const;
+  std::uint32_t EmitterSlot(EmitterId id, const char* call) const;
+  /// The particles' part of a snapshot (present only in worlds that ever had particles).
+  bool LoadParticles(detail::ByteReader& in);
 
   WorldDef def;                       ///< with the automatic settings filled in
   detail::Bodies bodies;
@@ -75,6 +84,8 @@ struct World::Impl {
   detail::AnyContactSolver solver;    ///< the one WorldDef::solver chose
   detail::ContactEvents contact_events;
   detail::SensorOverlaps sensors;
+  detail::ParticleSystem particles;   ///< soft bodies and fluid, stepped after the bodies
+  detail::EffectSystem effects;       ///< emitters and their effect particles
   StepEvents events;                  ///< the last step's
   std::int64_t step_count = 0;
   std::optional<NumericFault> fault;

@@ -34,3 +34,22 @@ struct JointId {
 };
 
 }  // namespace engine
+
+namespace engine {
+
+/// A handle to a soft body (World::CreateSoftBody), as BodyId is to a body. Soft bodies are
+/// stepped, hashed and dumped in slot order; a fresh world's have generation 0.
+struct SoftBodyId {
+  std::uint32_t index = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(SoftBodyId, SoftBodyId) = default;
+};
+
+/// A handle to an emitter of effect particles (World::CreateEmitter).
+struct EmitterId {
+  std::uint32_t index = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(EmitterId, EmitterId) = default;
+};
+
+}  // namespace engine

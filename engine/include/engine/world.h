@@ -16,6 +16,7 @@
 #include "engine/ids.h"
 #include "engine/joint.h"
 #include "engine/math.h"
+#include "engine/particles.h"
 #include "engine/queries.h"
 #include "engine/shape.h"
 #include "engine/snapshot.h"
@@ -108,6 +109,68 @@ class World {
   /// Sets a motor's speed (rad/s or m/s; the joint must have a motor); wakes its bodies.
   void SetMotorSpeed(JointId id, double speed);
 
+  // Soft bodies, fluid and effects (engine/particles.h, docs/soft-bodies.md, docs/fluids.md):
+  // stepped after the rigid bodies each step, soft bodies and fluid pushing the bodies they
+  // touch as much as those push them.
+
+  /// Preconditions: a circle or box of positive finite size, spacing > 0 (a circle gets at
+  /// least 6 rim particles, a box at least one cell each way, up to 100 000 particles), finite
+  /// placement, density > 0, compliances, damping and friction ≥ 0, pressure > 0, `attach_to`
+  /// a live body. Takes the slot of the last
+  /// destroyed soft body, if any.
+  SoftBodyId CreateSoftBody(const SoftBodyDef& def);
+  /// Removes the soft body and its particles; its id goes stale.
+  void DestroySoftBody(SoftBodyId id);
+  bool IsValid(SoftBodyId id) const;
+  /// The live soft bodies, in slot order.
+  std::span<const SoftBodyId> SoftBodyIds() const;
+  const SoftBodyDef& GetSoftBodyDef(SoftBodyId id) const;
+  /// The soft body's particles: where they are and how fast they go. A box's come row by row
+  /// from its lower left corner (in its own frame), a circle's anticlockwise round its rim.
+  std::span<const Vec2> SoftBodyPositions(SoftBodyId id) const;
+  std::span<const Vec2> SoftBodyVelocities(SoftBodyId id) const;
+  /// Its rim, as indices into its particles, anticlockwise: the outline to draw.
+  std::span<const std::uint32_t> SoftBodyOutline(SoftBodyId id) const;
+  /// kg: each of its particles' mass (all equal).
+  double SoftBodyParticleMass(SoftBodyId id) const;
+  /// m: each particle's radius (half the spacing the lattice or rim came out with).
+  double SoftBodyParticleRadius(SoftBodyId id) const;
+  /// Changes particle `particle`'s velocity by impulse / mass, at once.
+  void ApplySoftBodyImpulse(SoftBodyId id, std::uint32_t particle, Vec2 impulse);
+
+  /// Adds a block of fluid; returns how many particles it made. Preconditions: a region with
+  /// area and finite corners, spacing > 0 (the same as earlier blocks'), density > 0,
+  /// viscosity in [0, 1], vorticity and friction ≥ 0, a finite velocity.
+  std::size_t AddFluid(const FluidDef& def);
+  /// The fluid's particles, block by block in the order they were added, each block row by row
+  /// from its lower left corner.
+  std::span<const Vec2> FluidPositions() const;
+  std::span<const Vec2> FluidVelocities() const;
+  /// kg/m²: each fluid particle's density as the last step's kernel sum measured it.
+  std::span<const double> FluidDensities() const;
+  /// kg/m²: each particle's rest density (its block's FluidDef::density).
+  std::span<const double> FluidRestDensities() const;
+  /// kg: each fluid particle's mass.
+  std::span<const double> FluidMasses() const;
+  /// m: the spacing every fluid block shares (0 before the first).
+  double FluidSpacing() const;
+  void ApplyFluidImpulse(std::uint32_t particle, Vec2 impulse);
+
+  /// Preconditions: finite numbers; spread, speeds, lifetimes, sizes, drag, rate, restitution
+  /// and friction ≥ 0 (mean lifetime > 0, spreads no larger than their means), colours in
+  /// [0, 1]; `body` a live body.
+  EmitterId CreateEmitter(const EmitterDef& def);
+  /// Removes the emitter; its particles live out their lives.
+  void DestroyEmitter(EmitterId id);
+  bool IsValid(EmitterId id) const;
+  std::span<const EmitterId> EmitterIds() const;
+  const EmitterDef& GetEmitterDef(EmitterId id) const;
+  void SetEmitterPosition(EmitterId id, Vec2 position);
+  /// Particles per second; 0 stops it.
+  void SetEmitterRate(EmitterId id, double rate);
+  /// The live effect particles, oldest first.
+  std::span<const EffectParticle> Effects() const;
+
   /// The live bodies, in slot order: the order bodies are stepped, dumped and hashed in.
   std::span<const BodyId> BodyIds() const;
   std::size_t BodyCount() const;
@@ -173,7 +236,9 @@ class World {
   void Draw(DebugDraw& draw, const DrawOptions& options = {}) const;
 
   /// FNV-1a 64 over the little-endian IEEE-754 bytes of x, y, vx, vy, angle, ω of every body,
-  /// (x, y) its Origin.
+  /// (x, y) its Origin; then, in a world with particles, x, y, vx, vy of every soft body's
+  /// particles (soft bodies in slot order), of every effect particle (oldest first) and of every
+  /// fluid particle (in FluidPositions order). A world without particles hashes its bodies only.
   std::uint64_t StateHash() const;
 
   /// The whole state as bytes: every body (destroyed slots and generations included), the

@@ -49,6 +49,14 @@ struct SubstepFeatures {
   bool colour_order = true;       ///< where nothing can turn, contacts visited by colour
 };
 
+/// How the particles of soft bodies and fluid are stepped: after the rigid bodies, in substeps
+/// of at most `substep` seconds (Macklin et al. 2019, "Small steps in physics simulation"), so a
+/// soft body's stiffness and a fluid's pressure come out the same whatever the world's dt.
+struct ParticleSettings {
+  double substep = 1.0 / 240.0;  ///< s: the longest substep; a step takes ceil(dt / substep)
+  int iterations = 1;            ///< constraint passes per substep (more: stiffer sooner, no change at rest)
+};
+
 struct WorldDef {
   Vec2 gravity{0.0, -9.8};              ///< m/s²
   double fluid_density = 0.0;           ///< kg/m³ of the air or water around; 0: vacuum, no drag
@@ -80,6 +88,7 @@ struct WorldDef {
   /// Contact begin and end events after each step (World::Events); false: none, at no cost.
   bool contact_events = true;
   double hit_speed = 1.0;               ///< m/s: a contact that begins this fast is also a hit
+  ParticleSettings particles;           ///< soft bodies and fluid (engine/particles.h)
 };
 
 }  // namespace engine

@@ -1,0 +1,82 @@
+// The particle grid: a sort by cell, then runs of cells looked up by binary search.
+#include "particles/particle_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace engine::detail {
+
+std::int32_t ParticleGrid::Cell(double coordinate) const {
+  // Clamped so a far-flung particle (or a huge box) cannot overflow the cell index.
+  const double c = std::floor(coordinate / cell_);
+  constexpr double kLimit = 1.0e9;
+  return static_cast<std::int32_t>(std::clamp(c, -kLimit, kLimit));
+}
+
+void ParticleGrid::Build(std::span<const Vec2> positions, double cell) {
+  cell_ = cell;
+  scratch_.resize(positions.size());
+  for (std::uint32_t i = 0; i < positions.size(); ++i) {
+    scratch_[i] = {Key(Cell(positions[i].x), Cell(positions[i].y)), i};
+  }
+  std::sort(scratch_.begin(), scratch_.end());
+  order_.resize(positions.size());
+  cell_keys_.clear();
+  cell_starts_.clear();
+  for (std::uint32_t k = 0; k < scratch_.size(); ++k) {
+    if (cell_keys_.empty() || cell_keys_.back() != scratch_[k].first) {
+      cell_keys_.push_back(scratch_[k].first);
+      cell_starts_.push_back(k);
+    }
+    order_[k] = scratch_[k].second;
+  }
+  cell_starts_.push_back(static_cast<std::uint32_t>(order_.size()));
+}
+
+std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::int32_t first,
+                                                         std::int32_t last) const {
+  const auto lo = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), Key(first, row));
+  const auto hi = std::upper_bound(lo, cell_keys_.end(), Key(last, row));
+  return {static_cast<std::size_t>(lo - cell_keys_.begin()), static_cast<std::size_t>(hi - cell_keys_.begin())};
+}
+
+void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius,
+                                  std::vector<std::uint32_t>* offsets,
+                                  std::vector<std::uint32_t>* neighbours) const {
+  const std::size_t n = positions.size();
+  const double r2 = radius * radius;
+  // Per cell, its particles against those of the 3×3 cells around it; gathered per particle
+  // then laid out in particle order.
+  std::vector<std::uint32_t>& counts = counts_;
+  counts.assign(n + 1, 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_;
+  pairs.clear();
+  for (std::size_t c = 0; c < cell_keys_.size(); ++c) {
+    const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
+    const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
+    for (std::int32_t dr = -1; dr <= 1; ++dr) {
+      const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
+      for (std::uint32_t a = cell_starts_[c]; a < cell_starts_[c + 1]; ++a) {
+        const std::uint32_t i = order_[a];
+        for (std::uint32_t b = cell_starts_[first]; b < cell_starts_[last]; ++b) {
+          const std::uint32_t j = order_[b];
+          if (j == i || LengthSquared(positions[j] - positions[i]) > r2) continue;
+          pairs.emplace_back(i, j);
+          ++counts[i];
+        }
+      }
+    }
+  }
+  offsets->assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
+  neighbours->resize(pairs.size());
+  std::vector<std::uint32_t> fill(offsets->begin(), offsets->end() - 1);
+  for (const auto& [i, j] : pairs) (*neighbours)[fill[i]++] = j;
+  // Within a particle's list, index order (the cells gave them in cell order).
+  for (std::size_t i = 0; i < n; ++i) {
+    std::sort(neighbours->begin() + (*offsets)[i], neighbours->begin() + (*offsets)[i + 1]);
+  }
+}
+
+}  // namespace engine::detail

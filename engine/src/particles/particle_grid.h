@@ -1,0 +1,60 @@
+// A uniform grid over particles, rebuilt each step: the particles sorted by cell, so the
+// neighbours within one cell size of a particle, and the particles inside a box, are found by
+// looking at a few runs of the sorted list. Deterministic: cells in (row, column) order,
+// particles in index order within a cell. Internal.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/math.h"
+
+namespace engine::detail {
+
+class ParticleGrid {
+ public:
+  /// Sorts `positions` into cells `cell` wide (> 0).
+  void Build(std::span<const Vec2> positions, double cell);
+
+  /// For each particle, the others within `radius` (≤ the cell size) of it, in index order:
+  /// particle i's are neighbours[offsets[i] .. offsets[i + 1]).
+  void FindNeighbours(std::span<const Vec2> positions, double radius, std::vector<std::uint32_t>* offsets,
+                      std::vector<std::uint32_t>* neighbours) const;
+
+  /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
+  template <typename Visit>
+  void ForEachInBox(const AABB& box, Visit&& visit) const;
+
+ private:
+  static std::uint64_t Key(std::int32_t column, std::int32_t row) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(row) ^ 0x80000000u) << 32) |
+           (static_cast<std::uint32_t>(column) ^ 0x80000000u);
+  }
+  std::int32_t Cell(double coordinate) const;
+  /// The cells with particles in [first, last] columns of `row`: indices into cells_.
+  std::pair<std::size_t, std::size_t> RowRun(std::int32_t row, std::int32_t first, std::int32_t last) const;
+
+  double cell_ = 1.0;
+  std::vector<std::uint64_t> cell_keys_;    ///< the occupied cells, sorted
+  std::vector<std::uint32_t> cell_starts_;  ///< into order_, one more than cell_keys_
+  std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
+  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  ///< FindNeighbours' scratch
+  mutable std::vector<std::uint32_t> counts_;
+};
+
+template <typename Visit>
+void ParticleGrid::ForEachInBox(const AABB& box, Visit&& visit) const {
+  if (cell_keys_.empty()) return;
+  const std::int32_t c0 = Cell(box.lower.x), c1 = Cell(box.upper.x);
+  const std::int32_t r0 = Cell(box.lower.y), r1 = Cell(box.upper.y);
+  for (std::int32_t row = r0; row <= r1; ++row) {
+    const auto [first, last] = RowRun(row, c0, c1);
+    for (std::size_t c = first; c < last; ++c) {
+      for (std::uint32_t k = cell_starts_[c]; k < cell_starts_[c + 1]; ++k) visit(order_[k]);
+    }
+  }
+}
+
+}  // namespace engine::detail

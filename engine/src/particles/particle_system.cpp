@@ -1,0 +1,485 @@
+// The particles' step (docs/soft-bodies.md, docs/fluids.md). Each substep of h (Macklin et al.
+// 2019, "Small steps in physics simulation"): predict under gravity; one or more passes of the
+// soft bodies' XPBD constraints, the fluid's density constraints (Macklin and Müller 2013,
+// "Position based fluids"), contacts between particles of different bodies, attachments and
+// contacts with the rigid bodies; then velocities from the positions moved. The rigid bodies
+// have already stepped: a particle pushing one changes its velocity at once and moves it by
+// its share of the correction, as XPBD moves both sides of a constraint.
+#include "particles/particle_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "candidate_pairs.h"
+#include "geometry/transform.h"
+#include "particles/sph_kernels.h"
+
+namespace engine::detail {
+
+namespace {
+
+/// The fluid kernel reaches this many spacings: about 20 neighbours on a square lattice.
+constexpr double kKernelSpacings = 2.5;
+/// PBF's artificial pressure (Macklin and Müller 2013, §4: s_corr = −k·(W(r)/W(Δq))⁴, Δq =
+/// 0.2 h): `kClumpingStrength` is k as a share of a unit density error.
+constexpr double kClumpingStrength = 0.001;
+constexpr double kClumpingDistance = 0.2;
+/// The PBF denominator's relaxation (the paper's ε), as a share of a lattice particle's.
+constexpr double kRelaxation = 0.01;
+
+double KernelRadius(double spacing) { return kKernelSpacings * spacing; }
+
+}  // namespace
+
+SoftBodyId ParticleSystem::CreateSoftBody(const SoftBodyDef& def, const Bodies& bodies) {
+  SoftBody body = MakeSoftBody(def);
+  std::uint32_t slot;
+  if (!soft_free_.empty()) {
+    slot = soft_free_.back();
+    soft_free_.pop_back();
+  } else {
+    slot = static_cast<std::uint32_t>(soft_.size());
+    soft_.emplace_back();
+    soft_generations_.push_back(0);
+    soft_alive_.push_back(0);
+  }
+  // Its particles go after the other soft bodies', before the fluid's.
+  body.first = fluid_first_;
+  InsertParticles(fluid_first_, body.rest_positions, def.velocity, 1.0 / body.particle_mass, body.radius, slot);
+  fluid_first_ += body.count;
+  if (def.attach_to) {
+    const BodyIndex b = def.attach_to->index;
+    std::vector<BodyPlane> planes;
+    const geometry::Transform frame{bodies.states[b].position, MakeRot(bodies.states[b].angle)};
+    for (std::uint32_t k = 0; k < body.count; ++k) {
+      const Vec2 p = body.rest_positions[k];
+      planes.clear();
+      AppendBodyPlanes(bodies, b, p, 0.0, 0.0, &planes);
+      const bool inside = std::any_of(planes.begin(), planes.end(),
+                                      [&](const BodyPlane& plane) { return Dot(plane.normal, p - plane.surface) <= 0.0; });
+      if (inside) body.attachments.push_back({k, b, geometry::InvTransformPoint(frame, p)});
+    }
+  }
+  soft_[slot] = std::move(body);
+  soft_alive_[slot] = 1;
+  soft_live_ids_.clear();
+  for (std::uint32_t s = 0; s < soft_.size(); ++s) {
+    if (soft_alive_[s]) soft_live_ids_.push_back({s, soft_generations_[s]});
+  }
+  ever_used_ = true;
+  return {slot, soft_generations_[slot]};
+}
+
+void ParticleSystem::InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity,
+                                     double inv_mass, double radius, std::uint32_t group) {
+  const std::size_t n = positions.size();
+  x_.insert(x_.begin() + at, positions.begin(), positions.end());
+  v_.insert(v_.begin() + at, n, velocity);
+  inv_mass_.insert(inv_mass_.begin() + at, n, inv_mass);
+  radius_.insert(radius_.begin() + at, n, radius);
+  group_.insert(group_.begin() + at, n, group);
+  largest_radius_ = std::max(largest_radius_, radius);
+}
+
+void ParticleSystem::DestroySoftBody(std::uint32_t slot) {
+  SoftBody& gone = soft_[slot];
+  const auto begin = static_cast<std::ptrdiff_t>(gone.first), end = begin + gone.count;
+  x_.erase(x_.begin() + begin, x_.begin() + end);
+  v_.erase(v_.begin() + begin, v_.begin() + end);
+  inv_mass_.erase(inv_mass_.begin() + begin, inv_mass_.begin() + end);
+  radius_.erase(radius_.begin() + begin, radius_.begin() + end);
+  group_.erase(group_.begin() + begin, group_.begin() + end);
+  for (SoftBody& other : soft_) {
+    if (other.count > 0 && other.first > gone.first) other.first -= gone.count;
+  }
+  fluid_first_ -= gone.count;
+  gone = SoftBody{};
+  soft_alive_[slot] = 0;
+  ++soft_generations_[slot];
+  soft_free_.push_back(slot);
+  std::erase(soft_live_ids_, SoftBodyId{slot, soft_generations_[slot] - 1});
+}
+
+void ParticleSystem::DetachFrom(BodyIndex body) {
+  for (SoftBody& soft : soft_) {
+    std::erase_if(soft.attachments, [body](const SoftAttachment& a) { return a.body == body; });
+  }
+}
+
+std::size_t ParticleSystem::AddFluid(const FluidDef& def) {
+  if (fluid_.spacing == 0.0) fluid_.spacing = def.spacing;
+  const double s = fluid_.spacing;
+  const SphKernels kernels(KernelRadius(s));
+  // The mass that makes a particle inside a perfect square lattice of this spacing sit at the
+  // rest density, and that particle's PBF denominator (for the relaxation's scale).
+  const int reach = static_cast<int>(std::ceil(kKernelSpacings));
+  double lattice_sum = 0.0, gradient_sum = 0.0;
+  for (int j = -reach; j <= reach; ++j) {
+    for (int i = -reach; i <= reach; ++i) {
+      const Vec2 d{i * s, j * s};
+      lattice_sum += kernels.Poly6(LengthSquared(d));
+      gradient_sum += LengthSquared(kernels.SpikyGradient(d, Length(d)));
+    }
+  }
+  const double mass = def.density / lattice_sum;
+  if (density_denominator_ == 0.0) density_denominator_ = mass / (def.density * def.density) * gradient_sum;
+  std::vector<Vec2> lattice;
+  for (double y = def.region.lower.y + 0.5 * s; y <= def.region.upper.y - 0.5 * s + 1e-9 * s; y += s) {
+    for (double x = def.region.lower.x + 0.5 * s; x <= def.region.upper.x - 0.5 * s + 1e-9 * s; x += s) {
+      lattice.push_back({x, y});
+    }
+  }
+  InsertParticles(static_cast<std::uint32_t>(x_.size()), lattice, def.velocity, 1.0 / mass, 0.5 * s, kFluidGroup);
+  const std::size_t n = lattice.size();
+  fluid_.rest_density.insert(fluid_.rest_density.end(), n, def.density);
+  fluid_.mass.insert(fluid_.mass.end(), n, mass);
+  fluid_.viscosity.insert(fluid_.viscosity.end(), n, def.viscosity);
+  fluid_.vorticity.insert(fluid_.vorticity.end(), n, def.vorticity);
+  fluid_.friction.insert(fluid_.friction.end(), n, def.friction);
+  fluid_.density.insert(fluid_.density.end(), n, def.density);
+  ever_used_ = true;
+  return n;
+}
+
+void ParticleSystem::MarkStepStart(const Bodies& bodies) {
+  start_centers_.resize(bodies.states.size());
+  start_angles_.resize(bodies.states.size());
+  for (std::size_t b = 0; b < bodies.states.size(); ++b) {
+    start_centers_[b] = bodies.states[b].position;
+    start_angles_[b] = bodies.states[b].angle;
+  }
+}
+
+void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake,
+                          std::vector<BodyIndex>* to_wake) {
+  if (x_.empty()) return;
+  const int substeps = std::max(1, static_cast<int>(std::ceil(def.dt / def.particles.substep - 1e-9)));
+  const double h = def.dt / substeps;
+  FindContacts(def, bodies);
+  pushes_.resize(bodies.states.size());
+  touched_.clear();
+  const auto touch = [&](BodyIndex b) {
+    BodyPush& p = pushes_[b];
+    if (p.touched) return;
+    p = BodyPush{};
+    p.touched = true;
+    p.end_center = bodies.states[b].position;
+    if (awake[b] && !HasInfiniteMass(bodies.infos[b])) {
+      p.inv_mass = bodies.infos[b].inv_mass;
+      p.inv_inertia = bodies.infos[b].inv_inertia;
+    }
+    touched_.push_back(b);
+  };
+  for (const PlaneContact& c : planes_) touch(c.body);
+  for (const SoftBodyId id : soft_live_ids_) {
+    for (const SoftAttachment& a : soft_[id.index].attachments) touch(a.body);
+  }
+  std::sort(touched_.begin(), touched_.end());
+  // A body new since the step began starts where it is.
+  const auto start_center = [&](BodyIndex b) { return b < start_centers_.size() ? start_centers_[b] : bodies.states[b].position; };
+  const auto start_angle = [&](BodyIndex b) { return b < start_angles_.size() ? start_angles_[b] : bodies.states[b].angle; };
+  for (const BodyIndex b : touched_) {
+    BodyPush& p = pushes_[b];
+    p.center = start_center(b);
+    p.rotation = MakeRot(start_angle(b));
+  }
+  previous_.resize(x_.size());
+  for (int step = 0; step < substeps; ++step) {
+    // The bodies' poses through the step: from the start to the end, and pushed.
+    const double t = static_cast<double>(step + 1) / substeps;
+    for (const BodyIndex b : touched_) {
+      BodyPush& p = pushes_[b];
+      p.last_center = p.center;
+      p.last_rotation = p.rotation;
+      const Vec2 c0 = start_center(b);
+      const double a0 = start_angle(b);
+      p.center = c0 + t * (p.end_center - c0) + p.shift;
+      const double angle = a0 + t * (bodies.states[b].angle - a0) + p.turn;
+      p.rotation = angle == 0.0 ? Rot{} : MakeRot(angle);
+    }
+    for (std::size_t i = 0; i < x_.size(); ++i) {
+      previous_[i] = x_[i];
+      if (inv_mass_[i] == 0.0) continue;
+      v_[i] += h * def.gravity;
+      x_[i] += h * v_[i];
+    }
+    for (int pass = 0; pass < def.particles.iterations; ++pass) {
+      for (const SoftBodyId id : soft_live_ids_) {
+        const SoftBody& soft = soft_[id.index];
+        lambda_.assign(soft.edges.size() + soft.areas.size(), 0.0);
+        SolveSoftBody(soft, h, x_, inv_mass_, lambda_, soft_scratch_);
+      }
+      if (FluidCount() > 0) SolveFluid(h);
+      SolveParticleContacts();
+      SolveAttachments(h, pushes_);
+      SolveBodyContacts(h, pushes_);
+    }
+    for (std::size_t i = 0; i < x_.size(); ++i) v_[i] = (x_[i] - previous_[i]) / h;
+    for (const SoftBodyId id : soft_live_ids_) DampSoftBody(soft_[id.index], h, x_, v_, inv_mass_);
+  }
+  if (FluidCount() > 0) {
+    ApplyViscosity(def.dt);
+    ApplyVorticity(def.dt);
+  }
+  // The bodies keep what the particles pushed them by; sleeping ones pushed hard enough wake.
+  for (const BodyIndex b : touched_) {
+    BodyPush& p = pushes_[b];
+    p.touched = false;
+    if (p.inv_mass > 0.0 || p.inv_inertia > 0.0) {
+      BodyState& state = bodies.states[b];
+      state.position += p.shift;
+      state.angle += p.turn;
+      state.velocity += p.velocity_change;
+      state.angular_velocity += p.angular_velocity_change;
+    } else if (!awake[b] && !HasInfiniteMass(bodies.infos[b]) &&
+               p.sleeping_impulse * bodies.infos[b].inv_mass > def.sleep_speed) {
+      to_wake->push_back(b);
+    }
+  }
+}
+
+void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
+  // How far a particle can go this step, bounding the pairs and planes found once per step.
+  double fastest = 0.0;
+  for (const Vec2& v : v_) fastest = std::max(fastest, LengthSquared(v));
+  const double travel = (std::sqrt(fastest) + Length(def.gravity) * def.dt) * def.dt;
+  const double kernel = FluidCount() > 0 ? KernelRadius(fluid_.spacing) : 0.0;
+  const double reach = std::max(kernel, 2.0 * largest_radius_ + 2.0 * travel);
+  grid_.Build(x_, reach);
+  grid_.FindNeighbours(x_, reach, &neighbour_offsets_, &neighbours_);
+  planes_.clear();
+  std::vector<BodyPlane> found;
+  for (const BodyId id : bodies.live_ids) {
+    const BodyIndex b = id.index;
+    if (!bodies.enabled[b] || bodies.infos[b].is_sensor) continue;
+    // The body's reach over the step: where it ends, grown by how far it came.
+    const Vec2 moved = b < start_centers_.size() ? bodies.states[b].position - start_centers_[b] : Vec2{};
+    const double margin = largest_radius_ + travel + Length(moved);
+    AABB box = BoundsOf(bodies, b);
+    box.lower -= Vec2{margin, margin};
+    box.upper += Vec2{margin, margin};
+    const geometry::Transform frame{bodies.states[b].position, MakeRot(bodies.states[b].angle)};
+    grid_.ForEachInBox(box, [&](std::uint32_t i) {
+      found.clear();
+      AppendBodyPlanes(bodies, b, x_[i], radius_[i], travel + Length(moved), &found);
+      for (const BodyPlane& plane : found) {
+        const double own = group_[i] == kFluidGroup ? fluid_.friction[i - fluid_first_] : soft_[group_[i]].def.friction;
+        planes_.push_back({i, b, InvRotate(frame.rotation, plane.normal),
+                           geometry::InvTransformPoint(frame, plane.surface), std::sqrt(plane.friction * own)});
+      }
+    });
+  }
+}
+
+void ParticleSystem::SolveFluid(double h) {
+  (void)h;
+  const SphKernels k(KernelRadius(fluid_.spacing));
+  const std::uint32_t first = fluid_first_, n = FluidCount();
+  const double epsilon = kRelaxation * density_denominator_;
+  const double clumping_w = k.Poly6(std::pow(kClumpingDistance * k.h, 2));
+  lambda_.resize(n);
+  for (std::uint32_t f = 0; f < n; ++f) {
+    const std::uint32_t i = first + f;
+    const double rest = fluid_.rest_density[f];
+    double density = fluid_.mass[f] * k.Poly6(0.0);
+    Vec2 gradient_i;
+    double denominator = 0.0;
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) continue;  // soft particles meet the fluid by contact, not pressure
+      const Vec2 d = x_[i] - x_[j];
+      const double r2 = LengthSquared(d);
+      if (r2 >= k.h2) continue;
+      const double mj = fluid_.mass[j - first];
+      density += mj * k.Poly6(r2);
+      const Vec2 g = (mj / rest) * k.SpikyGradient(d, std::sqrt(r2));
+      gradient_i += g;
+      denominator += inv_mass_[j] * LengthSquared(g);
+    }
+    denominator += inv_mass_[i] * LengthSquared(gradient_i);
+    fluid_.density[f] = density;
+    // Only compression is pushed apart: a free surface, below the rest density, is left alone
+    // rather than pulled together.
+    const double c = std::max(0.0, density / rest - 1.0);
+    lambda_[f] = -c / (denominator + epsilon);
+  }
+  delta_.assign(n, Vec2{});
+  for (std::uint32_t f = 0; f < n; ++f) {
+    const std::uint32_t i = first + f;
+    const double rest_i = fluid_.rest_density[f], mass_i = fluid_.mass[f];
+    Vec2 step;
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) continue;
+      const Vec2 d = x_[i] - x_[j];
+      const double r2 = LengthSquared(d);
+      if (r2 >= k.h2) continue;
+      const std::uint32_t g = j - first;
+      const double ratio = k.Poly6(r2) / clumping_w;
+      const double clumping = -kClumpingStrength / density_denominator_ * ratio * ratio * ratio * ratio;
+      const double weight = (lambda_[f] + clumping) * fluid_.mass[g] / rest_i +
+                            lambda_[g] * mass_i / fluid_.rest_density[g];
+      step += weight * k.SpikyGradient(d, std::sqrt(r2));
+    }
+    delta_[f] = inv_mass_[i] * step;
+  }
+  for (std::uint32_t f = 0; f < n; ++f) x_[first + f] += delta_[f];
+}
+
+void ParticleSystem::SolveParticleContacts() {
+  // Discs of different bodies (two soft bodies, or a soft body and the fluid) keep apart.
+  for (std::uint32_t i = 0; i < fluid_first_; ++i) {
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if ((j < fluid_first_ && j <= i) || group_[j] == group_[i]) continue;
+      const Vec2 d = x_[j] - x_[i];
+      const double reach = radius_[i] + radius_[j];
+      const double r2 = LengthSquared(d);
+      if (r2 >= reach * reach || r2 == 0.0) continue;
+      const double w = inv_mass_[i] + inv_mass_[j];
+      if (w == 0.0) continue;
+      const double r = std::sqrt(r2);
+      const Vec2 n = d / r;
+      const double push = (reach - r) / w;
+      x_[i] -= (inv_mass_[i] * push) * n;
+      x_[j] += (inv_mass_[j] * push) * n;
+    }
+  }
+}
+
+void ParticleSystem::PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h) {
+  // impulse_h is the impulse times h (XPBD's Δλ): the body moves by its share of the
+  // correction now, and keeps the impulse's velocity.
+  const double turn = body.inv_inertia * Cross(arm, direction) * impulse_h;
+  body.shift -= (body.inv_mass * impulse_h) * direction;
+  body.turn -= turn;
+  body.velocity_change -= (body.inv_mass * impulse_h / h) * direction;
+  body.angular_velocity_change -= turn / h;
+  body.center -= (body.inv_mass * impulse_h) * direction;
+  if (turn != 0.0) body.rotation = geometry::MulRot(MakeRot(-turn), body.rotation);
+  body.sleeping_impulse += impulse_h / h;
+}
+
+void ParticleSystem::SolveBodyContacts(double h, std::vector<BodyPush>& pushes) {
+  for (const PlaneContact& c : planes_) {
+    BodyPush& body = pushes[c.body];
+    const Vec2 n = Rotate(body.rotation, c.normal);
+    const Vec2 surface_arm = Rotate(body.rotation, c.surface);
+    const std::uint32_t i = c.particle;
+    const double gap = Dot(n, x_[i] - (body.center + surface_arm)) - radius_[i];
+    if (gap >= 0.0) continue;
+    const double wp = inv_mass_[i];
+    const double rn = Cross(surface_arm, n);
+    const double w = wp + body.inv_mass + body.inv_inertia * rn * rn;
+    if (w == 0.0) continue;
+    const double normal = -gap / w;
+    x_[i] += (wp * normal) * n;
+    PushBody(body, surface_arm, n, normal, h);
+    if (c.friction == 0.0) continue;
+    // Friction: the particle's slide over the surface this substep (the surface moving with
+    // the body) is taken away up to μ times the normal correction (Macklin et al. 2014,
+    // "Unified particle physics for real-time applications", §6.1).
+    const Vec2 surface_now = body.center + Rotate(body.rotation, c.surface);
+    const Vec2 surface_before = body.last_center + Rotate(body.last_rotation, c.surface);
+    const Vec2 slide = (x_[i] - previous_[i]) - (surface_now - surface_before);
+    const Vec2 tangent_slide = slide - Dot(slide, n) * n;
+    const double length = Length(tangent_slide);
+    if (length == 0.0) continue;
+    const Vec2 t = tangent_slide / length;
+    const double rt = Cross(surface_arm, t);
+    const double wt = wp + body.inv_mass + body.inv_inertia * rt * rt;
+    const double tangential = std::min(length, c.friction * (-gap)) / wt;
+    x_[i] -= (wp * tangential) * t;
+    PushBody(body, surface_arm, -t, tangential, h);
+  }
+}
+
+void ParticleSystem::SolveAttachments(double h, std::vector<BodyPush>& pushes) {
+  for (const SoftBodyId id : soft_live_ids_) {
+    const SoftBody& soft = soft_[id.index];
+    for (const SoftAttachment& a : soft.attachments) {
+      BodyPush& body = pushes[a.body];
+      const std::uint32_t i = soft.first + a.particle;
+      const Vec2 arm = Rotate(body.rotation, a.local);
+      const Vec2 error = x_[i] - (body.center + arm);
+      // The point-to-point row pair: K = (wp + wb)·1 + I⁻¹·perp(r)·perp(r)ᵀ, solved exactly.
+      const double wp = inv_mass_[i], wb = body.inv_mass, wi = body.inv_inertia;
+      const double k11 = wp + wb + wi * arm.y * arm.y, k22 = wp + wb + wi * arm.x * arm.x;
+      const double k12 = -wi * arm.x * arm.y;
+      const double det = k11 * k22 - k12 * k12;
+      if (det <= 0.0) continue;
+      // The correction impulse (× h) that moves the particle towards the body point.
+      const Vec2 impulse{-(k22 * error.x - k12 * error.y) / det, -(k11 * error.y - k12 * error.x) / det};
+      x_[i] += wp * impulse;
+      const double size = Length(impulse);
+      if (size > 0.0) PushBody(body, arm, impulse / size, size, h);
+    }
+  }
+}
+
+void ParticleSystem::ApplyViscosity(double dt) {
+  // XSPH (Schechter and Bridson 2012; PBF §5): each velocity moves towards its neighbours' kernel
+  // mean, by the block's share per 1/60 s.
+  const SphKernels k(KernelRadius(fluid_.spacing));
+  const std::uint32_t first = fluid_first_, n = FluidCount();
+  delta_.assign(n, Vec2{});
+  for (std::uint32_t f = 0; f < n; ++f) {
+    if (fluid_.viscosity[f] == 0.0) continue;
+    const std::uint32_t i = first + f;
+    Vec2 pull;
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) continue;
+      const double r2 = LengthSquared(x_[i] - x_[j]);
+      if (r2 >= k.h2) continue;
+      const std::uint32_t g = j - first;
+      pull += (fluid_.mass[g] / fluid_.density[g] * k.Poly6(r2)) * (v_[j] - v_[i]);
+    }
+    const double share = 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
+    delta_[f] = share * pull;
+  }
+  for (std::uint32_t f = 0; f < n; ++f) v_[first + f] += delta_[f];
+}
+
+void ParticleSystem::ApplyVorticity(double dt) {
+  // Vorticity confinement (Fedkiw, Stam and Jensen 2001; PBF §6): the swirl viscosity and the
+  // solver damp is put back, pushing towards where the curl is larger.
+  const std::uint32_t first = fluid_first_, n = FluidCount();
+  bool any = false;
+  for (std::uint32_t f = 0; f < n && !any; ++f) any = fluid_.vorticity[f] > 0.0;
+  if (!any) return;
+  const SphKernels k(KernelRadius(fluid_.spacing));
+  omega_.assign(n, 0.0);
+  for (std::uint32_t f = 0; f < n; ++f) {
+    const std::uint32_t i = first + f;
+    double curl = 0.0;
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) continue;
+      const Vec2 d = x_[i] - x_[j];
+      const double r = Length(d);
+      const std::uint32_t g = j - first;
+      curl += fluid_.mass[g] / fluid_.density[g] * Cross(v_[j] - v_[i], k.SpikyGradient(d, r));
+    }
+    omega_[f] = curl;
+  }
+  for (std::uint32_t f = 0; f < n; ++f) {
+    if (fluid_.vorticity[f] == 0.0) continue;
+    const std::uint32_t i = first + f;
+    Vec2 towards;  // the gradient of |ω|
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) continue;
+      const Vec2 d = x_[i] - x_[j];
+      const std::uint32_t g = j - first;
+      towards += (fluid_.mass[g] / fluid_.density[g] * std::abs(omega_[g])) * k.SpikyGradient(d, Length(d));
+    }
+    const double length = Length(towards);
+    if (length == 0.0) continue;
+    const Vec2 nn = towards / length;
+    // N × ω for ω along z: (N.y·ω, −N.x·ω).
+    v_[i] += (dt * fluid_.vorticity[f] * omega_[f]) * Vec2{nn.y, -nn.x};
+  }
+}
+
+}  // namespace engine::detail

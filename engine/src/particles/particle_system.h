@@ -1,0 +1,139 @@
+// The particles of soft bodies and fluid, and their step: substeps of prediction, XPBD soft
+// constraints, PBF density constraints, particle contacts and contacts with the rigid bodies,
+// which are pushed back (two-way coupling). Runs after the rigid bodies' step. Internal.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bodies.h"
+#include "engine/ids.h"
+#include "engine/particles.h"
+#include "engine/world_def.h"
+#include "particles/body_contact.h"
+#include "particles/particle_grid.h"
+#include "particles/soft_bodies.h"
+
+namespace engine::detail {
+
+class ByteWriter;
+class ByteReader;
+
+/// The fluid's per-particle constants, in FluidPositions order.
+struct FluidParticles {
+  std::vector<double> rest_density;  ///< kg/m²
+  std::vector<double> mass;          ///< kg
+  std::vector<double> viscosity;
+  std::vector<double> vorticity;
+  std::vector<double> friction;
+  std::vector<double> density;       ///< kg/m², as last measured
+  double spacing = 0.0;              ///< shared by every block
+};
+
+class ParticleSystem {
+ public:
+  // Soft bodies, by slot.
+  SoftBodyId CreateSoftBody(const SoftBodyDef& def, const Bodies& bodies);
+  void DestroySoftBody(std::uint32_t slot);
+  bool IsLive(SoftBodyId id) const {
+    return id.index < soft_.size() && soft_alive_[id.index] && soft_generations_[id.index] == id.generation;
+  }
+  std::span<const SoftBodyId> SoftBodyIds() const { return soft_live_ids_; }
+  const SoftBody& Soft(std::uint32_t slot) const { return soft_[slot]; }
+  /// Removes the attachments to a body that goes (its particles come free).
+  void DetachFrom(BodyIndex body);
+
+  std::size_t AddFluid(const FluidDef& def);
+  const FluidParticles& Fluid() const { return fluid_; }
+  std::uint32_t FluidFirst() const { return fluid_first_; }
+  std::uint32_t FluidCount() const { return static_cast<std::uint32_t>(x_.size()) - fluid_first_; }
+
+  std::span<const Vec2> Positions() const { return x_; }
+  std::span<const Vec2> Velocities() const { return v_; }
+  void ApplyImpulse(std::uint32_t particle, Vec2 impulse) { v_[particle] += inv_mass_[particle] * impulse; }
+  bool Empty() const { return x_.empty(); }
+  /// Whether the world ever had a soft body or fluid (snapshots carry them from then on).
+  bool EverUsed() const { return ever_used_; }
+
+  /// Before the rigid bodies step: where they start, so the particles see them move through
+  /// the step rather than jump to where it ends.
+  void MarkStepStart(const Bodies& bodies);
+  /// One step of dt: the particles move, and push the bodies they touch (velocity, and the
+  /// position they were pushed by). Appends to `to_wake` the sleeping bodies pushed hard enough
+  /// to wake.
+  void Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake,
+            std::vector<BodyIndex>* to_wake);
+
+  void Save(ByteWriter& out) const;
+  bool Load(ByteReader& in, const Bodies& bodies);
+
+ private:
+  /// A rigid body as the particles see it during a step: moving from where it started to
+  /// where the rigid step left it, plus what the particles pushed it by.
+  struct BodyPush {
+    double inv_mass = 0.0;     ///< 0 for static, kinematic and sleeping bodies
+    double inv_inertia = 0.0;
+    Vec2 end_center;           ///< the centre of mass where the rigid step left it
+    Vec2 shift;                ///< how far the particles pushed it this step
+    double turn = 0.0;         ///< and turned it
+    Vec2 velocity_change;      ///< from the particles' impulses
+    double angular_velocity_change = 0.0;
+    double sleeping_impulse = 0.0;  ///< N·s pushed into a sleeping body, for waking it
+    // Its pose this substep and the last one.
+    Vec2 center, last_center;
+    Rot rotation, last_rotation;
+    bool touched = false;
+  };
+  /// A body face a particle may touch this step, in the body's centre-of-mass frame.
+  struct PlaneContact {
+    std::uint32_t particle;
+    BodyIndex body;
+    Vec2 normal;   ///< local
+    Vec2 surface;  ///< local
+    double friction;
+  };
+  void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
+                       double radius, std::uint32_t group);
+  void FindContacts(const WorldDef& def, const Bodies& bodies);
+  void SolveFluid(double h);
+  void SolveParticleContacts();
+  /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
+  static void PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h);
+  void SolveBodyContacts(double h, std::vector<BodyPush>& pushes);
+  void SolveAttachments(double h, std::vector<BodyPush>& pushes);
+  void ApplyViscosity(double dt);
+  void ApplyVorticity(double dt);
+
+  // Every particle of the soft bodies (first, body by body) and the fluid (after).
+  std::vector<Vec2> x_, v_, previous_;
+  std::vector<double> inv_mass_, radius_;
+  std::vector<std::uint32_t> group_;  ///< the soft body's slot, or kFluidGroup
+  double largest_radius_ = 0.0;
+
+  std::vector<SoftBody> soft_;
+  std::vector<std::uint32_t> soft_generations_;
+  std::vector<std::uint8_t> soft_alive_;
+  std::vector<std::uint32_t> soft_free_;
+  std::vector<SoftBodyId> soft_live_ids_;
+  std::uint32_t fluid_first_ = 0;
+  FluidParticles fluid_;
+  double density_denominator_ = 0.0;  ///< the PBF denominator of a particle inside a perfect lattice
+  bool ever_used_ = false;
+
+  // The step's scratch.
+  ParticleGrid grid_;
+  std::vector<std::uint32_t> neighbour_offsets_, neighbours_;
+  std::vector<PlaneContact> planes_;
+  std::vector<Vec2> start_centers_;
+  std::vector<double> start_angles_;
+  std::vector<BodyPush> pushes_;
+  std::vector<BodyIndex> touched_;
+  std::vector<double> omega_;
+  std::vector<double> lambda_;
+  std::vector<Vec2> delta_, soft_scratch_;
+};
+
+inline constexpr std::uint32_t kFluidGroup = 0xffffffffu;
+
+}  // namespace engine::detail

@@ -1,0 +1,193 @@
+// Soft bodies: a box as a lattice, a circle as a ring under pressure, solved by XPBD.
+#include "particles/soft_bodies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace engine::detail {
+
+namespace {
+
+// A box: (nx + 1) × (ny + 1) particles, inset by a particle radius so the lattice's discs fill
+// the box; rows from the lower left corner in the box's frame.
+void MakeLattice(const SoftBodyDef& def, SoftBody* body) {
+  const double s = def.spacing;
+  const Vec2 half = def.shape.half_extents;
+  const Rot turn = MakeRot(def.angle);
+  const double width = 2.0 * half.x - s, height = 2.0 * half.y - s;
+  const int nx = std::max(1, static_cast<int>(std::ceil(width / s - 1e-9)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(height / s - 1e-9)));
+  const double dx = width / nx, dy = height / ny;
+  body->radius = 0.5 * s;
+  const auto at = [nx](int i, int j) { return static_cast<std::uint32_t>(j * (nx + 1) + i); };
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const Vec2 local{-0.5 * width + i * dx, -0.5 * height + j * dy};
+      body->rest_positions.push_back(def.position + Rotate(turn, local));
+    }
+  }
+  const auto edge = [&](std::uint32_t a, std::uint32_t b, double compliance) {
+    const double rest = Length(body->rest_positions[b] - body->rest_positions[a]);
+    body->edges.push_back({a, b, rest, compliance * rest / s});  // a longer edge is softer, in proportion
+  };
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      if (i < nx) edge(at(i, j), at(i + 1, j), def.stretch_compliance);
+      if (j < ny) edge(at(i, j), at(i, j + 1), def.stretch_compliance);
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      edge(at(i, j), at(i + 1, j + 1), def.shear_compliance);
+      edge(at(i + 1, j), at(i, j + 1), def.shear_compliance);
+    }
+  }
+  const double cell_area = dx * dy;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const auto first = static_cast<std::uint32_t>(body->area_vertices.size());
+      for (const std::uint32_t v : {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}) {
+        body->area_vertices.push_back(v);
+      }
+      body->areas.push_back({first, 4, cell_area, cell_area, def.area_compliance / cell_area});
+    }
+  }
+  for (int i = 0; i < nx; ++i) body->outline.push_back(at(i, 0));
+  for (int j = 0; j < ny; ++j) body->outline.push_back(at(nx, j));
+  for (int i = nx; i > 0; --i) body->outline.push_back(at(i, ny));
+  for (int j = ny; j > 0; --j) body->outline.push_back(at(0, j));
+}
+
+double PolygonArea(std::span<const std::uint32_t> vertices, std::uint32_t offset, std::span<const Vec2> x) {
+  double twice = 0.0;
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const Vec2 a = x[offset + vertices[k]], b = x[offset + vertices[(k + 1) % vertices.size()]];
+    twice += Cross(a, b);
+  }
+  return 0.5 * twice;
+}
+
+// A circle: a ring of particles half a spacing in from the rim, anticlockwise, holding an area.
+void MakeRing(const SoftBodyDef& def, SoftBody* body) {
+  const double s = def.spacing;
+  const double ring = def.shape.radius - 0.5 * s;
+  const int n = std::max(6, static_cast<int>(std::ceil(2.0 * std::numbers::pi * ring / s - 1e-9)));
+  body->radius = 0.5 * s;
+  for (int k = 0; k < n; ++k) {
+    const double a = def.angle + 2.0 * std::numbers::pi * k / n;
+    body->rest_positions.push_back(def.position + ring * Vec2{std::cos(a), std::sin(a)});
+    body->outline.push_back(static_cast<std::uint32_t>(k));
+    body->area_vertices.push_back(static_cast<std::uint32_t>(k));
+  }
+  for (int k = 0; k < n; ++k) {
+    const auto a = static_cast<std::uint32_t>(k), b = static_cast<std::uint32_t>((k + 1) % n);
+    const double rest = Length(body->rest_positions[b] - body->rest_positions[a]);
+    body->edges.push_back({a, b, rest, def.stretch_compliance * rest / s});
+  }
+  const double area = PolygonArea(body->area_vertices, 0, body->rest_positions);
+  body->areas.push_back({0, static_cast<std::uint32_t>(n), area, def.pressure * area, def.area_compliance / area});
+}
+
+double AreaOfShape(const Shape& shape) {
+  return shape.type == ShapeType::kCircle ? std::numbers::pi * shape.radius * shape.radius
+                                          : 4.0 * shape.half_extents.x * shape.half_extents.y;
+}
+
+}  // namespace
+
+SoftBody MakeSoftBody(const SoftBodyDef& def) {
+  SoftBody body;
+  body.def = def;
+  if (def.shape.type == ShapeType::kCircle) {
+    MakeRing(def, &body);
+  } else {
+    MakeLattice(def, &body);
+  }
+  body.count = static_cast<std::uint32_t>(body.rest_positions.size());
+  body.particle_mass = def.density * AreaOfShape(def.shape) / body.count;
+  return body;
+}
+
+void SolveSoftBody(const SoftBody& body, double h, std::span<Vec2> x, std::span<const double> w,
+                   std::span<double> lambda, std::vector<Vec2>& scratch) {
+  const std::uint32_t o = body.first;
+  const double inv_h2 = 1.0 / (h * h);
+  std::size_t k = 0;
+  for (const SoftEdge& e : body.edges) {
+    double& l = lambda[k++];
+    Vec2& xa = x[o + e.a];
+    Vec2& xb = x[o + e.b];
+    const double wa = w[o + e.a], wb = w[o + e.b];
+    const Vec2 d = xb - xa;
+    const double length = Length(d);
+    if (length == 0.0 || wa + wb == 0.0) continue;
+    const Vec2 n = d / length;
+    const double alpha = e.compliance * inv_h2;
+    const double dl = (-(length - e.rest) - alpha * l) / (wa + wb + alpha);
+    l += dl;
+    xa -= (wa * dl) * n;
+    xb += (wb * dl) * n;
+  }
+  for (const SoftArea& a : body.areas) {
+    double& l = lambda[k++];
+    const std::span<const std::uint32_t> v(body.area_vertices.data() + a.first, a.count);
+    const double area = PolygonArea(v, o, x);
+    const double c = (area - a.target) / a.rest;
+    // dA/dx_i = ½ perp(x_{i+1} − x_{i−1}), with perp(v) = (v.y, −v.x) for an anticlockwise polygon.
+    double denominator = 0.0;
+    for (std::size_t i = 0; i < a.count; ++i) {
+      const Vec2 g = 0.5 / a.rest * (x[o + v[(i + 1) % a.count]] - x[o + v[(i + a.count - 1) % a.count]]);
+      denominator += w[o + v[i]] * LengthSquared(g);
+    }
+    const double alpha = a.compliance * inv_h2;
+    if (denominator + alpha == 0.0) continue;
+    const double dl = (-c - alpha * l) / (denominator + alpha);
+    l += dl;
+    // Gradients from the positions before this pass moved any vertex: the constraint's step.
+    std::vector<Vec2>& step = scratch;
+    step.resize(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) {
+      const Vec2 d = 0.5 / a.rest * (x[o + v[(i + 1) % a.count]] - x[o + v[(i + a.count - 1) % a.count]]);
+      step[i] = (w[o + v[i]] * dl) * Vec2{d.y, -d.x};
+    }
+    for (std::size_t i = 0; i < a.count; ++i) x[o + v[i]] += step[i];
+  }
+}
+
+void DampSoftBody(const SoftBody& body, double h, std::span<const Vec2> x, std::span<Vec2> v,
+                  std::span<const double> w) {
+  if (body.def.damping == 0.0) return;
+  const double share = std::min(1.0, body.def.damping * h);
+  const std::uint32_t o = body.first;
+  for (const SoftEdge& e : body.edges) {
+    const double wa = w[o + e.a], wb = w[o + e.b];
+    const Vec2 d = x[o + e.b] - x[o + e.a];
+    const double length = Length(d);
+    if (wa + wb == 0.0 || length == 0.0) continue;
+    const Vec2 n = d / length;
+    // Takes `share` of the stretching speed away, momentum kept: never adds energy.
+    const double impulse = share * Dot(v[o + e.b] - v[o + e.a], n) / (wa + wb);
+    v[o + e.a] += (wa * impulse) * n;
+    v[o + e.b] -= (wb * impulse) * n;
+  }
+}
+
+double SoftBodyElasticEnergy(const SoftBody& body, std::span<const Vec2> x) {
+  const std::uint32_t o = body.first;
+  double energy = 0.0;
+  for (const SoftEdge& e : body.edges) {
+    if (e.compliance == 0.0) continue;
+    const double c = Length(x[o + e.b] - x[o + e.a]) - e.rest;
+    energy += 0.5 * c * c / e.compliance;
+  }
+  for (const SoftArea& a : body.areas) {
+    if (a.compliance == 0.0) continue;
+    const std::span<const std::uint32_t> v(body.area_vertices.data() + a.first, a.count);
+    const double c = (PolygonArea(v, o, x) - a.target) / a.rest;
+    energy += 0.5 * c * c / a.compliance;
+  }
+  return energy;
+}
+
+}  // namespace engine::detail
