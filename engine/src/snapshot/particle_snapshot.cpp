@@ -2,6 +2,7 @@
 // definition (its constraints are rebuilt from it, as made) and attachments, the fluid's
 // constants. The step's scratch is rebuilt by the next step.
 #include <algorithm>
+#include <cmath>
 
 #include "particles/particle_system.h"
 #include "snapshot/byte_stream.h"
@@ -123,7 +124,7 @@ bool ParticleSystem::Load(ByteReader& in, const Bodies& bodies) {
     s.alive = in.U8() != 0;
     if (!s.alive || !in.Ok()) continue;
     const SoftBodyDef def = ReadDef(in);
-    if (!in.Ok() || !(def.spacing > 0.0)) return false;
+    if (!in.Ok() || !IsValidSoftBodyDef(def)) return false;
     s.body = MakeSoftBody(def);
     s.body.first = in.U32();
     s.body.attachments.resize(in.Count(24));
@@ -186,7 +187,7 @@ bool ParticleSystem::Load(ByteReader& in, const Bodies& bodies) {
     largest_radius_ = std::max(largest_radius_, 0.5 * spacing);
   }
   if (count > fluid_first) {
-    if (!(spacing > 0.0)) return false;
+    if (!(spacing > 0.0) || !std::isfinite(spacing)) return false;
     SetUpFluidKernel(fluid_.rest_density[0]);
   }
   ever_used_ = true;
