@@ -138,7 +138,7 @@ TEST_CASE("a soft ball bouncing never gains energy", "[soft]") {
   REQUIRE(previous < start);  // and the bounces lose some
 }
 
-TEST_CASE("soft bodies join the hash and the snapshot; a world without them keeps its hash", "[soft]") {
+TEST_CASE("soft bodies join the hash and the snapshot", "[soft]") {
   const auto make = [](bool soft) {
     auto world = std::make_unique<World>(WorldDef{});
     StaticBox(*world, {0.0, -0.5}, {5.0, 0.5});

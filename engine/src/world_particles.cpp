@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 
 #include "engine/world.h"
 #include "require.h"
@@ -17,33 +16,10 @@ using detail::IsNonNegativeFinite;
 using detail::IsPositiveFinite;
 using detail::Require;
 
-constexpr double kMaxSoftParticles = 100000.0;
-
 void RequireValid(const SoftBodyDef& def) {
-  const Shape& shape = def.shape;
-  Require(shape.type == ShapeType::kCircle || shape.type == ShapeType::kBox,
-          "SoftBodyDef::shape must be a circle or a box");
-  Require(IsFinite(def.position) && std::isfinite(def.angle) && IsFinite(def.velocity),
-          "SoftBodyDef placement and velocity must be finite");
-  Require(IsPositiveFinite(def.spacing) && IsPositiveFinite(def.density) && IsPositiveFinite(def.pressure),
-          "SoftBodyDef spacing, density and pressure must be > 0");
-  Require(IsNonNegativeFinite(def.stretch_compliance) && IsNonNegativeFinite(def.shear_compliance) &&
-              IsNonNegativeFinite(def.area_compliance) && IsNonNegativeFinite(def.damping) &&
-              IsNonNegativeFinite(def.friction),
-          "SoftBodyDef compliances, damping and friction must be finite and >= 0");
-  if (shape.type == ShapeType::kCircle) {
-    Require(IsPositiveFinite(shape.radius) && shape.radius > def.spacing,
-            "a soft circle's radius must be finite and larger than its spacing");
-    Require(2.0 * std::numbers::pi * shape.radius / def.spacing <= kMaxSoftParticles,
-            "a soft circle may have at most 100000 particles");
-  } else {
-    Require(IsPositiveFinite(shape.half_extents.x) && IsPositiveFinite(shape.half_extents.y) &&
-                2.0 * std::min(shape.half_extents.x, shape.half_extents.y) > def.spacing,
-            "a soft box's sides must be finite and longer than its spacing");
-    Require((2.0 * shape.half_extents.x / def.spacing + 1.0) * (2.0 * shape.half_extents.y / def.spacing + 1.0) <=
-                kMaxSoftParticles,
-            "a soft box may have at most 100000 particles");
-  }
+  Require(detail::IsValidSoftBodyDef(def),
+          "SoftBodyDef needs a circle or box larger than its spacing (at most 100000 particles), finite "
+          "placement and velocity, spacing, density and pressure > 0, compliances, damping and friction >= 0");
 }
 
 void RequireValid(const FluidDef& def, double spacing) {

@@ -8,6 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "engine/math.h"
+
 namespace engine::detail {
 
 class ByteWriter {
@@ -67,5 +69,15 @@ class ByteReader {
   std::size_t at_ = 0;
   bool ok_ = true;
 };
+
+inline void WriteVec(ByteWriter& out, Vec2 v) {
+  out.F64(v.x);
+  out.F64(v.y);
+}
+
+inline Vec2 ReadVec(ByteReader& in) {
+  const double x = in.F64();
+  return {x, in.F64()};
+}
 
 }  // namespace engine::detail

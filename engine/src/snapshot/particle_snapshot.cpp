@@ -11,16 +11,6 @@ namespace engine::detail {
 
 namespace {
 
-void WriteVec(ByteWriter& out, Vec2 v) {
-  out.F64(v.x);
-  out.F64(v.y);
-}
-
-Vec2 ReadVec(ByteReader& in) {
-  const double x = in.F64();
-  return {x, in.F64()};
-}
-
 void WriteDoubles(ByteWriter& out, const std::vector<double>& values) {
   out.U32(static_cast<std::uint32_t>(values.size()));
   for (const double v : values) out.F64(v);

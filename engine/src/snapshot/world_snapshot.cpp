@@ -63,16 +63,6 @@ BodyId ReadId(ByteReader& in) {
   return {index, in.U32()};
 }
 
-void WriteVec(ByteWriter& out, Vec2 v) {
-  out.F64(v.x);
-  out.F64(v.y);
-}
-
-Vec2 ReadVec(ByteReader& in) {
-  const double x = in.F64();
-  return {x, in.F64()};
-}
-
 void WriteOptional(ByteWriter& out, const std::optional<double>& v) {
   out.U8(v ? 1 : 0);
   if (v) out.F64(*v);
