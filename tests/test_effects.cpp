@@ -565,3 +565,16 @@ TEST_CASE("effects: the effect system saves and loads its whole state", "[effect
     CHECK(b.Particles().size() == had);
   }
 }
+
+TEST_CASE("effects: an emitter present but idle changes no bit of the world", "[effects]") {
+  World without(WorldDef{}), with(WorldDef{});
+  AddPile(&without);
+  AddPile(&with);
+  EmitterDef idle;
+  idle.rate = 0.0;
+  with.CreateEmitter(idle);
+  testing::StepTimes(without, 120);
+  testing::StepTimes(with, 120);
+  CHECK(with.Effects().empty());
+  CHECK(with.StateHash() == without.StateHash());
+}

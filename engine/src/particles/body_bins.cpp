@@ -10,17 +10,12 @@ namespace engine::detail {
 
 namespace {
 
-/// A body covering more cells than this is tested at every point instead of being binned.
-constexpr std::uint32_t kWideCells = 16;
+/// A body covering more cells than this is tested at every point instead of being binned: the
+/// bins then hold at most this many entries per body. A ground 64 cells long is still binned,
+/// sparing every particle far from it a test.
+constexpr std::uint32_t kWideCells = 64;
 /// At most this many columns or rows, however thin the bodies' area.
 constexpr double kMaxSide = 256.0;
-
-/// The cell of a coordinate `offset` past the grid's corner, clamped into the grid (a NaN, too).
-std::uint32_t CellIndex(double offset, double cell, std::uint32_t count) {
-  const double q = std::floor(offset / cell);
-  if (!(q > 0.0)) return 0;
-  return q >= static_cast<double>(count - 1) ? count - 1 : static_cast<std::uint32_t>(q);
-}
 
 }  // namespace
 
@@ -30,16 +25,13 @@ void BodyBins::ChooseCells(double median_side) {
   const double most_cells = 4.0 * static_cast<double>(slots_.size()) + 64.0;
   cell_ = std::max({median_side, std::sqrt(width * height / most_cells), std::max(width, height) / kMaxSide});
   if (!(cell_ > 0.0) || !std::isfinite(cell_)) {  // a lone point, or bounds too far apart to measure
-    cell_ = 1.0;
+    cell_ = inverse_cell_ = 1.0;
     columns_ = rows_ = 1;
     return;
   }
+  inverse_cell_ = 1.0 / cell_;
   columns_ = static_cast<std::uint32_t>(std::min(std::floor(width / cell_), kMaxSide)) + 1;
   rows_ = static_cast<std::uint32_t>(std::min(std::floor(height / cell_), kMaxSide)) + 1;
-}
-
-std::uint32_t BodyBins::CellOf(Vec2 point) const {
-  return CellIndex(point.y - area_.lower.y, cell_, rows_) * columns_ + CellIndex(point.x - area_.lower.x, cell_, columns_);
 }
 
 void BodyBins::Build(const Bodies& bodies, double margin) {
@@ -50,17 +42,17 @@ void BodyBins::Build(const Bodies& bodies, double margin) {
   for (const BodyId id : bodies.live_ids) {
     const BodyIndex b = id.index;
     if (!bodies.enabled[b] || bodies.infos[b].is_sensor) continue;
-    AABB box = BoundsOf(bodies, b);
-    box.lower -= Vec2{margin, margin};
-    box.upper += Vec2{margin, margin};
+    const AABB box = BoundsOf(bodies, b);
     if (slots_.empty()) area_ = box;
     area_.lower = {std::min(area_.lower.x, box.lower.x), std::min(area_.lower.y, box.lower.y)};
     area_.upper = {std::max(area_.upper.x, box.upper.x), std::max(area_.upper.y, box.upper.y)};
     slots_.push_back(b);
     bounds_.push_back(box);
-    sides_.push_back(std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y));
+    sides_.push_back(std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y) + 2.0 * margin);
   }
   if (slots_.empty()) return;
+  const Vec2 grow{margin, margin};
+  area_ = {area_.lower - grow, area_.upper + grow};
   const auto middle = sides_.begin() + static_cast<std::ptrdiff_t>(sides_.size() / 2);
   std::nth_element(sides_.begin(), middle, sides_.end());
   ChooseCells(*middle);
@@ -69,10 +61,9 @@ void BodyBins::Build(const Bodies& bodies, double margin) {
   ranges_.resize(slots_.size());
   for (std::uint32_t k = 0; k < slots_.size(); ++k) {
     CellRange& r = ranges_[k];
-    r = {CellIndex(bounds_[k].lower.x - area_.lower.x, cell_, columns_),
-         CellIndex(bounds_[k].upper.x - area_.lower.x, cell_, columns_),
-         CellIndex(bounds_[k].lower.y - area_.lower.y, cell_, rows_),
-         CellIndex(bounds_[k].upper.y - area_.lower.y, cell_, rows_)};
+    const Vec2 lower = bounds_[k].lower - grow - area_.lower, upper = bounds_[k].upper + grow - area_.lower;
+    r = {CellIndex(lower.x, inverse_cell_, columns_), CellIndex(upper.x, inverse_cell_, columns_),
+         CellIndex(lower.y, inverse_cell_, rows_), CellIndex(upper.y, inverse_cell_, rows_)};
     if ((r.c1 - r.c0 + 1) * (r.r1 - r.r0 + 1) > kWideCells) {
       wide_.push_back(k);
       r.wide = true;

@@ -136,14 +136,17 @@ void EffectSystem::ReleaseDrained() {
 void EffectSystem::Move(const WorldDef& def) {
   motions_.resize(defs_.size());
   for (std::uint32_t s = 0; s < defs_.size(); ++s) {
-    motions_[s] = {(1.0 - defs_[s].buoyancy) * def.gravity, Exp(-defs_[s].drag * def.dt)};
+    const EmitterDef& e = defs_[s];
+    motions_[s] = {(1.0 - e.buoyancy) * def.gravity, Exp(-e.drag * def.dt), 0.5 * std::max(e.size_start, e.size_end)};
   }
   starts_.resize(particles_.size());
+  farthest_ = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     EffectParticle& p = particles_[i];
     starts_[i] = p.position;
     const Motion& m = motions_[p.emitter.index];
     Advance(&p, m.gravity, m.decay, def.dt);
+    farthest_ = std::max(farthest_, LengthSquared(p.position - starts_[i]));
   }
 }
 
@@ -200,6 +203,7 @@ void EffectSystem::EmitFrom(std::uint32_t slot, const WorldDef& def, const Bodie
     p.age = left;
     Advance(&p, m.gravity, Exp(-e.drag * left), left);
     if (p.age >= p.lifetime) continue;  // born and dead within the step
+    farthest_ = std::max(farthest_, LengthSquared(p.position - birth.start));
     ++alive_counts_[slot];
     births_.push_back(birth);
   }
@@ -209,29 +213,29 @@ void EffectSystem::EmitFrom(std::uint32_t slot, const WorldDef& def, const Bodie
 }
 
 void EffectSystem::Collide(const WorldDef& def, const Bodies& bodies) {
-  // The bodies' bounds grow by the farthest a colliding particle's disc reaches from where it began.
-  double largest_radius = -1.0, farthest = 0.0;
-  for (const EmitterId id : live_ids_) {
-    const EmitterDef& e = defs_[id.index];
-    if (e.collide) largest_radius = std::max(largest_radius, 0.5 * std::max(e.size_start, e.size_end));
-  }
-  for (const std::uint32_t slot : draining_) {
-    const EmitterDef& e = defs_[slot];
-    if (e.collide) largest_radius = std::max(largest_radius, 0.5 * std::max(e.size_start, e.size_end));
+  double largest_radius = -1.0;
+  for (std::uint32_t s = 0; s < defs_.size(); ++s) {
+    const bool has_particles = alive_[s] || alive_counts_[s] > 0;
+    if (defs_[s].collide && has_particles) largest_radius = std::max(largest_radius, motions_[s].radius);
   }
   if (largest_radius < 0.0 || particles_.empty() || bodies.live_ids.empty()) return;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    farthest = std::max(farthest, LengthSquared(particles_[i].position - starts_[i]));
-  }
-  bins_.Build(bodies, largest_radius + std::sqrt(farthest) + kTouch);
+  // Any particle's swept disc lies within the largest radius and the farthest move of its start.
+  bins_.Build(bodies, largest_radius + std::sqrt(farthest_) + kTouch);
   if (bins_.Empty()) return;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     EffectParticle& p = particles_[i];
     const EmitterDef& e = defs_[p.emitter.index];
     if (!e.collide) continue;
-    const double radius = 0.5 * SizeOf(e, p);
     const Vec2 start = starts_[i];
-    bins_.ForEachAt(start, [&](BodyIndex b) { CollideWith(&p, start, radius, b, e, def, bodies); });
+    // Where the disc went this step, with the emitter's largest disc: a box, so no square root.
+    const Vec2 grow{motions_[p.emitter.index].radius, motions_[p.emitter.index].radius};
+    const AABB swept{Vec2{std::min(start.x, p.position.x), std::min(start.y, p.position.y)} - grow,
+                     Vec2{std::max(start.x, p.position.x), std::max(start.y, p.position.y)} + grow};
+    double radius = -1.0;  // worked out only for a particle near some body
+    bins_.ForEachOverlapping(start, swept, [&](BodyIndex b) {
+      if (radius < 0.0) radius = 0.5 * SizeOf(e, p);
+      CollideWith(&p, start, radius, b, e, def, bodies);
+    });
   }
 }
 

@@ -50,6 +50,7 @@ class EffectSystem {
   struct Motion {
     Vec2 gravity;        ///< m/s²: the world's less the buoyancy's share
     double decay = 1.0;  ///< the drag's factor over a whole step
+    double radius = 0.0; ///< m: the largest its particles grow to
   };
   /// A particle born this step, and when: the share of the step already gone.
   struct Birth {
@@ -87,6 +88,7 @@ class EffectSystem {
   std::vector<Motion> motions_;  ///< by slot
   std::vector<Birth> births_;
   std::vector<Vec2> starts_;     ///< each particle's position when the step began (or it was born)
+  double farthest_ = 0.0;        ///< m²: the square of the farthest any particle moved this step
   BodyBins bins_;
   std::vector<BodyPlane> planes_, touching_;
 };

@@ -81,7 +81,9 @@ bool ReadDef(ByteReader& in, EmitterDef* d) {
   }
   ok = ok && std::isfinite(d->lifetime) && d->lifetime > 0.0 && d->lifetime_spread <= d->lifetime &&
        d->speed_spread <= d->speed;
-  for (const Rgba c : {d->color_start, d->color_end}) ok = ok && IsUnit(c.r) && IsUnit(c.g) && IsUnit(c.b) && IsUnit(c.a);
+  for (const Rgba c : {d->color_start, d->color_end}) {
+    ok = ok && IsUnit(c.r) && IsUnit(c.g) && IsUnit(c.b) && IsUnit(c.a);
+  }
   return in.Check(ok);
 }
 
