@@ -1,7 +1,9 @@
 // The solid bodies' bounds binned in a uniform grid, rebuilt each step, so a point (an effect
 // particle) finds the few bodies near it without looking at all of them. Bodies are few and
 // particles many, so the bodies are binned, not the particles: the particles are then visited
-// in index order. Deterministic: each cell lists its bodies in slot order. Internal.
+// in index order. Deterministic: each cell lists its bodies in slot order. Cells are as wide as
+// a typical body, but there are at most about 4 per body: bodies scattered far apart (one a
+// kilometre off) make the cells coarse, and a particle then tests more bodies' bounds. Internal.
 #pragma once
 
 #include <cstdint>
