@@ -42,7 +42,7 @@ bool Meets(const AABB& a, const AABB& b) { return engine::Overlaps(a, b); }
 
 }  // namespace
 
-TEST_CASE("body bins: the bodies a box meets, no more and no fewer, in a deterministic order", "[effects]") {
+TEST_CASE("body bins: the bodies a box meets, no more and no fewer, each once", "[effects]") {
   std::uint64_t random = 42;
   Bodies bodies;
   AddBody(&bodies, engine::ShapeType::kBox, {0, -0.5}, {500.0, 0.5}, 0.0);  // a long ground: set aside
