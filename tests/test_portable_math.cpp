@@ -235,3 +235,28 @@ TEST_CASE("Hypot: exact cases and the edges", "[portable_math]") {
   CHECK(engine::Hypot(1.0, -kInf) == kInf);
   CHECK(std::isnan(engine::Hypot(std::numeric_limits<double>::quiet_NaN(), 1.0)));
 }
+
+TEST_CASE("portable Exp is within 1 ulp of e^x, overflows and underflows where libm does", "[portable_math]") {
+  long double worst = 0.0L;
+  double worst_at = 0.0;
+  const auto check = [&](double x) {
+    const long double want = std::exp(static_cast<long double>(x));
+    if (want < std::numeric_limits<double>::min()) return;  // subnormal results: checked below
+    const long double e = Ulps(engine::Exp(x), want);
+    if (e > worst) worst = e, worst_at = x;
+  };
+  for (int i = -200000; i <= 200000; ++i) check(i * 1e-5);            // |x| ≤ 2, where drag lives
+  for (int i = -70800; i <= 70900; ++i) check(i * 0.01 + 1e-7 * i);   // the whole range
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> any(-708.0, 709.0);
+  for (int i = 0; i < 200000; ++i) check(any(random));
+  INFO("worst " << static_cast<double>(worst) << " ulp at " << worst_at);
+  CHECK(worst <= 1.0L);
+  CHECK(engine::Exp(0.0) == 1.0);
+  CHECK(engine::Exp(1.0) == Approx(2.718281828459045).epsilon(1e-15));
+  CHECK(std::isinf(engine::Exp(710.0)));
+  CHECK(engine::Exp(-746.0) == 0.0);
+  CHECK(std::isnan(engine::Exp(std::nan(""))));
+  CHECK(engine::Exp(-740.0) > 0.0);  // subnormal, not flushed
+  CHECK(std::abs(engine::Exp(-740.0) - std::exp(-740.0)) <= std::ldexp(1.0, -1074));
+}

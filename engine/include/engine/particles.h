@@ -77,8 +77,12 @@ enum class EffectBlend : std::uint8_t {
 /// particles, step for step.
 struct EmitterDef {
   Vec2 position;                   ///< m; in the body's frame when `body` is set
-  std::optional<BodyId> body;      ///< the emitter rides on this body
-  double direction = 1.5707963267948966;  ///< rad: the mean direction particles leave in
+  /// The emitter rides on this body: its particles also leave with the velocity of the body's
+  /// point, and stop coming if the body is destroyed.
+  std::optional<BodyId> body;
+  /// rad: the mean direction particles leave in; in the body's frame when `body` is set (it
+  /// turns with the body, as a nozzle does).
+  double direction = 1.5707963267948966;
   double spread = 0.3;             ///< rad: directions are uniform within ± this of it
   double speed = 2.0;              ///< m/s: the mean speed particles leave at
   double speed_spread = 0.5;       ///< m/s: speeds are uniform within ± this of it
@@ -93,11 +97,14 @@ struct EmitterDef {
   double drag = 0.5;               ///< 1/s: velocity decays at this rate
   /// How much gravity is cancelled: 0 falls like a stone, 1 floats, 2 rises at g.
   double buoyancy = 0.0;
-  double restitution = 0.3;        ///< of the bounce off a rigid body
-  double friction = 0.3;
+  /// Of the bounce off a rigid body (the body's own is not read); impacts slower than
+  /// WorldDef::restitution_threshold do not bounce.
+  double restitution = 0.3;
+  double friction = 0.3;           ///< mixed with the body's as bodies mix theirs: √(a·b)
   bool collide = true;             ///< false: passes through everything
   std::uint64_t seed = 1;
-  std::uint32_t max_particles = 10000;  ///< alive at once; births beyond wait
+  /// Alive at once. Births beyond wait for room, but no more than one carries over a step.
+  std::uint32_t max_particles = 10000;
 };
 
 /// One effect particle.

@@ -11,6 +11,8 @@
 #include "engine/ids.h"
 #include "engine/particles.h"
 #include "engine/world_def.h"
+#include "particles/body_bins.h"
+#include "particles/body_contact.h"
 
 namespace engine::detail {
 
@@ -34,13 +36,40 @@ class EffectSystem {
   std::span<const EffectParticle> Particles() const { return particles_; }
   bool EverUsed() const { return ever_used_; }
 
-  /// One step of dt: births, ageing and deaths, motion, and bounces off the bodies.
+  /// One step of dt: ageing and deaths, motion, births, and bounces off the bodies.
   void Step(const WorldDef& def, const Bodies& bodies);
 
+  /// Every slot, the free list, the generators and the particles (effects_snapshot.cpp).
   void Save(ByteWriter& out) const;
+  /// Replaces this system with a saved one; false, and this system unchanged, if the bytes are
+  /// not a consistent save.
   bool Load(ByteReader& in);
 
  private:
+  /// What moving one emitter's particles through a step takes, worked out once a step.
+  struct Motion {
+    Vec2 gravity;        ///< m/s²: the world's less the buoyancy's share
+    double decay = 1.0;  ///< the drag's factor over a whole step
+    double radius = 0.0; ///< m: the largest its particles grow to
+  };
+  /// A particle born this step, and when: the share of the step already gone.
+  struct Birth {
+    double fraction = 0.0;
+    EffectParticle particle;
+    Vec2 start;  ///< where it was born
+  };
+
+  void AgeAndBury(double dt);
+  void Move(const WorldDef& def);
+  void Emit(const WorldDef& def, const Bodies& bodies);
+  void EmitFrom(std::uint32_t slot, const WorldDef& def, const Bodies& bodies);
+  void Collide(const WorldDef& def, const Bodies& bodies);
+  bool CollideWith(EffectParticle* p, Vec2 start, double radius, BodyIndex body, const EmitterDef& emitter,
+                   const WorldDef& def, const Bodies& bodies);
+  void ReleaseDrained();
+  void RebuildLiveIds();
+  bool LoadParticles(ByteReader& in, std::span<const std::uint8_t> roles);
+
   std::vector<EmitterDef> defs_;
   std::vector<std::uint32_t> generations_;
   std::vector<std::uint8_t> alive_;
@@ -49,7 +78,19 @@ class EffectSystem {
   std::vector<std::uint64_t> random_states_;  ///< each emitter's generator
   std::vector<double> owed_births_;           ///< each emitter's fraction of a particle carried over
   std::vector<EffectParticle> particles_;
+  /// Each slot's particles alive. A destroyed emitter's slot waits in draining_ until its
+  /// particles have died, so they keep its def and a new emitter never takes it over.
+  std::vector<std::uint32_t> alive_counts_;
+  std::vector<std::uint32_t> draining_;  ///< in the order destroyed
   bool ever_used_ = false;
+
+  // Step's scratch, kept from step to step.
+  std::vector<Motion> motions_;  ///< by slot
+  std::vector<Birth> births_;
+  std::vector<Vec2> starts_;     ///< each particle's position when the step began (or it was born)
+  double farthest_ = 0.0;        ///< m²: the square of the farthest any particle moved this step
+  BodyBins bins_;
+  std::vector<BodyPlane> planes_, touching_;
 };
 
 }  // namespace engine::detail
