@@ -387,3 +387,23 @@ TEST_CASE("A world of soft bodies, fluid and sprites draws the same bytes every 
   Gl second = testing::MakeOffscreenGl(kWidth, kHeight);
   CHECK(DrawWithEffects(second, world, colors, effects).rgb == a.rgb);
 }
+
+TEST_CASE("The fitted camera frames soft bodies and fluid as well as bodies") {
+  engine::World world(testing::Still(false));
+  world.CreateBody(testing::Box({0.0, 0.0}, {2.0, 2.0}));
+  world.CreateSoftBody(SoftBox({10.0, 0.0}, {2.0, 2.0}, 0.2));
+  world.AddFluid(FluidBlock({-11.0, -1.0}, {-9.0, 1.0}, 0.2));
+  const render::Camera camera = render::FitCamera(world, 800, 600);
+  // From x = −11 to 11 (the lattices' discs reach the blocks' sides): 22 m, a tenth more
+  // each side.
+  CHECK(camera.center.x == Approx(0.0).margin(1e-12));
+  CHECK(camera.center.y == Approx(0.0).margin(1e-12));
+  CHECK(camera.width == Approx(22.0 * 1.2));
+  // Fluid alone is framed too, not left to the default camera.
+  engine::World fluid_only(testing::Still(false));
+  fluid_only.AddFluid(FluidBlock({4.0, 4.0}, {6.0, 5.0}, 0.1));
+  const render::Camera fluid_camera = render::FitCamera(fluid_only, 800, 600);
+  CHECK(fluid_camera.center.x == Approx(5.0));
+  CHECK(fluid_camera.center.y == Approx(4.5));
+  CHECK(fluid_camera.width == Approx(2.0 * 1.2));
+}
