@@ -407,3 +407,23 @@ TEST_CASE("The fitted camera frames soft bodies and fluid as well as bodies") {
   CHECK(fluid_camera.center.y == Approx(4.5));
   CHECK(fluid_camera.width == Approx(2.0 * 1.2));
 }
+
+TEST_CASE("A frame after one with particles is the frame a fresh renderer draws") {
+  // Whatever state the particle passes leave (blending, scissor, framebuffer, texture) must not
+  // reach the next picture.
+  engine::World particles(testing::Still(false));
+  particles.CreateSoftBody(SoftCircle({-4.0, 0.0}, 1.5, 0.2));
+  particles.AddFluid(FluidBlock({0.0, -3.0}, {6.0, 3.0}, 0.1));
+  const engine::EmitterId fire = QuietEmitter(particles, engine::EffectBlend::kAdditive,
+                                              {1.0f, 0.5f, 0.0f, 1.0f}, {1.0f, 0.5f, 0.0f, 1.0f},
+                                              1.0, 1.0);
+  engine::World plain(testing::Still(true));
+  plain.CreateBody(testing::Circle({-3.0, 0.0}, 2.0));
+  plain.CreateBody(testing::Box({3.0, 1.0}, {4.0, 2.0}));
+  const std::vector<Color> colors{render::PaletteColor(0), render::PaletteColor(1)};
+  Gl fresh = testing::MakeOffscreenGl(kWidth, kHeight);
+  const Image expected = Draw(fresh, plain, colors);
+  Gl used = testing::MakeOffscreenGl(kWidth, kHeight);
+  DrawWithEffects(used, particles, {}, {Particle(fire, {0.0, 0.0})});
+  CHECK(Draw(used, plain, colors).rgb == expected.rgb);
+}
