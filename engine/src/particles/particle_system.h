@@ -98,6 +98,9 @@ class ParticleSystem {
   void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
                        double radius, std::uint32_t group);
   void FindContacts(const WorldDef& def, const Bodies& bodies);
+  double LatticeKernelSum() const;
+  /// The constants that follow from the fluid's spacing (set) and its first block's density.
+  void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(const std::vector<BodyPush>& pushes);
