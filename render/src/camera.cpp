@@ -29,16 +29,41 @@ Camera FrameCamera(const Camera& view, int image_width, int image_height) {
   return Camera{view.center, view.width * static_cast<double>(wide) / static_cast<double>(tall)};
 }
 
+namespace {
+
+// Grows `all` (empty when `any` is false) to hold `box`.
+void Include(engine::AABB& all, bool& any, const engine::AABB& box) {
+  if (!any) {
+    all = box;
+    any = true;
+    return;
+  }
+  all.lower = {std::min(all.lower.x, box.lower.x), std::min(all.lower.y, box.lower.y)};
+  all.upper = {std::max(all.upper.x, box.upper.x), std::max(all.upper.y, box.upper.y)};
+}
+
+// A particle as the renderer draws it: a disc of `radius` round `p`.
+engine::AABB Around(engine::Vec2 p, double radius) {
+  return {{p.x - radius, p.y - radius}, {p.x + radius, p.y + radius}};
+}
+
+}  // namespace
+
 Camera FitCamera(const engine::World& world, int image_width, int image_height) {
   // A tenth of the larger side as margin on every side keeps bodies clear of the image edge.
   constexpr double kMarginFraction = 0.1;
-  if (world.BodyCount() == 0) return Camera{};
-  engine::AABB all = world.BodyBounds(world.BodyIds().front());
-  for (const engine::BodyId id : world.BodyIds()) {
-    const engine::AABB b = world.BodyBounds(id);
-    all.lower = {std::min(all.lower.x, b.lower.x), std::min(all.lower.y, b.lower.y)};
-    all.upper = {std::max(all.upper.x, b.upper.x), std::max(all.upper.y, b.upper.y)};
+  engine::AABB all;
+  bool any = false;
+  for (const engine::BodyId id : world.BodyIds()) Include(all, any, world.BodyBounds(id));
+  // Soft bodies and fluid are in the picture too (effect particles come and go: not framed).
+  for (const engine::SoftBodyId id : world.SoftBodyIds()) {
+    const double radius = world.SoftBodyParticleRadius(id);
+    for (const engine::Vec2 p : world.SoftBodyPositions(id)) Include(all, any, Around(p, radius));
   }
+  for (const engine::Vec2 p : world.FluidPositions()) {
+    Include(all, any, Around(p, 0.5 * world.FluidSpacing()));
+  }
+  if (!any) return Camera{};
   const double w = all.upper.x - all.lower.x;
   const double h = all.upper.y - all.lower.y;
   const double aspect = static_cast<double>(image_width) / image_height;

@@ -41,6 +41,7 @@ namespace render {
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                                \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                    \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                    \
@@ -53,9 +54,11 @@ namespace render {
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)            \
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)            \
   X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)            \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                              \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                    \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                    \
   X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)    \
+  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)          \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)      \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)              \
   X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                  \
@@ -67,6 +70,8 @@ namespace render {
   X(PFNGLGENTEXTURESPROC, GenTextures)                            \
   X(PFNGLBINDTEXTUREPROC, BindTexture)                            \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                      \
+  X(PFNGLTEXIMAGE2DPROC, TexImage2D)                              \
+  X(PFNGLTEXPARAMETERIPROC, TexParameteri)                        \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                        \
   X(PFNGLTEXBUFFERPROC, TexBuffer)
 

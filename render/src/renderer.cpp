@@ -10,12 +10,17 @@
 #include <cstring>
 #include <vector>
 
+#include "fluid_surface.h"
 #include "gl_functions.h"
 #include "link_lines.h"
 #include "link_program.h"
 #include "part_batch.h"
 #include "part_program.h"
+#include "particle_sprites.h"
 #include "shader_build.h"
+#include "soft_body_mesh.h"
+#include "soft_body_program.h"
+#include "sprite_program.h"
 
 namespace render {
 namespace {
@@ -171,6 +176,11 @@ struct Renderer::Gl {
   PartBatch part_batch;                // reused every frame
   LinkProgram links;
   LinkLines link_lines;                // reused every frame
+  SoftBodyProgram soft_bodies;
+  SoftBodyMesh soft_body_mesh;         // reused every frame
+  FluidSurface fluid;
+  SpriteProgram sprites;
+  ParticleSprites particle_sprites;    // reused every frame
   std::vector<std::uint8_t> readback;  // bottom-up rows, as GL returns them
 
   explicit Gl(const GlFunctions& functions) : fn(functions) {}
@@ -181,6 +191,9 @@ struct Renderer::Gl {
     fn.DeleteProgram(program);
     parts.Destroy(fn);
     links.Destroy(fn);
+    soft_bodies.Destroy(fn);
+    fluid.Destroy(fn);
+    sprites.Destroy(fn);
     fn.DeleteBuffers(1, &quad_buffer);
     fn.DeleteBuffers(1, &instance_buffer);
     fn.DeleteVertexArrays(1, &vertex_array);
@@ -223,6 +236,9 @@ std::unique_ptr<Renderer> Renderer::Create(const GlContext& context, int width, 
 
   if (!gl->parts.Create(fn, gl->quad_buffer, error)) return nullptr;
   if (!gl->links.Create(fn, gl->quad_buffer, error)) return nullptr;
+  if (!gl->soft_bodies.Create(fn, error)) return nullptr;
+  if (!gl->fluid.Create(fn, gl->quad_buffer, error)) return nullptr;
+  if (!gl->sprites.Create(fn, gl->quad_buffer, error)) return nullptr;
 
   fn.GenRenderbuffers(1, &gl->color_buffer);
   fn.BindRenderbuffer(GL_RENDERBUFFER, gl->color_buffer);
@@ -258,14 +274,16 @@ std::string Renderer::Description() const {
 }
 
 void Renderer::Draw(const engine::World& world, std::span<const Color> colors,
-                    const Camera& camera, LinkLayers links) {
+                    const Camera& camera, LinkLayers links, const ParticleStyle& particles) {
   assert(colors.size() == world.BodyCount());
   if (HasParts(world)) {
     DrawWithParts(world, colors, camera);
   } else {
     DrawBodies(world, colors, camera);
   }
+  DrawParticleBodies(world, camera, particles);
   DrawLinks(world, camera, links);
+  DrawEffects(world, world.Effects(), camera);
 }
 
 void Renderer::DrawBodies(const engine::World& world, std::span<const Color> colors,
@@ -341,6 +359,33 @@ void Renderer::DrawWithParts(const engine::World& world, std::span<const Color> 
     if (batch.TexelCount() > gl.parts.MaxTexels()) batch.Clear();
   }
   gl.parts.Draw(fn, batch, half_width, half_height, static_cast<float>(pixel_size), rotation);
+}
+
+void Renderer::DrawParticleBodies(const engine::World& world, const Camera& camera,
+                                  const ParticleStyle& style) {
+  Gl& gl = *gl_;
+  const double pixel_size = camera.width / gl.width;
+  // A world without soft bodies or fluid makes no GL call here: its pictures stay what they were.
+  gl.soft_body_mesh.Build(world, style, camera, pixel_size);
+  gl.soft_bodies.Draw(gl.fn, gl.soft_body_mesh, static_cast<float>(0.5 * camera.width),
+                      static_cast<float>(0.5 * pixel_size * gl.height),
+                      static_cast<float>(pixel_size));
+  // The liquid goes over the bodies, part see-through: a body in it looks submerged.
+  gl.fluid.Draw(gl.fn, world, style, camera, gl.framebuffer, gl.width, gl.height);
+}
+
+void Renderer::DrawEffects(const engine::World& world,
+                           std::span<const engine::EffectParticle> effects, const Camera& camera) {
+  Gl& gl = *gl_;
+  const double pixel_size = camera.width / gl.width;
+  gl.particle_sprites.Build(world, effects, camera, pixel_size);
+  if (gl.particle_sprites.Alpha().empty() && gl.particle_sprites.Additive().empty()) return;
+  // Called on its own, it draws over the last picture, wherever the context was left.
+  gl.fn.BindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  gl.fn.Viewport(0, 0, gl.width, gl.height);
+  gl.fn.Enable(GL_BLEND);
+  gl.sprites.Draw(gl.fn, gl.particle_sprites, static_cast<float>(0.5 * camera.width),
+                  static_cast<float>(0.5 * pixel_size * gl.height));
 }
 
 void Renderer::DrawLinks(const engine::World& world, const Camera& camera, LinkLayers links) {

@@ -29,8 +29,8 @@ engine::Vec2 PixelToWorld(const Camera& camera, int image_width, int image_heigh
 /// The inverse of PixelToWorld.
 engine::Vec2 WorldToPixel(const Camera& camera, int image_width, int image_height, engine::Vec2 p);
 
-/// A camera showing every body of the world with a margin around them in an image of this size,
-/// for scenes that set none.
+/// A camera showing every body, soft body and fluid particle of the world with a margin around
+/// them in an image of this size, for scenes that set none.
 Camera FitCamera(const engine::World& world, int image_width, int image_height);
 
 }  // namespace render

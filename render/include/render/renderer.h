@@ -1,9 +1,11 @@
 // Draws a world through a camera with OpenGL 3.3 core into an offscreen framebuffer and reads
 // the picture back. Balls are anti-aliased discs (a spoke shows the angle when rotation is on),
 // boxes filled rectangles, polygons (concave or rounded too) and capsules filled shapes, segment
-// polylines bands of a few pixels; each body outlined once around all its parts. Springs and
-// joints are thin lines over the bodies. No GL header here: the GL state lives in renderer.cpp,
-// part_program.cpp and link_program.cpp.
+// polylines bands of a few pixels; each body outlined once around all its parts. Soft bodies are
+// filled and outlined the same way over the rigid bodies, fluid a liquid surface over both,
+// springs and joints thin lines over that, and effect particles soft sprites over everything
+// (docs/rendering.md). No GL header here: the GL state lives in renderer.cpp and the
+// *_program.cpp and fluid_surface.cpp files.
 #pragma once
 
 #include <memory>
@@ -15,6 +17,7 @@
 #include "render/color.h"
 #include "render/context.h"
 #include "render/image.h"
+#include "render/particle_style.h"
 #include "render/rect.h"
 
 namespace render {
@@ -41,12 +44,21 @@ class Renderer {
   /// What GL says it is, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
   std::string Description() const;
 
-  /// Draws every body in scene order (later bodies on top) over the background, then the
-  /// springs and joints `links` selects over them; `colors[i]` is the colour of body i. A world
-  /// with no springs or joints is drawn exactly as it was before links were drawn at all.
+  /// Draws every body in scene order (later bodies on top) over the background, the soft
+  /// bodies in slot order over them, the fluid over those, then the springs and joints `links`
+  /// selects, then the effect particles (DrawEffects with world.Effects()). `colors[i]` is the
+  /// colour of body i; `particles` colours the soft bodies and the fluid. A world with no
+  /// springs, joints or particles is drawn exactly as it was before those were drawn at all.
   /// Precondition: colors.size() == world.BodyCount().
   void Draw(const engine::World& world, std::span<const Color> colors, const Camera& camera,
-            LinkLayers links = {});
+            LinkLayers links = {}, const ParticleStyle& particles = {});
+
+  /// Draws `effects` as soft round sprites over the last drawn picture, each sized and
+  /// coloured by its emitter in `world` at its age: the alpha-blended ones (smoke) first,
+  /// the additive ones (fire, sparks) over them. A particle whose emitter has been destroyed
+  /// is not drawn. Draw ends with this for world.Effects(); a tool or test may hand its own.
+  void DrawEffects(const engine::World& world, std::span<const engine::EffectParticle> effects,
+                   const Camera& camera);
 
   /// The last drawn picture, rows top-down; reuses `image`'s storage.
   void ReadImage(Image& image);
@@ -71,6 +83,9 @@ class Renderer {
   // Draw for a world with bodies made of parts: every body through the part program.
   void DrawWithParts(const engine::World& world, std::span<const Color> colors,
                      const Camera& camera);
+  // The soft bodies and the fluid over what the body pass drew.
+  void DrawParticleBodies(const engine::World& world, const Camera& camera,
+                          const ParticleStyle& style);
   // The springs and joints over what the body pass drew.
   void DrawLinks(const engine::World& world, const Camera& camera, LinkLayers links);
   std::unique_ptr<Gl> gl_;
