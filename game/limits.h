@@ -36,6 +36,10 @@ inline constexpr double kMinRelativeSpacing = 1e-9;
 inline constexpr std::size_t kMaxEmitters = 10'000;
 inline constexpr double kMaxEffectParticles = 1'000'000;
 
+/// The least `dt` of a scene with soft bodies or fluid, s: their solver divides by the square of
+/// the substep, which must stay a normal double.
+inline constexpr double kMinParticleDt = 1e-9;
+
 /// Particle substeps in one step (dt / particles.substep) and passes in one substep, as the
 /// contact solver's substeps and iterations.
 inline constexpr double kMaxParticleSubsteps = 1000;

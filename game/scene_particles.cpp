@@ -427,6 +427,9 @@ std::vector<SceneEmitter> ReadEmitters(const Json& list, const std::map<std::str
 void CheckParticleSubsteps(const Json& root, const Scene& scene) {
   if (scene.soft_bodies.empty() && scene.fluids.empty()) return;
   const engine::WorldDef& world = scene.world;
+  if (!(world.dt >= kMinParticleDt)) {
+    throw SceneError{"dt", "must be at least 1e-09 s in a scene with soft bodies or fluid (docs/limits.md)"};
+  }
   // engine/src/particles/particle_system.cpp, Step: ceil(dt / substep) substeps.
   const double substeps = std::ceil(world.dt / world.particles.substep - 1e-9);
   if (substeps <= kMaxParticleSubsteps) return;
