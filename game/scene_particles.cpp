@@ -52,9 +52,10 @@ std::string Number(double v) {
   return text;
 }
 
+// A count in whole numbers; an estimate past 1e15 in three digits.
 std::string Limit(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f", v);
+  char text[48];
+  std::snprintf(text, sizeof text, v < 1e15 ? "%.0f" : "%.3g", v);
   return text;
 }
 
@@ -113,11 +114,16 @@ void CountParticles(double count, const std::string& path, std::size_t* total) {
   *total += static_cast<std::size_t>(count);
 }
 
-// A spacing a double can resolve where the particles lie, `reach` from the origin.
-void CheckResolved(double spacing, double reach, const std::string& path) {
+// A spacing a double can resolve where the particles lie, `reach` from the origin. `path` is
+// the spacing's when the file gave it, else the placement's (`position`, `region`).
+void CheckResolved(double spacing, double reach, const std::string& path, bool spacing_given) {
   if (spacing >= kMinRelativeSpacing * reach) return;
-  throw SceneError{path, "is " + Number(spacing) + " m, less than 1e-9 of the particles' distance from the origin (" +
-                             Number(reach) + " m): a double cannot keep them apart (docs/limits.md)"};
+  if (spacing_given) {
+    throw SceneError{path, "is " + Number(spacing) + " m, less than 1e-9 of the particles' distance from the origin (" +
+                               Number(reach) + " m): a double cannot keep them apart (docs/limits.md)"};
+  }
+  throw SceneError{path, "puts the particles " + Number(reach) + " m from the origin, where their spacing (" +
+                             Number(spacing) + " m) is less than 1e-9 of that: a double cannot keep them apart (docs/limits.md)"};
 }
 
 // --- Soft bodies.
@@ -174,7 +180,7 @@ void CheckSoftSpacing(const Json& soft, const std::string& path, const engine::S
   }
   const double extent = circle ? def.shape.radius : engine::Length(half);
   CheckResolved(def.spacing, std::max(std::abs(def.position.x), std::abs(def.position.y)) + extent,
-                Join(path, spacing_given ? "spacing" : "position"));
+                Join(path, spacing_given ? "spacing" : "position"), spacing_given);
   const double bound = circle ? 2.0 * std::numbers::pi * def.shape.radius / def.spacing
                               : (2.0 * half.x / def.spacing + 1.0) * (2.0 * half.y / def.spacing + 1.0);
   if (!(bound <= kMaxSoftBodyParticles)) {
@@ -280,7 +286,8 @@ SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_s
   }
   const double reach = std::max({std::abs(def.region.lower.x), std::abs(def.region.lower.y),
                                  std::abs(def.region.upper.x), std::abs(def.region.upper.y)});
-  CheckResolved(def.spacing, reach, Find(fluid, "spacing") ? key("spacing") : key("region"));
+  const bool spacing_given = Find(fluid, "spacing") != nullptr;
+  CheckResolved(def.spacing, reach, spacing_given ? key("spacing") : key("region"), spacing_given);
   // A particle's mass is about density × spacing² (the kernel sums to about 1 / spacing²).
   if (!(def.density * def.spacing * def.spacing >= kMinBodyMass)) {
     throw SceneError{path, "its particles' mass, about density * spacing^2, must be at least 1e-12 kg (docs/limits.md)"};
