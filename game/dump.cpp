@@ -1,9 +1,9 @@
 // The dumps' rows (dump.h): full double precision (%.17g), time as step·dt.
 #include "game/dump.h"
 
-#include <sys/stat.h>
-
 #include <cinttypes>
+
+#include "game/output_file.h"
 
 namespace game {
 
@@ -45,8 +45,7 @@ void DumpBodies(std::FILE* out, const Session& session, const std::vector<std::s
 }
 
 std::optional<std::string> ParticleDumpPath(const std::string& dump_path) {
-  struct stat info;
-  if (::stat(dump_path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return std::nullopt;
+  if (WritesInPlace(dump_path)) return std::nullopt;
   const std::string suffix = ".csv";
   const bool csv = dump_path.size() > suffix.size() &&
                    dump_path.compare(dump_path.size() - suffix.size(), suffix.size(), suffix) == 0;
