@@ -59,14 +59,16 @@ std::string Limit(double v) {
   return text;
 }
 
-// `list` as an array of at most `limit` items, each read by `read(item, path, index)`; ids
-// unique within the list, defaulting to `prefix`<index>.
+// `list`, the root's `name` ("soft_bodies", "fluids", "emitters"), as an array of at most `limit`
+// items, each read by `read(item, path, index)`; ids unique within the list, defaulting to
+// `prefix`<index>.
 template <class Item, class Read>
 std::vector<Item> ReadList(const Json& list, const std::string& name, const char* prefix, std::size_t limit,
                            Read read) {
   if (!list.is_array()) throw SceneError{name, "must be an array"};
   if (list.size() > limit) {
-    throw SceneError{name, std::to_string(list.size()) + " entries, more than the limit of " + std::to_string(limit) +
+    const std::string noun = name == "soft_bodies" ? "soft bodies" : name;
+    throw SceneError{name, std::to_string(list.size()) + " " + noun + ", more than the limit of " + std::to_string(limit) +
                                " (docs/limits.md)"};
   }
   std::vector<Item> out;

@@ -433,6 +433,32 @@ TEST_CASE("scene particles: bad particle settings, click keys and steps", "[scen
   RequireParsed(SceneWith(R"("dt": 0.1, "particles": {"substep": 1e-4, "iterations": 1000})" + soft));
 }
 
+TEST_CASE("scene particles: the list limits, from both sides", "[scene][particles][limits]") {
+  const auto many = [](const std::string& item, std::size_t n) {
+    std::string list = "[";
+    for (std::size_t i = 0; i < n; ++i) list += (i ? ", " : "") + item;
+    return list + "]";
+  };
+  const std::string soft = R"({"shape": "circle", "radius": 0.15, "position": [0, 0]})";
+  CHECK(RequireParsed(SceneWith("\"soft_bodies\": " + many(soft, 10000))).soft_bodies.size() == 10000);
+  RequireError(SceneWith("\"soft_bodies\": " + many(soft, 10001)),
+               "soft_bodies: 10001 soft bodies, more than the limit of 10000 (docs/limits.md)");
+  const std::string emitter = R"({"position": [0, 0], "max_particles": 100})";
+  CHECK(RequireParsed(SceneWith("\"emitters\": " + many(emitter, 10000))).emitters.size() == 10000);
+  RequireError(SceneWith("\"emitters\": " + many(emitter, 10001)),
+               "emitters: 10001 emitters, more than the limit of 10000 (docs/limits.md)");
+  // A million effect particles alive at once, and a million soft-body and fluid particles.
+  RequireParsed(SceneWith(R"("emitters": [{"position": [0, 0], "max_particles": 400000},
+                                          {"position": [1, 0], "max_particles": 600000}])"));
+  const game::Scene full = RequireParsed(SceneWith(R"("fluids": [{"region": [[0, 0], [999, 1000]], "spacing": 1},
+    {"region": [[0, 2000], [1000, 2001]]}])"));
+  CHECK(full.fluids[0].particles + full.fluids[1].particles == 1000000);
+  RequireError(SceneWith(R"("fluids": [{"region": [[0, 0], [999, 1000]], "spacing": 1}],
+                            "soft_bodies": [{"shape": "box", "size": [40, 30], "position": [0, -40], "spacing": 1}])"),
+               "fluids[0]: makes 999000 particles, which takes the scene's soft-body and fluid particles to 1000200, more "
+               "than the limit of 1000000 (docs/limits.md)");  // after the soft box's 40 × 30
+}
+
 // --- What BuildWorld makes.
 
 TEST_CASE("scene particles: BuildWorld makes the soft bodies, fluids and emitters in file order",
