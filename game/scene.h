@@ -30,6 +30,9 @@ struct SceneJoint {
   engine::JointDef def;   ///< bodies as BodyId{index into Scene::bodies}
 };
 
+// Particle colours: kept here until the renderer draws particles (render::Renderer::Draw takes
+// only the bodies' colours today); the commands pass them on once it does.
+
 /// A soft body of the scene's `soft_bodies` list (docs/scene-format.md#soft-bodies).
 struct SceneSoftBody {
   std::string id;         ///< unique among the soft bodies; names its particles in the dump

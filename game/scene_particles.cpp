@@ -253,6 +253,33 @@ engine::AABB ReadRegion(const Json& fluid, const std::string& path) {
   return {{std::min(a.x, b.x), std::min(a.y, b.y)}, {std::max(a.x, b.x), std::max(a.y, b.y)}};
 }
 
+// The lattice the block makes: room for a particle, a spacing a double resolves there, a mass
+// the engine can divide by, and its count within the scene's limit.
+void CheckFluidLattice(const Json& fluid, const std::string& path, SceneFluid* out, std::size_t* particles) {
+  auto key = [&](const char* k) { return Join(path, k); };
+  const engine::FluidDef& def = out->def;
+  const engine::Vec2 extent = def.region.upper - def.region.lower;
+  if (!(std::min(extent.x, extent.y) >= def.spacing)) {
+    throw SceneError{key("region"), "is " + Number(extent.x) + " by " + Number(extent.y) +
+                                        " m; each side must be at least the spacing (" + Number(def.spacing) +
+                                        ") to hold a particle"};
+  }
+  const double reach = std::max({std::abs(def.region.lower.x), std::abs(def.region.lower.y),
+                                 std::abs(def.region.upper.x), std::abs(def.region.upper.y)});
+  const bool spacing_given = Find(fluid, "spacing") != nullptr;
+  CheckResolved(def.spacing, reach, spacing_given ? key("spacing") : key("region"), spacing_given);
+  // A particle's mass is about density × spacing² (the kernel sums to about 1 / spacing²).
+  if (!(def.density * def.spacing * def.spacing >= kMinBodyMass)) {
+    throw SceneError{path, "its particles' mass, about density * spacing^2, must be at least 1e-12 kg (docs/limits.md)"};
+  }
+  // Counted by the side, so a block of 1e18 particles is refused before it is counted out.
+  const double side_bound = (extent.x / def.spacing + 1.0) * (extent.y / def.spacing + 1.0);
+  if (side_bound > static_cast<double>(2 * kMaxParticles)) CountParticles(side_bound, path, particles);
+  out->particles = FluidParticleCount(def);
+  if (out->particles == 0) throw SceneError{key("region"), "holds no particle at this spacing (" + Number(def.spacing) + ")"};
+  CountParticles(static_cast<double>(out->particles), path, particles);
+}
+
 // `shared_spacing`: the first block's spacing, or 0 when this is the first.
 SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_spacing, std::size_t* particles) {
   RejectUnknownKeys(fluid, path,
@@ -280,26 +307,7 @@ SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_s
   }
   if (const Json* v = Find(fluid, "vorticity")) def.vorticity = ReadNonNegative(*v, key("vorticity"));
   if (const Json* v = Find(fluid, "friction")) def.friction = ReadNonNegative(*v, key("friction"));
-  const engine::Vec2 extent = def.region.upper - def.region.lower;
-  if (!(std::min(extent.x, extent.y) >= def.spacing)) {
-    throw SceneError{key("region"), "is " + Number(extent.x) + " by " + Number(extent.y) +
-                                        " m; each side must be at least the spacing (" + Number(def.spacing) +
-                                        ") to hold a particle"};
-  }
-  const double reach = std::max({std::abs(def.region.lower.x), std::abs(def.region.lower.y),
-                                 std::abs(def.region.upper.x), std::abs(def.region.upper.y)});
-  const bool spacing_given = Find(fluid, "spacing") != nullptr;
-  CheckResolved(def.spacing, reach, spacing_given ? key("spacing") : key("region"), spacing_given);
-  // A particle's mass is about density × spacing² (the kernel sums to about 1 / spacing²).
-  if (!(def.density * def.spacing * def.spacing >= kMinBodyMass)) {
-    throw SceneError{path, "its particles' mass, about density * spacing^2, must be at least 1e-12 kg (docs/limits.md)"};
-  }
-  // Counted by the side, so a block of 1e18 particles is refused before it is counted out.
-  const double side_bound = (extent.x / def.spacing + 1.0) * (extent.y / def.spacing + 1.0);
-  if (side_bound > static_cast<double>(2 * kMaxParticles)) CountParticles(side_bound, path, particles);
-  out.particles = FluidParticleCount(def);
-  if (out.particles == 0) throw SceneError{key("region"), "holds no particle at this spacing (" + Number(def.spacing) + ")"};
-  CountParticles(static_cast<double>(out.particles), path, particles);
+  CheckFluidLattice(fluid, path, &out, particles);
   out.color = kDefaultFluidColor;
   if (const Json* v = Find(fluid, "color")) out.color = ReadColor(*v, key("color"));
   return out;
