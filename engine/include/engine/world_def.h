@@ -53,7 +53,7 @@ struct SubstepFeatures {
 /// of at most `substep` seconds (Macklin et al. 2019, "Small steps in physics simulation"), so a
 /// soft body's stiffness and a fluid's pressure come out the same whatever the world's dt.
 struct ParticleSettings {
-  double substep = 1.0 / 240.0;  ///< s: the longest substep; a step takes ceil(dt / substep)
+  double substep = 1.0 / 480.0;  ///< s: the longest substep; a step takes ceil(dt / substep)
   int iterations = 1;            ///< constraint passes per substep (more: stiffer sooner, no change at rest)
 };
 

@@ -47,7 +47,7 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Per cell, its particles against those of the 3×3 cells around it; gathered per particle
-  // then laid out in particle order.
+  // then laid out in particle order (each list in cell order: deterministic).
   std::vector<std::uint32_t>& counts = counts_;
   counts.assign(n + 1, 0);
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_;
@@ -73,10 +73,6 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   neighbours->resize(pairs.size());
   std::vector<std::uint32_t> fill(offsets->begin(), offsets->end() - 1);
   for (const auto& [i, j] : pairs) (*neighbours)[fill[i]++] = j;
-  // Within a particle's list, index order (the cells gave them in cell order).
-  for (std::size_t i = 0; i < n; ++i) {
-    std::sort(neighbours->begin() + (*offsets)[i], neighbours->begin() + (*offsets)[i + 1]);
-  }
 }
 
 }  // namespace engine::detail

@@ -17,7 +17,7 @@ class ParticleGrid {
   /// Sorts `positions` into cells `cell` wide (> 0).
   void Build(std::span<const Vec2> positions, double cell);
 
-  /// For each particle, the others within `radius` (≤ the cell size) of it, in index order:
+  /// For each particle, the others within `radius` (≤ the cell size) of it, in cell order:
   /// particle i's are neighbours[offsets[i] .. offsets[i + 1]).
   void FindNeighbours(std::span<const Vec2> positions, double radius, std::vector<std::uint32_t>* offsets,
                       std::vector<std::uint32_t>* neighbours) const;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "engine/world_def.h"
 #include "particles/body_contact.h"
 #include "particles/particle_grid.h"
+#include "particles/sph_kernels.h"
 #include "particles/soft_bodies.h"
 
 namespace engine::detail {
@@ -75,7 +77,7 @@ class ParticleSystem {
     double inv_mass = 0.0;     ///< 0 for static, kinematic and sleeping bodies
     double inv_inertia = 0.0;
     Vec2 end_center;           ///< the centre of mass where the rigid step left it
-    Vec2 shift;                ///< how far the particles pushed it this step
+    Vec2 shift;                ///< how far the particles moved it beyond the rigid step's motion
     double turn = 0.0;         ///< and turned it
     Vec2 velocity_change;      ///< from the particles' impulses
     double angular_velocity_change = 0.0;
@@ -96,7 +98,13 @@ class ParticleSystem {
   void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
                        double radius, std::uint32_t group);
   void FindContacts(const WorldDef& def, const Bodies& bodies);
-  void SolveFluid(double h);
+  double LatticeKernelSum() const;
+  /// The constants that follow from the fluid's spacing (set) and its first block's density.
+  void SetUpFluidKernel(double first_density);
+  void SolveFluid(double h, std::vector<BodyPush>& pushes);
+  /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
+  void FindWalls(const std::vector<BodyPush>& pushes);
+  void PushWalls(double h, std::vector<BodyPush>& pushes);
   void SolveParticleContacts();
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
   static void PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h);
@@ -119,6 +127,8 @@ class ParticleSystem {
   std::uint32_t fluid_first_ = 0;
   FluidParticles fluid_;
   double density_denominator_ = 0.0;  ///< the PBF denominator of a particle inside a perfect lattice
+  std::optional<WallShare> wall_;
+  double wall_scale_ = 0.0;
   bool ever_used_ = false;
 
   // The step's scratch.
@@ -131,6 +141,10 @@ class ParticleSystem {
   std::vector<BodyIndex> touched_;
   std::vector<double> omega_;
   std::vector<double> lambda_;
+  std::vector<double> pair_weights_;   ///< per neighbour entry: the fluid kernel, 0 beyond it
+  std::vector<Vec2> pair_gradients_;
+  std::vector<double> wall_share_;
+  std::vector<Vec2> wall_slope_;
   std::vector<Vec2> delta_, soft_scratch_;
 };
 

@@ -96,6 +96,25 @@ double AreaOfShape(const Shape& shape) {
 
 }  // namespace
 
+bool IsValidSoftBodyDef(const SoftBodyDef& def) {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  if (!IsFinite(def.position) || !std::isfinite(def.angle) || !IsFinite(def.velocity)) return false;
+  if (!positive(def.spacing) || !positive(def.density) || !positive(def.pressure)) return false;
+  for (const double v : {def.stretch_compliance, def.shear_compliance, def.area_compliance, def.damping, def.friction}) {
+    if (!non_negative(v)) return false;
+  }
+  constexpr double kMaxParticles = 100000.0;
+  if (def.shape.type == ShapeType::kCircle) {
+    return positive(def.shape.radius) && def.shape.radius > def.spacing &&
+           2.0 * std::numbers::pi * def.shape.radius / def.spacing <= kMaxParticles;
+  }
+  const Vec2 half = def.shape.half_extents;
+  return def.shape.type == ShapeType::kBox && positive(half.x) && positive(half.y) &&
+         2.0 * std::min(half.x, half.y) > def.spacing &&
+         (2.0 * half.x / def.spacing + 1.0) * (2.0 * half.y / def.spacing + 1.0) <= kMaxParticles;
+}
+
 SoftBody MakeSoftBody(const SoftBodyDef& def) {
   SoftBody body;
   body.def = def;

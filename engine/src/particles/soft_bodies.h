@@ -49,6 +49,10 @@ struct SoftBody {
   std::vector<std::uint32_t> outline;  ///< the rim, anticlockwise
 };
 
+/// Whether `def` meets World::CreateSoftBody's preconditions (the attached body aside): a
+/// snapshot's definitions are checked with it before anything is built from them.
+bool IsValidSoftBodyDef(const SoftBodyDef& def);
+
 /// The layout and constraints of a soft body made from `def` (valid: World::CreateSoftBody's
 /// preconditions), without attachments.
 SoftBody MakeSoftBody(const SoftBodyDef& def);

@@ -375,8 +375,10 @@ void World::Impl::Save(ByteWriter& out) const {
   sensors.Save(out);
   out.U8(static_cast<std::uint8_t>(solver.index()));
   std::visit([&](const auto& s) { s.Save(out); }, solver);
-  // Joints last, and only in worlds that ever had one (others' snapshots stay as they were).
-  if (joints.joints.empty()) return;
+  // Joints, then particles, last, and only in worlds that ever had them (others' snapshots stay
+  // as they were); a world with particles writes its joint count even when it is 0.
+  const bool particles_used = particles.EverUsed() || effects.EverUsed();
+  if (joints.joints.empty() && !particles_used) return;
   out.U32(static_cast<std::uint32_t>(joints.joints.size()));
   for (std::uint32_t slot = 0; slot < joints.joints.size(); ++slot) {
     out.U32(joints.generations[slot]);
@@ -385,11 +387,14 @@ void World::Impl::Save(ByteWriter& out) const {
   }
   out.U32(static_cast<std::uint32_t>(joints.free_slots.size()));
   for (const std::uint32_t slot : joints.free_slots) out.U32(slot);
+  if (!particles_used) return;
+  particles.Save(out);
+  effects.Save(out);
 }
 
 bool World::Impl::LoadJoints(ByteReader& in) {
   const std::uint32_t count = in.Count(5);
-  if (!in.Check(count > 0)) return false;
+  if (!in.Ok()) return false;
   for (std::uint32_t slot = 0; slot < count && in.Ok(); ++slot) {
     joints.Allocate();
     joints.generations[slot] = in.U32();
@@ -534,7 +539,9 @@ bool World::Impl::Load(ByteReader& in) {
   if (!in.Ok() || !contact_events.Load(in, bodies) || !sensors.Load(in, bodies)) return false;
   if (!in.Check(in.U8() == solver.index())) return false;
   if (!std::visit([&](auto& s) { return s.Load(in, n); }, solver) || !in.Ok()) return false;
-  return in.Remaining() == 0 || LoadJoints(in);
+  if (in.Remaining() == 0) return true;
+  if (!LoadJoints(in)) return false;
+  return in.Remaining() == 0 || (particles.Load(in, bodies) && effects.Load(in) && in.Ok());
 }
 
 std::vector<std::uint8_t> World::TakeSnapshot() const {

@@ -1,0 +1,167 @@
+// Soft bodies (XPBD): stiffness that does not change with the step, pressure that keeps a
+// ball's area, energy that never grows, and the snapshot and hash they join.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "engine/world.h"
+
+namespace {
+
+using engine::BodyDef;
+using engine::SoftBodyDef;
+using engine::SoftBodyId;
+using engine::Vec2;
+using engine::World;
+using engine::WorldDef;
+
+engine::BodyId StaticBox(World& world, Vec2 center, Vec2 half) {
+  BodyDef def;
+  def.shape.type = engine::ShapeType::kBox;
+  def.shape.half_extents = half;
+  def.position = center;
+  def.is_static = true;
+  return world.CreateBody(def);
+}
+
+double OutlineArea(const World& world, SoftBodyId id) {
+  const auto p = world.SoftBodyPositions(id);
+  const auto o = world.SoftBodyOutline(id);
+  double twice = 0.0;
+  for (std::size_t k = 0; k < o.size(); ++k) twice += engine::Cross(p[o[k]], p[o[(k + 1) % o.size()]]);
+  return 0.5 * twice;
+}
+
+// A 1.6 m × 0.3 m beam whose left end is held in a wall, sagging under its own weight and
+// swinging about that sag: its free corner's mean height from 2 s to 10 s.
+double BeamTipSag(double dt) {
+  WorldDef def;
+  def.dt = dt;
+  World world(def);
+  const engine::BodyId wall = StaticBox(world, {-0.65, 0.0}, {0.2, 0.3});
+  SoftBodyDef beam;
+  beam.shape.type = engine::ShapeType::kBox;
+  beam.shape.half_extents = {0.8, 0.15};
+  beam.spacing = 0.1;
+  beam.density = 100.0;
+  beam.stretch_compliance = 2e-6;
+  beam.shear_compliance = 2e-6;
+  beam.damping = 5.0;
+  beam.attach_to = wall;
+  const SoftBodyId id = world.CreateSoftBody(beam);
+  const int steps = static_cast<int>(std::lround(10.0 / dt));
+  const int first = static_cast<int>(std::lround(2.0 / dt));
+  double sum = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    world.Step();
+    if (s >= first) sum += world.SoftBodyPositions(id).back().y;  // the upper right corner
+  }
+  return 0.1 - sum / (steps - first);
+}
+
+}  // namespace
+
+TEST_CASE("a clamped soft beam sags the same at 30, 60 and 120 Hz", "[soft]") {
+  const double sag30 = BeamTipSag(1.0 / 30.0);
+  const double sag60 = BeamTipSag(1.0 / 60.0);
+  const double sag120 = BeamTipSag(1.0 / 120.0);
+  INFO("sag at 30 Hz " << sag30 << ", 60 Hz " << sag60 << ", 120 Hz " << sag120);
+  REQUIRE(sag60 > 0.02);  // it does bend: the test would pass for a rigid beam otherwise
+  REQUIRE(std::abs(sag30 - sag60) <= 0.02 * sag60);
+  REQUIRE(std::abs(sag120 - sag60) <= 0.02 * sag60);
+}
+
+TEST_CASE("a pressurised soft ball keeps its area under its own weight", "[soft]") {
+  World world(WorldDef{});
+  StaticBox(world, {0.0, -0.5}, {5.0, 0.5});
+  SoftBodyDef ball;
+  ball.shape.radius = 0.5;
+  ball.position = {0.0, 0.6};
+  ball.spacing = 0.05;
+  ball.density = 200.0;
+  ball.stretch_compliance = 1e-4;  // a stretchy skin: the pressure holds the shape
+  ball.damping = 2.0;
+  const SoftBodyId id = world.CreateSoftBody(ball);
+  const double rest = OutlineArea(world, id);
+  double worst = 0.0;
+  for (int s = 0; s < 300; ++s) {
+    world.Step();
+    worst = std::max(worst, std::abs(OutlineArea(world, id) / rest - 1.0));
+  }
+  double lowest = 1e9;
+  for (const Vec2 q : world.SoftBodyPositions(id)) lowest = std::min(lowest, q.y);
+  INFO("worst area change " << worst);
+  REQUIRE(lowest == Approx(0.025).margin(0.005));  // resting on the ground, a particle radius up
+  REQUIRE(worst < 0.01);
+}
+
+TEST_CASE("a soft ball bouncing never gains energy", "[soft]") {
+  World world(WorldDef{});
+  StaticBox(world, {0.0, -0.5}, {5.0, 0.5});
+  SoftBodyDef ball;
+  ball.shape.radius = 0.4;
+  ball.position = {0.0, 2.0};
+  ball.spacing = 0.05;
+  ball.density = 100.0;
+  ball.stretch_compliance = 1e-3;
+  const SoftBodyId id = world.CreateSoftBody(ball);
+  const double m = world.SoftBodyParticleMass(id);
+  const auto outline = world.SoftBodyOutline(id);
+  std::vector<double> rest;
+  const auto p0 = world.SoftBodyPositions(id);
+  for (std::size_t k = 0; k < outline.size(); ++k) {
+    rest.push_back(engine::Length(p0[outline[(k + 1) % outline.size()]] - p0[outline[k]]));
+  }
+  // Kinetic + potential + the skin's stretch energy Σ C²/2α, α = compliance × L / spacing.
+  const auto energy = [&] {
+    const auto p = world.SoftBodyPositions(id);
+    const auto v = world.SoftBodyVelocities(id);
+    double e = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) e += 0.5 * m * engine::LengthSquared(v[i]) + m * 9.8 * p[i].y;
+    for (std::size_t k = 0; k < outline.size(); ++k) {
+      const double c = engine::Length(p[outline[(k + 1) % outline.size()]] - p[outline[k]]) - rest[k];
+      e += 0.5 * c * c / (ball.stretch_compliance * rest[k] / ball.spacing);
+    }
+    return e;
+  };
+  const double start = energy();
+  double previous = start, worst_rise = 0.0;
+  for (int s = 0; s < 600; ++s) {
+    world.Step();
+    const double e = energy();
+    worst_rise = std::max(worst_rise, e - previous);
+    REQUIRE(e <= start * (1.0 + 1e-6));
+    previous = e;
+  }
+  INFO("largest rise in one step " << worst_rise << " J of " << start);
+  REQUIRE(worst_rise <= 1e-3 * start);
+  REQUIRE(previous < start);  // and the bounces lose some
+}
+
+TEST_CASE("soft bodies join the hash and the snapshot; a world without them keeps its hash", "[soft]") {
+  const auto make = [](bool soft) {
+    auto world = std::make_unique<World>(WorldDef{});
+    StaticBox(*world, {0.0, -0.5}, {5.0, 0.5});
+    if (soft) {
+      SoftBodyDef box;
+      box.shape.type = engine::ShapeType::kBox;
+      box.shape.half_extents = {0.3, 0.2};
+      box.position = {0.0, 1.0};
+      world->CreateSoftBody(box);
+    }
+    return world;
+  };
+  auto plain = make(false);
+  auto with = make(true);
+  REQUIRE(plain->StateHash() != with->StateHash());
+  for (int s = 0; s < 30; ++s) with->Step();
+  const auto bytes = with->TakeSnapshot();
+  const std::uint64_t expected = [&] {
+    for (int s = 0; s < 30; ++s) with->Step();
+    return with->StateHash();
+  }();
+  auto restored = make(false);
+  REQUIRE(static_cast<bool>(restored->RestoreSnapshot(bytes)));
+  for (int s = 0; s < 30; ++s) restored->Step();
+  REQUIRE(restored->StateHash() == expected);
+}
