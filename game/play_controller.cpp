@@ -142,8 +142,6 @@ void PlayController::KeepRewindPoint() {
 }
 
 bool PlayController::Rewind() {
-  // The engine's snapshots do not carry particles yet: going back would lose them all.
-  if (scene_.HasParticles()) return false;
   const std::int64_t now = session_->StepIndex();
   // Points at or after the current step belong to a future that is being undone.
   while (!rewind_points_.empty() && rewind_points_.back().step >= now) {

@@ -12,13 +12,6 @@ Expected<RunInput> LoadRunInput(const RunOptions& options) {
                               ? LoadScene(*options.scene_path)
                               : ParseScene(DefaultSceneJson(), "<default scene>", "default");
   if (!scene.HasValue()) return scene.Error();
-  // The engine's snapshots do not carry particles yet (World::TakeSnapshot): a saved state would
-  // come back without them, a different world, so it is refused rather than resumed.
-  if ((options.save_state_path || options.load_state_path) && scene.Value().HasParticles()) {
-    return RuntimeFailure(std::string(options.save_state_path ? "--save-state" : "--load-state") +
-                          ": not possible yet for a scene with soft bodies, fluid or emitters (the engine's saved "
-                          "states do not carry particles yet)");
-  }
   RunInput input{std::move(scene.Value()), {}};
   if (options.script_path || !options.scene_path) {
     Expected<std::vector<InputEvent>> events =

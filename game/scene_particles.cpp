@@ -454,7 +454,8 @@ void CheckParticleSubsteps(const Json& root, const Scene& scene) {
   const bool substep_given = settings && settings->is_object() && Find(*settings, "substep");
   throw SceneError{substep_given ? "particles.substep" : "dt",
                    "makes " + Limit(substeps) + " particle substeps a step (dt / particles.substep" +
-                       (substep_given ? "" : ", 1/240 s by default") + "), more than the limit of " +
+                       (substep_given ? "" : ", 1/" + Limit(1.0 / engine::ParticleSettings{}.substep) + " s by default") +
+                       "), more than the limit of " +
                        Limit(kMaxParticleSubsteps) + " (docs/limits.md)"};
 }
 

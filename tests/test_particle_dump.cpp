@@ -174,17 +174,26 @@ TEST_CASE("particle dump: the particle file's name, and a device dump", "[dump][
   CHECK(Listing(dir) == std::vector<std::string>{"scene.json"});
 }
 
-TEST_CASE("particle scenes refuse --save-state and --load-state until saved states carry particles",
+TEST_CASE("particle scenes: --save-state then --load-state ends where one run does, clicks included",
           "[dump][particles][exe]") {
   const fs::path dir = testing::FreshTestDir("particle_dump", "saved_state");
   {
     std::ofstream(dir / "scene.json") << kParticleScene;
+    // Clicks on the soft circle and the pool, before and after the state is saved at step 20.
+    std::ofstream(dir / "clicks.txt") << "10 click-world 0.2 0.8\n25 click-world -3.9 0.5\n";
   }
-  ProgramRun run = Ballbox("sim scene.json --steps 2 --save-state s.bin", dir);
-  CHECK(run.exit_code == 1);
-  CHECK(run.err == "error: --save-state: not possible yet for a scene with soft bodies, fluid or emitters (the "
-                   "engine's saved states do not carry particles yet)\n");
-  run = Ballbox("sim scene.json --steps 2 --load-state s.bin", dir);
-  CHECK(run.exit_code == 1);
-  CHECK(Listing(dir) == std::vector<std::string>{"scene.json"});
+  const ProgramRun whole = Ballbox("sim scene.json --script clicks.txt --steps 40 --dump whole.csv", dir);
+  REQUIRE(whole.exit_code == 0);
+  CHECK(Lines(whole.out).at(1) == "events: 2 clicks applied, 0 hit a ball, 2 pushed particles, 0 missed");
+  REQUIRE(Ballbox("sim scene.json --script clicks.txt --steps 20 --save-state s.bin", dir).exit_code == 0);
+  const ProgramRun resumed =
+      Ballbox("sim scene.json --script clicks.txt --load-state s.bin --steps 20 --dump resumed.csv", dir);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(Lines(resumed.out).back() == Lines(whole.out).back());
+  // The resumed dump is the whole one's from step 20 on.
+  const std::vector<std::string> all = Lines(ReadFile(dir / "whole.particles.csv"));
+  const std::vector<std::string> tail = Lines(ReadFile(dir / "resumed.particles.csv"));
+  REQUIRE(tail.size() > 1);
+  const auto from = std::find_if(all.begin(), all.end(), [](const std::string& l) { return l.rfind("20,", 0) == 0; });
+  CHECK(std::vector<std::string>(from, all.end()) == std::vector<std::string>(tail.begin() + 1, tail.end()));
 }

@@ -421,7 +421,7 @@ TEST_CASE("scene particles: bad particle settings, click keys and steps", "[scen
        "particles.substep: makes 16667 particle substeps a step (dt / particles.substep), more than the limit of 1000 "
        "(docs/limits.md)"},
       {R"("dt": 5, "fluids": [{"region": [[0, 0], [1, 1]]}])",
-       "dt: makes 1200 particle substeps a step (dt / particles.substep, 1/240 s by default), more than the limit of "
+       "dt: makes 2400 particle substeps a step (dt / particles.substep, 1/480 s by default), more than the limit of "
        "1000 (docs/limits.md)"},
       {R"("dt": 1e-10)" + soft, "dt: must be at least 1e-09 s in a scene with soft bodies or fluid (docs/limits.md)"},
       {R"("soft_budies": [])", R"(unknown key "soft_budies" (did you mean "soft_bodies"?))"},
