@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "game/scene.h"
+#include "game/scene_particles.h"
 
 namespace {
 
@@ -29,8 +30,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     CheckMessage(scene.Error());
     return 0;
   }
-  // Few bodies keep each input fast; the limits tests cover large counts.
-  if (scene.Value().bodies.size() > 64) return 0;
+  // Few bodies and particles keep each input fast; the limits tests cover large counts.
+  const game::Scene& loaded = scene.Value();
+  std::size_t particles = 0;
+  for (const game::SceneFluid& fluid : loaded.fluids) particles += fluid.particles;
+  for (const game::SceneSoftBody& soft : loaded.soft_bodies) particles += game::SoftBodyParticleCount(soft.def);
+  if (loaded.bodies.size() > 64 || loaded.emitters.size() > 64 || particles > 5000) return 0;
   engine::World world = game::BuildWorld(scene.Value());
   for (int step = 0; step < 4; ++step) world.Step();
   return 0;

@@ -56,4 +56,37 @@ std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double 
   return hit;
 }
 
+engine::Vec2 ParticleClickVelocity(engine::Vec2 x, engine::Vec2 p, double radius, double speed) {
+  const engine::Vec2 away = x - p;
+  const double d = engine::Length(away);
+  if (d == 0.0 || !(d < radius)) return {};
+  const double u = d / radius;
+  // Rises like the ball rule from the centre, falls to nothing at the edge: no seam in the fluid.
+  const double strength = speed * (u <= 0.5 ? 2.0 * u : 2.0 * (1.0 - u));
+  return {strength * away.x / d, strength * away.y / d};
+}
+
+std::size_t PushParticles(engine::World& world, engine::Vec2 p, double radius, double speed) {
+  std::size_t pushed = 0;
+  const auto push = [&](engine::Vec2 x, double mass, auto apply) {
+    const engine::Vec2 dv = ParticleClickVelocity(x, p, radius, speed);
+    if (dv.x == 0.0 && dv.y == 0.0) return;
+    apply(mass * dv);
+    ++pushed;
+  };
+  for (const engine::SoftBodyId id : world.SoftBodyIds()) {
+    const std::span<const engine::Vec2> positions = world.SoftBodyPositions(id);
+    const double mass = world.SoftBodyParticleMass(id);
+    for (std::uint32_t i = 0; i < positions.size(); ++i) {
+      push(positions[i], mass, [&](engine::Vec2 impulse) { world.ApplySoftBodyImpulse(id, i, impulse); });
+    }
+  }
+  const std::span<const engine::Vec2> fluid = world.FluidPositions();
+  const std::span<const double> masses = world.FluidMasses();
+  for (std::uint32_t i = 0; i < fluid.size(); ++i) {
+    push(fluid[i], masses[i], [&](engine::Vec2 impulse) { world.ApplyFluidImpulse(i, impulse); });
+  }
+  return pushed;
+}
+
 }  // namespace game

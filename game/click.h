@@ -1,6 +1,7 @@
 // The click rule (docs/click-rule.md): a click pushes a ball away from the click point.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 
 #include "engine/math.h"
@@ -34,5 +35,14 @@ std::optional<NearBall> NearestBall(const engine::World& world, engine::Vec2 p);
 
 /// Resolves the click and applies its impulse; returns what it hit.
 std::optional<ClickHit> ApplyClick(engine::World& world, engine::Vec2 p, double max_impulse);
+
+/// The velocity change a click at p gives a soft-body or fluid particle at x (docs/click-rule.md):
+/// away from p, of size speed · 2u for u = |x − p| / radius up to ½, then speed · 2(1 − u) down
+/// to 0 at the radius; nothing at p itself or from the radius on.
+engine::Vec2 ParticleClickVelocity(engine::Vec2 x, engine::Vec2 p, double radius, double speed);
+
+/// Changes the velocity of every soft-body and fluid particle by ParticleClickVelocity (an
+/// impulse of its mass times that); returns how many it changed. Effect particles are not pushed.
+std::size_t PushParticles(engine::World& world, engine::Vec2 p, double radius, double speed);
 
 }  // namespace game

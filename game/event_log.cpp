@@ -9,10 +9,10 @@
 
 namespace game {
 
-void EventLog::Record(const InputEvent& event, engine::Vec2 world, bool hit,
+void EventLog::Record(const InputEvent& event, engine::Vec2 world, bool hit, bool pushed_particles,
                       const engine::World& world_state) {
-  if (hit) {
-    ++hits_;
+  if (hit || pushed_particles) {
+    ++(hit ? hits_ : pushes_);
     return;
   }
   MissedClick miss{event, world, std::nullopt, 0.0};
@@ -39,8 +39,10 @@ std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool m
   // A run of drags alone says nothing of clicks; any other run says how its clicks went.
   if (applied > 0 || !dragging) {
     const std::size_t missed = log.Misses().size();
-    line += Count(applied, "click", "clicks") + " applied, " + std::to_string(log.Hits()) +
-            " hit a ball, " + std::to_string(missed) + " missed";
+    line += Count(applied, "click", "clicks") + " applied, " + std::to_string(log.Hits()) + " hit a ball, ";
+    // Only scenes with particles can push any, so the others' line reads as it always did.
+    if (log.ParticlePushes() > 0) line += std::to_string(log.ParticlePushes()) + " pushed particles, ";
+    line += std::to_string(missed) + " missed";
     if (missed > 0 && !misses_listed) line += " (--misses lists where)";
     if (dragging) line += "; ";
   }

@@ -25,8 +25,9 @@ struct MissedClick {
 
 class EventLog {
  public:
-  /// Notes one applied click that acted at `world` on `world_state` and hit a ball or not.
-  void Record(const InputEvent& event, engine::Vec2 world, bool hit,
+  /// Notes one applied click that acted at `world` on `world_state` and hit a ball, or else
+  /// pushed particles, or neither (a miss).
+  void Record(const InputEvent& event, engine::Vec2 world, bool hit, bool pushed_particles,
               const engine::World& world_state);
 
   /// Notes a grab, which took hold of a body or found none under it.
@@ -35,8 +36,10 @@ class EventLog {
   void RecordRelease() { ++releases_; }
 
   /// Clicks applied.
-  std::int64_t Applied() const { return hits_ + static_cast<std::int64_t>(misses_.size()); }
+  std::int64_t Applied() const { return hits_ + pushes_ + static_cast<std::int64_t>(misses_.size()); }
   std::int64_t Hits() const { return hits_; }
+  /// Clicks that hit no ball but pushed soft-body or fluid particles.
+  std::int64_t ParticlePushes() const { return pushes_; }
   const std::vector<MissedClick>& Misses() const { return misses_; }
   std::int64_t Grabs() const { return grabs_; }
   /// Grabs that took hold of a body.
@@ -46,6 +49,7 @@ class EventLog {
 
  private:
   std::int64_t hits_ = 0;
+  std::int64_t pushes_ = 0;
   std::vector<MissedClick> misses_;
   std::int64_t grabs_ = 0;
   std::int64_t held_ = 0;
@@ -61,7 +65,7 @@ struct EventsAfterEnd {
 };
 
 /// The summary line, e.g. "events: 6 clicks applied, 5 hit a ball, 1 missed (--misses lists
-/// where)", with "; 1 grab (1 took hold of a body), 40 drags, 1 release" when the run had any,
+/// where)" (with "2 pushed particles" before the misses when any click did), with "; 1 grab (1 took hold of a body), 40 drags, 1 release" when the run had any,
 /// or "events: none" for a run without any. `misses_listed`: the misses are printed above it,
 /// so the hint is left out.
 std::string EventSummary(const EventLog& log, const EventsAfterEnd& late, bool misses_listed);

@@ -13,6 +13,38 @@ inline constexpr std::size_t kMaxBodies = 1'000'000;
 /// Joints in one scene: 100 000 hinged balls load in 1.4 s and 0.3 GB (docs/limits.md).
 inline constexpr std::size_t kMaxJoints = 100'000;
 
+/// Soft bodies in one scene: each is made in time that grows with the number before it, so
+/// 10 000 load in well under a second (docs/limits.md).
+inline constexpr std::size_t kMaxSoftBodies = 10'000;
+
+/// Particles in one soft body: the engine's own limit (World::CreateSoftBody), checked by its
+/// formula (2π·radius / spacing for a circle, (width / spacing + 1)·(height / spacing + 1) for
+/// a box), which bounds the particles made from above.
+inline constexpr double kMaxSoftBodyParticles = 100'000;
+
+/// Soft-body and fluid particles in one scene together: a million step at about 2 s a step in
+/// about 0.6 GB (docs/limits.md).
+inline constexpr std::size_t kMaxParticles = 1'000'000;
+
+/// The least particle spacing, as a share of how far the particles lie from the origin: finer,
+/// neighbouring particles are a few roundings of a double apart (at 1e9 m a double resolves
+/// 1.2e-7 m), a lattice collapses onto itself and a fluid's rows would never advance.
+inline constexpr double kMinRelativeSpacing = 1e-9;
+
+/// Emitters in one scene, and the effect particles they may keep alive at once (the sum of
+/// their max_particles).
+inline constexpr std::size_t kMaxEmitters = 10'000;
+inline constexpr double kMaxEffectParticles = 1'000'000;
+
+/// The least `dt` of a scene with soft bodies or fluid, s: their solver divides by the square of
+/// the substep, which must stay a normal double.
+inline constexpr double kMinParticleDt = 1e-9;
+
+/// Particle substeps in one step (dt / particles.substep) and passes in one substep, as the
+/// contact solver's substeps and iterations.
+inline constexpr double kMaxParticleSubsteps = 1000;
+inline constexpr double kMaxParticleIterations = 1000;
+
 /// Every number in a scene, in magnitude (metres, m/s, kg, ...). Squares and products of such
 /// numbers stay far inside a double's range, and a double still resolves 1e-7 m at 1e9 m.
 inline constexpr double kMaxSceneMagnitude = 1e9;

@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace game {
 
@@ -13,12 +14,22 @@ std::string TemporaryPath(const std::string& path) {
   return path + ".tmp-" + std::to_string(::getpid());
 }
 
+bool WritesInPlace(const std::string& path) {
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return true;
+  std::error_code error;
+  const std::string absolute = std::filesystem::absolute(path, error).lexically_normal().string();
+  return !error && (absolute.rfind("/dev/", 0) == 0 || absolute.rfind("/proc/", 0) == 0);
+}
+
 Expected<AtomicOutputFile> AtomicOutputFile::Open(const std::string& path) {
   // A device or pipe (/dev/stdout, /dev/null, a FIFO) is written in place: a temporary file
   // renamed over it would replace the device node itself, which root is allowed to do.
   struct stat info;
-  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {
-    if (S_ISDIR(info.st_mode)) return RuntimeFailure(path + ": cannot write: is a folder");
+  if (WritesInPlace(path)) {
+    if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+      return RuntimeFailure(path + ": cannot write: is a folder");
+    }
     std::FILE* file = std::fopen(path.c_str(), "wb");
     if (!file) return RuntimeFailure(path + ": cannot write: " + std::strerror(errno));
     return AtomicOutputFile(path, std::string(), file);

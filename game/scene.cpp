@@ -11,6 +11,7 @@
 #include "game/limits.h"
 #include "game/scene_joints.h"
 #include "game/scene_json.h"
+#include "game/scene_particles.h"
 #include "game/scene_shapes.h"
 #include "game/scene_values.h"
 #include "game/text_file.h"
@@ -20,27 +21,6 @@ namespace game {
 namespace {
 
 using namespace scene_values;  // NOLINT: the reader is made of these
-
-int HexDigit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-render::Color ReadColor(const Json& value, const std::string& path) {
-  const std::string text = ReadString(value, path);
-  const bool short_form = text.size() == 4;
-  const bool valid_shape = text.size() >= 1 && text[0] == '#' && (short_form || text.size() == 7);
-  bool valid_digits = valid_shape;
-  for (std::size_t i = 1; valid_digits && i < text.size(); ++i) valid_digits = HexDigit(text[i]) >= 0;
-  if (!valid_digits) throw SceneError{path, "must be a colour \"#rgb\" or \"#rrggbb\", got " + Quote(text)};
-  auto channel = [&](int i) -> std::uint8_t {
-    if (short_form) return static_cast<std::uint8_t>(HexDigit(text[1 + i]) * 17);
-    return static_cast<std::uint8_t>(HexDigit(text[1 + 2 * i]) * 16 + HexDigit(text[2 + 2 * i]));
-  };
-  return {channel(0), channel(1), channel(2)};
-}
 
 void ReadSolver(const Json& solver, const std::string& path, engine::WorldDef* world) {
   if (!solver.is_object()) throw SceneError{path, "must be an object"};
@@ -203,12 +183,22 @@ engine::SpringDef ReadSpring(const Json& spring, const std::string& path,
   return def;
 }
 
+// The soft bodies, fluids and emitters, after the bodies they may name.
+void ReadParticleLists(const Json& root, const std::map<std::string, std::size_t>& body_ids, Scene* scene) {
+  std::size_t particles = 0;  // soft-body and fluid particles, against kMaxParticles
+  if (const Json* v = Find(root, "soft_bodies")) scene->soft_bodies = ReadSoftBodies(*v, body_ids, &particles);
+  if (const Json* v = Find(root, "fluids")) scene->fluids = ReadFluids(*v, &particles);
+  if (const Json* v = Find(root, "emitters")) scene->emitters = ReadEmitters(*v, body_ids);
+  CheckParticleSubsteps(root, *scene);
+}
+
 Scene ReadScene(const Json& root, const std::string& default_name) {
   if (!root.is_object()) throw SceneError{"", "a scene must be a JSON object"};
   RejectUnknownKeys(root, "",
                     {"name", "gravity", "dt", "rotation", "camera", "click", "bodies", "integrator",
                      "broad_phase", "solver", "sleep", "springs", "fluid_density",
-                     "gravitational_constant", "continuous", "joints"});
+                     "gravitational_constant", "continuous", "joints", "particles", "soft_bodies", "fluids",
+                     "emitters"});
   Scene scene;
   scene.name = default_name;
   if (const Json* v = Find(root, "name")) {
@@ -239,6 +229,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
          {"aabb_tree", engine::BroadPhaseType::kAabbTree}});
   }
   if (const Json* v = Find(root, "solver")) ReadSolver(*v, "solver", &world);
+  if (const Json* v = Find(root, "particles")) ReadParticleSettings(*v, "particles", &world);
   if (const Json* v = Find(root, "sleep")) world.sleeping = ReadBool(*v, "sleep");
   if (const Json* v = Find(root, "continuous")) world.continuous = ReadBool(*v, "continuous");
   if (const Json* v = Find(root, "fluid_density")) world.fluid_density = ReadNonNegative(*v, "fluid_density");
@@ -254,9 +245,15 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   }
   if (const Json* click = Find(root, "click")) {
     if (!click->is_object()) throw SceneError{"click", "must be an object"};
-    RejectUnknownKeys(*click, "click", {"max_impulse"});
+    RejectUnknownKeys(*click, "click", {"max_impulse", "particle_radius", "particle_speed"});
     if (const Json* v = Find(*click, "max_impulse")) {
       scene.click_max_impulse = ReadNonNegative(*v, "click.max_impulse");
+    }
+    if (const Json* v = Find(*click, "particle_radius")) {
+      scene.particle_click.radius = ReadPositive(*v, "click.particle_radius");
+    }
+    if (const Json* v = Find(*click, "particle_speed")) {
+      scene.particle_click.speed = ReadNonNegative(*v, "click.particle_speed");
     }
   }
 
@@ -291,6 +288,7 @@ Scene ReadScene(const Json& root, const std::string& default_name) {
   if (const Json* joints = Find(root, "joints")) {
     scene.joints = ReadJoints(*joints, scene.bodies, first_use, world.rotation);
   }
+  ReadParticleLists(root, first_use, &scene);
   return scene;
 }
 
@@ -324,6 +322,10 @@ engine::World BuildWorld(const Scene& scene) {
   // After every body, since a joint may name a later one; in file order, so JointId{i} is
   // joints[i].
   for (const SceneJoint& joint : scene.joints) world.CreateJoint(joint.def);
+  // In file order, so SoftBodyId{i} is soft_bodies[i] and EmitterId{i} is emitters[i].
+  for (const SceneSoftBody& soft : scene.soft_bodies) world.CreateSoftBody(soft.def);
+  for (const SceneFluid& fluid : scene.fluids) world.AddFluid(fluid.def);
+  for (const SceneEmitter& emitter : scene.emitters) world.CreateEmitter(emitter.def);
   return world;
 }
 

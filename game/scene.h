@@ -30,6 +30,40 @@ struct SceneJoint {
   engine::JointDef def;   ///< bodies as BodyId{index into Scene::bodies}
 };
 
+// Particle colours: kept here until the renderer draws particles (render::Renderer::Draw takes
+// only the bodies' colours today); the commands pass them on once it does.
+
+/// A soft body of the scene's `soft_bodies` list (docs/scene-format.md#soft-bodies).
+struct SceneSoftBody {
+  std::string id;         ///< unique among the soft bodies; names its particles in the dump
+  bool id_given = false;  ///< false: the id is the default soft<index>
+  engine::SoftBodyDef def;  ///< attach_to as BodyId{index into Scene::bodies}
+  render::Color color;
+};
+
+/// A block of the scene's `fluids` list (docs/scene-format.md#fluids).
+struct SceneFluid {
+  std::string id;         ///< unique among the fluids; names its particles in the dump
+  bool id_given = false;  ///< false: the id is the default fluid<index>
+  engine::FluidDef def;
+  render::Color color;
+  std::size_t particles = 0;  ///< how many the engine makes of it (FluidParticleCount)
+};
+
+/// An emitter of the scene's `emitters` list (docs/scene-format.md#emitters); its colours are
+/// in the def (color_start, color_end).
+struct SceneEmitter {
+  std::string id;         ///< unique among the emitters; names its particles in the dump
+  bool id_given = false;  ///< false: the id is the default emitter<index>
+  engine::EmitterDef def;   ///< body as BodyId{index into Scene::bodies}
+};
+
+/// How a click pushes soft-body and fluid particles when it hits no ball (docs/click-rule.md).
+struct ParticleClick {
+  double radius = 1.0;  ///< m: particles farther than this from the click are not pushed
+  double speed = 5.0;   ///< m/s: the largest velocity change, at half the radius
+};
+
 /// The scene's camera; what it leaves out comes from a fit of all bodies.
 struct CameraDef {
   std::optional<engine::Vec2> center;
@@ -44,6 +78,15 @@ struct Scene {
   std::vector<SceneBody> bodies;
   std::vector<engine::SpringDef> springs;  ///< bodies named by index into `bodies`
   std::vector<SceneJoint> joints;          ///< in file order, made after every body
+  ParticleClick particle_click;
+  /// Made after the joints, each list in file order: SoftBodyId{i} is soft_bodies[i],
+  /// EmitterId{i} is emitters[i], and the fluid's particles come block by block.
+  std::vector<SceneSoftBody> soft_bodies;
+  std::vector<SceneFluid> fluids;
+  std::vector<SceneEmitter> emitters;
+
+  /// Whether the scene has soft bodies, fluid or emitters (its dump then has a particle file).
+  bool HasParticles() const { return !soft_bodies.empty() || !fluids.empty() || !emitters.empty(); }
 };
 
 /// Parses scene JSON. `file_label` names the source in messages; `default_name` is used when
@@ -55,7 +98,8 @@ Expected<Scene> ParseScene(std::string_view json, const std::string& file_label,
 Expected<Scene> LoadScene(const std::string& path);
 
 /// The engine world a scene describes, bodies in scene order (BodyId = index in `bodies`), then
-/// its joints in file order (JointId = index in `joints`).
+/// its joints in file order (JointId = index in `joints`), then its soft bodies, fluids and
+/// emitters, each in file order.
 engine::World BuildWorld(const Scene& scene);
 
 /// The index in `scene.joints` of the joint with this id, which is also its JointId's index in

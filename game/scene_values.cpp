@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <vector>
 
 #include "game/limits.h"
@@ -27,7 +29,62 @@ std::size_t EditDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+int HexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// The channels of "#" and 3, 4, 6 or 8 hex digits (one or two a channel), if `text` is one of
+// the `allowed` lengths; each channel 0..255.
+bool HexChannels(const std::string& text, std::initializer_list<std::size_t> allowed, std::uint8_t out[4]) {
+  bool length_ok = false;
+  for (const std::size_t n : allowed) length_ok = length_ok || text.size() == n + 1;
+  if (!length_ok || text[0] != '#') return false;
+  for (std::size_t i = 1; i < text.size(); ++i) {
+    if (HexDigit(text[i]) < 0) return false;
+  }
+  const bool short_form = text.size() <= 5;
+  const std::size_t channels = short_form ? text.size() - 1 : (text.size() - 1) / 2;
+  out[3] = 255;
+  for (std::size_t i = 0; i < channels; ++i) {
+    out[i] = short_form ? static_cast<std::uint8_t>(HexDigit(text[1 + i]) * 17)
+                        : static_cast<std::uint8_t>(HexDigit(text[1 + 2 * i]) * 16 + HexDigit(text[2 + 2 * i]));
+  }
+  return true;
+}
+
 }  // namespace
+
+render::Color ReadColor(const Json& value, const std::string& path) {
+  const std::string text = ReadString(value, path);
+  std::uint8_t c[4];
+  if (!HexChannels(text, {3, 6}, c)) {
+    throw SceneError{path, "must be a colour \"#rgb\" or \"#rrggbb\", got " + Quote(text)};
+  }
+  return {c[0], c[1], c[2]};
+}
+
+engine::Rgba ReadRgba(const Json& value, const std::string& path) {
+  const std::string text = ReadString(value, path);
+  std::uint8_t c[4];
+  if (!HexChannels(text, {3, 4, 6, 8}, c)) {
+    throw SceneError{path, "must be a colour \"#rgb\", \"#rgba\", \"#rrggbb\" or \"#rrggbbaa\", got " + Quote(text)};
+  }
+  const auto unit = [](std::uint8_t v) { return static_cast<float>(v) / 255.0f; };
+  return {unit(c[0]), unit(c[1]), unit(c[2]), unit(c[3])};
+}
+
+double ReadWhole(const Json& value, const std::string& path, double least, double most) {
+  const double v = ReadNumber(value, path);
+  if (v != std::floor(v) || v < least || v > most) {
+    char range[96];
+    std::snprintf(range, sizeof range, "must be a whole number from %.17g to %.17g", least, most);
+    throw SceneError{path, range};
+  }
+  return v;
+}
 
 std::string Join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;

@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "engine/math.h"
+#include "engine/particles.h"
+#include "render/color.h"
 
 namespace game::scene_values {
 
@@ -37,6 +39,15 @@ double ReadNonNegative(const Json& value, const std::string& path);
 engine::Vec2 ReadVec2(const Json& value, const std::string& path);
 bool ReadBool(const Json& value, const std::string& path);
 std::string ReadString(const Json& value, const std::string& path);
+
+/// "#rgb" or "#rrggbb" (a body's, a soft body's or a fluid's colour).
+render::Color ReadColor(const Json& value, const std::string& path);
+/// "#rgb", "#rgba", "#rrggbb" or "#rrggbbaa": an effect colour with straight alpha (opaque when
+/// the alpha digits are left out).
+engine::Rgba ReadRgba(const Json& value, const std::string& path);
+
+/// A whole number from `least` to `most`, e.g. a count or a seed.
+double ReadWhole(const Json& value, const std::string& path, double least, double most);
 
 /// The message for a length under kMinBodySize.
 std::string TooSmall();

@@ -57,8 +57,11 @@ Status Session::SaveState(const std::string& path) const { return game::SaveStat
 Status Session::Fault() const {
   const std::optional<engine::NumericFault>& fault = world_.Fault();
   if (!fault) return std::nullopt;
-  return RuntimeFailure("the simulation broke down: body \"" + scene_.bodies[fault->body].id + "\" (bodies[" +
-                        std::to_string(fault->body) + "]) got a non-finite " + fault->what + " in step " +
+  // A particle's fault names no body (its `what` says which particles).
+  const std::string who = fault->body < scene_.bodies.size()
+                              ? "body \"" + scene_.bodies[fault->body].id + "\" (bodies[" + std::to_string(fault->body) + "])"
+                              : std::string("a particle");
+  return RuntimeFailure("the simulation broke down: " + who + " got a non-finite " + fault->what + " in step " +
                         std::to_string(fault->step) + "; the numbers outgrew double precision");
 }
 
@@ -76,7 +79,10 @@ engine::Vec2 Session::ApplyEvent(const InputEvent& event) {
   const engine::Vec2 p = EventPoint(event);
   if (IsClick(event.kind)) {
     const bool hit = ApplyClick(world_, p, scene_.click_max_impulse).has_value();
-    log_.Record(event, p, hit, world_);
+    // A ball takes the click whole, as before; a click on no ball pushes the particles around it.
+    const bool pushed =
+        !hit && PushParticles(world_, p, scene_.particle_click.radius, scene_.particle_click.speed) > 0;
+    log_.Record(event, p, hit, pushed, world_);
   } else if (IsGrab(event.kind)) {
     log_.RecordGrab(Grab(world_, p).has_value());
   } else if (IsDrag(event.kind)) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "game/commands.h"
+#include "game/dump.h"
 #include "game/output_file.h"
 #include "game/session.h"
 
@@ -14,28 +15,54 @@ namespace game {
 
 namespace {
 
-// An id as a CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
+// The dumps a run writes: the bodies', and beside it the particles' when the scene has any.
+struct Dumps {
+  std::optional<AtomicOutputFile> bodies;
+  std::optional<AtomicOutputFile> particles;
+  std::vector<std::string> ids;  ///< the bodies' ids as CSV fields
+
+  void Write(const Session& session) {
+    if (bodies) DumpBodies(bodies->Stream(), session, ids);
+    if (particles) DumpParticles(particles->Stream(), session);
+  }
+  Status Commit() {
+    if (bodies) {
+      if (Status failed = bodies->Commit()) return failed;
+    }
+    if (particles) return particles->Commit();
+    return std::nullopt;
+  }
+};
+
+Status OpenDumps(const SimOptions& options, const Session& session, Dumps* dumps) {
+  if (!options.dump_path) return std::nullopt;
+  for (const SceneBody& body : session.SceneDef().bodies) dumps->ids.push_back(CsvField(body.id));
+  Expected<AtomicOutputFile> file = AtomicOutputFile::Open(*options.dump_path);
+  if (!file.HasValue()) return file.Error();
+  dumps->bodies.emplace(std::move(file.Value()));
+  std::fputs(kBodyDumpHeader, dumps->bodies->Stream());
+  if (!session.SceneDef().HasParticles()) return std::nullopt;
+  const std::optional<std::string> path = ParticleDumpPath(*options.dump_path);
+  if (!path) {
+    std::fprintf(stderr, "sim: %s is a device or pipe: the particles' dump (FILE.particles.csv beside a file) is "
+                 "not written\n", options.dump_path->c_str());
+    return std::nullopt;
+  }
+  Expected<AtomicOutputFile> particles = AtomicOutputFile::Open(*path);
+  if (!particles.HasValue()) return particles.Error();
+  dumps->particles.emplace(std::move(particles.Value()));
+  std::fputs(kParticleDumpHeader, dumps->particles->Stream());
+  return std::nullopt;
 }
 
-void DumpStep(std::FILE* out, const Session& session, const std::vector<std::string>& ids) {
+// ", 3 soft bodies, 1200 fluid particles" for a scene that has them; nothing for the others.
+std::string ParticleCounts(const Session& session) {
   const engine::World& world = session.World();
-  const std::int64_t step = session.StepIndex();
-  // Time as step·dt rather than a running sum, so it carries no accumulated rounding.
-  const double time = static_cast<double>(step) * world.Def().dt;
-  for (const engine::BodyId id : world.BodyIds()) {
-    const engine::BodyState& s = world.State(id);
-    // x, y: the body frame's origin (a polygon's or compound's scene position, not its centre
-    // of mass), as the state hash has it; for circles and boxes the two are the same point.
-    const engine::Vec2 origin = world.Origin(id);
-    std::fprintf(out, "%" PRId64 ",%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time,
-                 ids[id.index].c_str(), origin.x, origin.y,
-                 s.velocity.x, s.velocity.y, s.angle, s.angular_velocity);
-  }
+  std::string text;
+  if (const std::size_t soft = world.SoftBodyIds().size()) text += ", " + std::to_string(soft) + (soft == 1 ? " soft body" : " soft bodies");
+  if (const std::size_t fluid = world.FluidPositions().size()) text += ", " + std::to_string(fluid) + " fluid particles";
+  if (const std::size_t emitters = world.EmitterIds().size()) text += ", " + std::to_string(emitters) + (emitters == 1 ? " emitter" : " emitters");
+  return text;
 }
 
 }  // namespace
@@ -49,34 +76,25 @@ Status RunSim(const SimOptions& options) {
     if (Status refused = session.LoadState(*options.run.load_state_path)) return refused;
   }
 
-  std::optional<AtomicOutputFile> dump;
-  std::vector<std::string> ids;
-  for (const SceneBody& body : session.SceneDef().bodies) ids.push_back(CsvField(body.id));
-  if (options.dump_path) {
-    Expected<AtomicOutputFile> file = AtomicOutputFile::Open(*options.dump_path);
-    if (!file.HasValue()) return file.Error();
-    dump.emplace(std::move(file.Value()));
-    std::fputs("step,time,id,x,y,vx,vy,angle,omega\n", dump->Stream());
-    DumpStep(dump->Stream(), session, ids);
-  }
+  Dumps dumps;
+  if (Status failed = OpenDumps(options, session, &dumps)) return failed;
+  dumps.Write(session);
 
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t step = 1; step <= options.steps; ++step) {
     session.Step();
     if (Status fault = session.Fault()) return fault;  // the dump's temporary file goes with it
-    if (dump && step % options.dump_every == 0) DumpStep(dump->Stream(), session, ids);
+    if (step % options.dump_every == 0) dumps.Write(session);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (dump) {
-    if (Status failed = dump->Commit()) return failed;
-  }
+  if (Status failed = dumps.Commit()) return failed;
   if (options.run.save_state_path) {
     if (Status failed = session.SaveState(*options.run.save_state_path)) return failed;
   }
-  std::printf("sim: %s, %zu bodies, %" PRId64 " steps in %.3f s\n", session.SceneDef().name.c_str(),
-              session.World().BodyCount(), options.steps, seconds);
+  std::printf("sim: %s, %zu bodies%s, %" PRId64 " steps in %.3f s\n", session.SceneDef().name.c_str(),
+              session.World().BodyCount(), ParticleCounts(session).c_str(), options.steps, seconds);
   PrintEventSummary(session.SceneDef(), session.Events(), session.EventsLeft(), options.run.list_misses);
   std::printf("state-hash: %016" PRIx64 "\n", session.World().StateHash());
   return std::nullopt;

@@ -17,6 +17,8 @@
 #include <regex>
 #include <string>
 
+#include "game/output_file.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -174,6 +176,22 @@ TEST_CASE("output safety: a dump into a pipe is written in place, not renamed ov
   REQUIRE(ExitCode(std::system((sim + "'" + (dir / "dump.csv").string() + "' >/dev/null").c_str())) == 0);
   CHECK(piped == ReadFile(dir / "dump.csv"));
   CHECK(piped.rfind("step,time,id,x,y,vx,vy,angle,omega\n", 0) == 0);
+}
+
+TEST_CASE("output safety: /dev and /proc paths are written in place even when they lead to a file",
+          "[robustness][sim][cli]") {
+  // With stdout redirected to a file, /dev/stdout leads to a regular file: before the fix a dump
+  // there went to /dev/stdout.tmp-<pid>, renamed over the /dev/stdout link itself (as root).
+  CHECK(game::WritesInPlace("/dev/stdout"));
+  CHECK(game::WritesInPlace("/dev/fd/1"));
+  CHECK(game::WritesInPlace("/proc/self/fd/1"));
+  CHECK(game::WritesInPlace("/dev/../dev/null"));
+  const fs::path dir = FreshDir("in_place");
+  CHECK_FALSE(game::WritesInPlace((dir / "d.csv").string()));
+  std::ofstream(dir / "e.csv") << "old\n";
+  CHECK_FALSE(game::WritesInPlace((dir / "e.csv").string()));
+  REQUIRE(::mkfifo((dir / "f.fifo").c_str(), 0600) == 0);
+  CHECK(game::WritesInPlace((dir / "f.fifo").string()));
 }
 
 TEST_CASE("output safety: --out naming an existing file exits 2 and leaves the file alone",
