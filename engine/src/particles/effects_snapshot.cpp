@@ -12,16 +12,6 @@ namespace engine::detail {
 
 namespace {
 
-void WriteVec(ByteWriter& out, Vec2 v) {
-  out.F64(v.x);
-  out.F64(v.y);
-}
-
-Vec2 ReadVec(ByteReader& in) {
-  const double x = in.F64();
-  return {x, in.F64()};
-}
-
 void WriteColour(ByteWriter& out, Rgba c) {
   for (const float v : {c.r, c.g, c.b, c.a}) out.U32(std::bit_cast<std::uint32_t>(v));
 }
