@@ -346,7 +346,7 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
       gradient_i += g;
       denominator += inv_mass_[j] * LengthSquared(g);
     }
-    denominator += inv_mass_[i] * LengthSquared(gradient_i);
+    denominator += inv_mass_[i] * LengthSquared(gradient_i) + wall_denominator_[f];
     fluid_.density[f] = density;
     // Only compression is pushed apart: a free surface, below the rest density, is left alone
     // rather than pulled together.
@@ -376,19 +376,36 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   for (std::uint32_t f = 0; f < n; ++f) x_[first + f] += kJacobiShare * delta_[f];
 }
 
-void ParticleSystem::FindWalls(const std::vector<BodyPush>& pushes) {
+void ParticleSystem::FindWalls(std::vector<BodyPush>& pushes) {
   const std::uint32_t first = fluid_first_, n = FluidCount();
   wall_share_.assign(n, 0.0);
   wall_slope_.assign(n, Vec2{});
+  wall_denominator_.assign(n, 0.0);
+  const auto distance = [&](const PlaneContact& c) {
+    const BodyPush& body = pushes[c.body];
+    return Dot(Rotate(body.rotation, c.normal), x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
+  };
+  for (const PlaneContact& c : planes_) pushes[c.body].wall_particles = 0;
+  for (const PlaneContact& c : planes_) {
+    if (c.particle >= first && distance(c) < wall_->Reach()) ++pushes[c.body].wall_particles;
+  }
   for (const PlaneContact& c : planes_) {
     if (c.particle < first) continue;
     const BodyPush& body = pushes[c.body];
-    const Vec2 normal = Rotate(body.rotation, c.normal);
-    const double d = Dot(normal, x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
+    const double d = distance(c);
     if (d >= wall_->Reach()) continue;
     const std::uint32_t f = c.particle - first;
+    const Vec2 normal = Rotate(body.rotation, c.normal);
+    const double slope = wall_scale_ * wall_->Slope(d);
     wall_share_[f] += wall_scale_ * wall_->Share(d);
-    wall_slope_[f] += (wall_scale_ * wall_->Slope(d)) * normal;  // ∂share/∂x: the wall's pull on C
+    wall_slope_[f] += slope * normal;  // ∂share/∂x: the wall's pull on C
+    // A body that moves gives way: its generalised inverse mass joins the denominator, times
+    // the particles pushing it at once (mass splitting, Tonge, Benevolenskiy and Jehle 2012),
+    // so that their pushes together cannot overshoot what a light body needs. Without it a
+    // crate of 80 kg squeezed by a wave against a wall gained speed each step until 1e10 m/s.
+    const double rn = Cross(Rotate(body.rotation, c.surface), normal);
+    const double give = body.inv_mass + body.inv_inertia * rn * rn;
+    wall_denominator_[f] += body.wall_particles * give * slope * slope;
   }
 }
 

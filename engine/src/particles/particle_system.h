@@ -82,6 +82,7 @@ class ParticleSystem {
     Vec2 velocity_change;      ///< from the particles' impulses
     double angular_velocity_change = 0.0;
     double sleeping_impulse = 0.0;  ///< N·s pushed into a sleeping body, for waking it
+    std::uint32_t wall_particles = 0;  ///< fluid particles within its reach this substep
     // Its pose this substep and the last one.
     Vec2 center, last_center;
     Rot rotation, last_rotation;
@@ -103,7 +104,7 @@ class ParticleSystem {
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
-  void FindWalls(const std::vector<BodyPush>& pushes);
+  void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
   void SolveParticleContacts();
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
@@ -145,6 +146,7 @@ class ParticleSystem {
   std::vector<Vec2> pair_gradients_;
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
+  std::vector<double> wall_denominator_;  ///< the pushed bodies' part of each PBF denominator
   std::vector<Vec2> delta_, soft_scratch_;
 };
 
