@@ -41,38 +41,58 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
   return {static_cast<std::size_t>(lo - cell_keys_.begin()), static_cast<std::size_t>(hi - cell_keys_.begin())};
 }
 
-void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius,
-                                  std::vector<std::uint32_t>* offsets,
-                                  std::vector<std::uint32_t>* neighbours) const {
+void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
+                                  std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
+                                  std::vector<std::uint32_t>* mirrors) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
-  // Per cell, its particles against those of the 3×3 cells around it; gathered per particle
-  // then laid out in particle order (each list in cell order: deterministic).
-  std::vector<std::uint32_t>& counts = counts_;
-  counts.assign(n + 1, 0);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_;
-  pairs.clear();
-  for (std::size_t c = 0; c < cell_keys_.size(); ++c) {
-    const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
-    const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
-    for (std::int32_t dr = -1; dr <= 1; ++dr) {
-      const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
-      for (std::uint32_t a = cell_starts_[c]; a < cell_starts_[c + 1]; ++a) {
-        const std::uint32_t i = order_[a];
-        for (std::uint32_t b = cell_starts_[first]; b < cell_starts_[last]; ++b) {
-          const std::uint32_t j = order_[b];
-          if (j == i || LengthSquared(positions[j] - positions[i]) > r2) continue;
-          pairs.emplace_back(i, j);
-          ++counts[i];
+  // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
+  // entered in both particles' lists in that order: deterministic, and half the distance tests.
+  const auto threads = static_cast<std::uint32_t>(cell_keys_.size() < 64 ? 1 : pool.Threads());
+  pairs_.resize(threads);
+  pool.ParallelFor(threads, 2, [&](std::uint32_t t) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_[t];
+    pairs.clear();
+    const std::size_t first_cell = cell_keys_.size() * t / threads;
+    const std::size_t last_cell = cell_keys_.size() * (t + 1) / threads;
+    for (std::size_t c = first_cell; c < last_cell; ++c) {
+      const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
+      const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
+      for (std::int32_t dr = -1; dr <= 1; ++dr) {
+        const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
+        for (std::uint32_t a = cell_starts_[c]; a < cell_starts_[c + 1]; ++a) {
+          const std::uint32_t i = order_[a];
+          const Vec2 xi = positions[i];
+          for (std::uint32_t b = cell_starts_[first]; b < cell_starts_[last]; ++b) {
+            const std::uint32_t j = order_[b];
+            if (j > i && LengthSquared(positions[j] - xi) <= r2) pairs.emplace_back(i, j);
+          }
         }
       }
     }
+  });
+  std::vector<std::uint32_t>& counts = counts_;
+  counts.assign(n + 1, 0);
+  std::size_t total = 0;
+  for (std::uint32_t t = 0; t < threads; ++t) {
+    for (const auto& [i, j] : pairs_[t]) ++counts[i], ++counts[j];
+    total += pairs_[t].size();
   }
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
-  neighbours->resize(pairs.size());
-  std::vector<std::uint32_t> fill(offsets->begin(), offsets->end() - 1);
-  for (const auto& [i, j] : pairs) (*neighbours)[fill[i]++] = j;
+  neighbours->resize(2 * total);
+  mirrors->resize(2 * total);
+  std::vector<std::uint32_t>& fill = counts;
+  std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
+  for (std::uint32_t t = 0; t < threads; ++t) {
+    for (const auto& [i, j] : pairs_[t]) {
+      const std::uint32_t a = fill[i]++, b = fill[j]++;
+      (*neighbours)[a] = j;
+      (*neighbours)[b] = i;
+      (*mirrors)[a] = b;
+      (*mirrors)[b] = a;
+    }
+  }
 }
 
 }  // namespace engine::detail

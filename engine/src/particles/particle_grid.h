@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/math.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -17,10 +18,14 @@ class ParticleGrid {
   /// Sorts `positions` into cells `cell` wide (> 0).
   void Build(std::span<const Vec2> positions, double cell);
 
-  /// For each particle, the others within `radius` (≤ the cell size) of it, in cell order:
-  /// particle i's are neighbours[offsets[i] .. offsets[i + 1]).
-  void FindNeighbours(std::span<const Vec2> positions, double radius, std::vector<std::uint32_t>* offsets,
-                      std::vector<std::uint32_t>* neighbours) const;
+  /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
+  /// neighbours[offsets[i] .. offsets[i + 1]), and mirrors[a] is the entry of the same pair
+  /// in the other particle's list (so a pair's terms are worked out once for both).
+  /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
+  /// cell order: the same lists with any thread count.
+  void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
+                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
+                      std::vector<std::uint32_t>* mirrors) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>
@@ -40,7 +45,8 @@ class ParticleGrid {
   std::vector<std::uint32_t> cell_starts_;  ///< into order_, one more than cell_keys_
   std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
   std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
-  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  ///< FindNeighbours' scratch
+  /// FindNeighbours' scratch: each thread's pairs
+  mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_;
   mutable std::vector<std::uint32_t> counts_;
 };
 

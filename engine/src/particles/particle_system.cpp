@@ -32,6 +32,9 @@ constexpr double kJacobiShare = 0.5;
 /// the pair (the wall's own taken as the particle's), so twice its one-sided share. With one
 /// side only, a crate of density 500 in water sank to 0.532 of its height, with both 0.517.
 constexpr double kWallFactor = 2.0;
+/// Fewer fluid particles than this are looped over on one thread: handing the others their
+/// chunks costs a few microseconds, more than a few hundred particles' work.
+constexpr std::uint32_t kMinParallel = 1024;
 
 double KernelRadius(double spacing) { return kKernelSpacings * spacing; }
 
@@ -180,6 +183,7 @@ void ParticleSystem::MarkStepStart(const Bodies& bodies) {
 void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake,
                           std::vector<BodyIndex>* to_wake) {
   if (x_.empty()) return;
+  if (!pool_ || pool_->Threads() != def.particles.threads) pool_ = std::make_unique<WorkerPool>(def.particles.threads);
   const int substeps = std::max(1, static_cast<int>(std::ceil(def.dt / def.particles.substep - 1e-9)));
   const double h = def.dt / substeps;
   FindContacts(def, bodies);
@@ -281,7 +285,7 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   const double skin = std::min(2.0 * travel, 0.25 * std::max(kernel, 2.0 * largest_radius_));
   const double reach = std::max(kernel, 2.0 * largest_radius_) + skin;
   grid_.Build(x_, reach);
-  grid_.FindNeighbours(x_, reach, &neighbour_offsets_, &neighbours_);
+  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &neighbour_mirrors_);
   planes_.clear();
   std::vector<BodyPlane> found;
   for (const BodyId id : bodies.live_ids) {
@@ -320,29 +324,45 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const double epsilon = kRelaxation * density_denominator_;
   const double clumping_w = k.W(std::pow(kClumpingDistance * k.h, 2));
   lambda_.resize(n);
+  lambda_over_rest_.resize(n);
   FindWalls(pushes);
   pair_weights_.resize(neighbours_.size());
   pair_gradients_.resize(neighbours_.size());
-  // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11), keeping every
-  // pair's kernel and gradient for the second pass.
-  for (std::uint32_t f = 0; f < n; ++f) {
+  // Each fluid pair's kernel and gradient, once for both its entries (soft particles meet the
+  // fluid by contact, not pressure: their entries stay 0).
+  // (An entry is written only by the lower-numbered particle of its pair: no two threads meet.)
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
-    const double rest = fluid_.rest_density[f];
-    double density = fluid_.mass[f] * k.W(0.0) + rest * wall_share_[f];
+    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      const std::uint32_t j = neighbours_[a];
+      if (j < first) pair_weights_[a] = 0.0;
+      if (j <= i) continue;
+      const std::uint32_t mirror = neighbour_mirrors_[a];
+      const Vec2 d = x_[i] - x_[j];
+      const double r2 = LengthSquared(d);
+      if (r2 >= k.h2) {
+        pair_weights_[a] = pair_weights_[mirror] = 0.0;
+        continue;
+      }
+      const double r = std::sqrt(r2);
+      pair_weights_[a] = pair_weights_[mirror] = k.W(r2, r);
+      pair_gradients_[a] = k.Gradient(d, r);
+      pair_gradients_[mirror] = -pair_gradients_[a];
+    }
+  });
+  // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+    const std::uint32_t i = first + f;
+    const double rest = fluid_.rest_density[f], inv_rest = 1.0 / rest;
+    double density = fluid_.mass[f] * k.W(0.0, 0.0) + rest * wall_share_[f];
     Vec2 gradient_i = wall_slope_[f];
     double denominator = 0.0;
     for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
+      if (pair_weights_[a] == 0.0) continue;
       const std::uint32_t j = neighbours_[a];
-      pair_weights_[a] = 0.0;
-      if (j < first) continue;  // soft particles meet the fluid by contact, not pressure
-      const Vec2 d = x_[i] - x_[j];
-      const double r2 = LengthSquared(d);
-      if (r2 >= k.h2) continue;
       const double mj = fluid_.mass[j - first];
-      pair_weights_[a] = k.W(r2);
-      pair_gradients_[a] = k.Gradient(d, std::sqrt(r2));
       density += mj * pair_weights_[a];
-      const Vec2 g = (mj / rest) * pair_gradients_[a];
+      const Vec2 g = (mj * inv_rest) * pair_gradients_[a];
       gradient_i += g;
       denominator += inv_mass_[j] * LengthSquared(g);
     }
@@ -350,26 +370,29 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
     fluid_.density[f] = density;
     // Only compression is pushed apart: a free surface, below the rest density, is left alone
     // rather than pulled together.
-    const double c = std::max(0.0, density / rest - 1.0);
+    const double c = std::max(0.0, density * inv_rest - 1.0);
     lambda_[f] = -c / (denominator + epsilon);
-  }
+    lambda_over_rest_[f] = lambda_[f] * inv_rest;
+  });
   // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
-  delta_.assign(n, Vec2{});
-  for (std::uint32_t f = 0; f < n; ++f) {
+  const double clumping_scale = -kClumpingStrength / density_denominator_;
+  const double inv_clumping_w = 1.0 / clumping_w;
+  delta_.resize(n);
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
-    const double rest_i = fluid_.rest_density[f], mass_i = fluid_.mass[f];
+    const double inv_rest_i = 1.0 / fluid_.rest_density[f], mass_i = fluid_.mass[f];
     Vec2 step;
     for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
       if (pair_weights_[a] == 0.0) continue;
       const std::uint32_t g = neighbours_[a] - first;
-      const double ratio = pair_weights_[a] / clumping_w;
-      const double clumping = -kClumpingStrength / density_denominator_ * ratio * ratio * ratio * ratio;
-      const double weight = (lambda_[f] + clumping) * fluid_.mass[g] / rest_i +
-                            lambda_[g] * mass_i / fluid_.rest_density[g];
+      const double ratio = pair_weights_[a] * inv_clumping_w;
+      const double ratio2 = ratio * ratio;
+      const double clumping = clumping_scale * (ratio2 * ratio2);
+      const double weight = (lambda_[f] + clumping) * (fluid_.mass[g] * inv_rest_i) + mass_i * lambda_over_rest_[g];
       step += weight * pair_gradients_[a];
     }
     delta_[f] = inv_mass_[i] * (step + kWallFactor * lambda_[f] * wall_slope_[f]);
-  }
+  });
   PushWalls(h, pushes);
   // Jacobi: a pair pushes each of its particles from both their constraints, which in a
   // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
@@ -524,8 +547,8 @@ void ParticleSystem::ApplyViscosity(double dt) {
   const SphKernels k(KernelRadius(fluid_.spacing));
   const std::uint32_t first = fluid_first_, n = FluidCount();
   delta_.assign(n, Vec2{});
-  for (std::uint32_t f = 0; f < n; ++f) {
-    if (fluid_.viscosity[f] == 0.0) continue;
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+    if (fluid_.viscosity[f] == 0.0) return;
     const std::uint32_t i = first + f;
     Vec2 pull;
     for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
@@ -538,7 +561,7 @@ void ParticleSystem::ApplyViscosity(double dt) {
     }
     const double share = 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
     delta_[f] = share * pull;
-  }
+  });
   for (std::uint32_t f = 0; f < n; ++f) v_[first + f] += delta_[f];
 }
 
@@ -551,7 +574,7 @@ void ParticleSystem::ApplyVorticity(double dt) {
   if (!any) return;
   const SphKernels k(KernelRadius(fluid_.spacing));
   omega_.assign(n, 0.0);
-  for (std::uint32_t f = 0; f < n; ++f) {
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
     double curl = 0.0;
     for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
@@ -563,9 +586,9 @@ void ParticleSystem::ApplyVorticity(double dt) {
       curl += fluid_.mass[g] / fluid_.density[g] * Cross(v_[j] - v_[i], k.Gradient(d, r));
     }
     omega_[f] = curl;
-  }
-  for (std::uint32_t f = 0; f < n; ++f) {
-    if (fluid_.vorticity[f] == 0.0) continue;
+  });
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+    if (fluid_.vorticity[f] == 0.0) return;
     const std::uint32_t i = first + f;
     Vec2 towards;  // the gradient of |ω|
     for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
@@ -576,11 +599,11 @@ void ParticleSystem::ApplyVorticity(double dt) {
       towards += (fluid_.mass[g] / fluid_.density[g] * std::abs(omega_[g])) * k.Gradient(d, Length(d));
     }
     const double length = Length(towards);
-    if (length == 0.0) continue;
+    if (length == 0.0) return;
     const Vec2 nn = towards / length;
     // N × ω for ω along z: (N.y·ω, −N.x·ω).
     v_[i] += (dt * fluid_.vorticity[f] * omega_[f]) * Vec2{nn.y, -nn.x};
-  }
+  });
 }
 
 }  // namespace engine::detail

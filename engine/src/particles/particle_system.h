@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "engine/ids.h"
 #include "engine/particles.h"
 #include "engine/world_def.h"
+#include "parallel/worker_pool.h"
 #include "particles/body_contact.h"
 #include "particles/particle_grid.h"
 #include "particles/sph_kernels.h"
@@ -134,7 +136,7 @@ class ParticleSystem {
 
   // The step's scratch.
   ParticleGrid grid_;
-  std::vector<std::uint32_t> neighbour_offsets_, neighbours_;
+  std::vector<std::uint32_t> neighbour_offsets_, neighbours_, neighbour_mirrors_;
   std::vector<PlaneContact> planes_;
   std::vector<Vec2> start_centers_;
   std::vector<double> start_angles_;
@@ -142,6 +144,8 @@ class ParticleSystem {
   std::vector<BodyIndex> touched_;
   std::vector<double> omega_;
   std::vector<double> lambda_;
+  std::unique_ptr<WorkerPool> pool_;  ///< WorldDef::particles.threads, made at the first step
+  std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
   std::vector<double> pair_weights_;   ///< per neighbour entry: the fluid kernel, 0 beyond it
   std::vector<Vec2> pair_gradients_;
   std::vector<double> wall_share_;

@@ -19,9 +19,11 @@ struct SphKernels {
       : h(radius), h2(radius * radius), scale(10.0 / (std::numbers::pi * std::pow(radius, 5))) {}
 
   /// W(r) for r² = `r2`, 0 beyond h.
-  double W(double r2) const {
+  double W(double r2) const { return r2 >= h2 ? 0.0 : W(r2, std::sqrt(r2)); }
+  /// W(r) when r = sqrt(r2) is known already.
+  double W(double r2, double r) const {
     if (r2 >= h2) return 0.0;
-    const double f = h - std::sqrt(r2);
+    const double f = h - r;
     return scale * f * f * f;
   }
   /// ∇W at offset `d` (length r): −30/(πh⁵)·(h − r)²·d/r inside h, else 0.

@@ -1,0 +1,62 @@
+// The worker pool's hand-off: a job is published by bumping a generation counter; workers spin
+// on it briefly (jobs come back to back within a step) before sleeping on it (a futex).
+#include "parallel/worker_pool.h"
+
+#include <cassert>
+
+namespace engine::detail {
+
+namespace {
+
+// About 10–20 µs of spinning before a thread sleeps: long enough to catch the next loop of the
+// same substep, short enough not to burn a core between steps.
+constexpr int kSpins = 4000;
+
+template <typename T, typename Done>
+void SpinThenWait(const std::atomic<T>& value, Done&& done) {
+  for (int spin = 0; spin < kSpins; ++spin) {
+    if (done()) return;
+  }
+  for (;;) {
+    const T seen = value.load(std::memory_order_acquire);
+    if (done()) return;
+    value.wait(seen, std::memory_order_acquire);
+  }
+}
+
+}  // namespace
+
+WorkerPool::WorkerPool(int threads) {
+  assert(threads >= 1);
+  for (int chunk = 1; chunk < threads; ++chunk) workers_.emplace_back([this, chunk] { Work(chunk); });
+}
+
+WorkerPool::~WorkerPool() {
+  stopping_ = true;
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void WorkerPool::Run(const std::function<void(int chunk)>& job) {
+  job_ = &job;
+  pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  job(0);
+  SpinThenWait(pending_, [this] { return pending_.load(std::memory_order_acquire) == 0; });
+  job_ = nullptr;
+}
+
+void WorkerPool::Work(int chunk) {
+  std::uint64_t seen = 0;
+  for (;;) {
+    SpinThenWait(generation_, [&] { return generation_.load(std::memory_order_acquire) != seen; });
+    seen = generation_.load(std::memory_order_acquire);
+    if (stopping_) return;
+    (*job_)(chunk);
+    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
+  }
+}
+
+}  // namespace engine::detail

@@ -1,0 +1,52 @@
+// A fixed set of threads that run one loop at a time, each on its own contiguous chunk of the
+// indices. A chunk always holds the same indices and each index writes only its own results,
+// so the answer is the same bits with any number of threads. Internal.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <thread>
+#include <vector>
+
+namespace engine::detail {
+
+class WorkerPool {
+ public:
+  /// `threads` ≥ 1 counts the caller: threads − 1 workers are started.
+  explicit WorkerPool(int threads);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int Threads() const { return static_cast<int>(workers_.size()) + 1; }
+
+  /// Calls body(i) for every i in [0, count): on the calling thread alone when there is one
+  /// thread or fewer than `min_count` indices (a few microseconds of hand-off would cost more),
+  /// else split into Threads() chunks, the caller taking the first. Returns when all are done.
+  template <typename Body>
+  void ParallelFor(std::uint32_t count, std::uint32_t min_count, Body&& body) {
+    if (workers_.empty() || count < min_count) {
+      for (std::uint32_t i = 0; i < count; ++i) body(i);
+      return;
+    }
+    const auto chunks = static_cast<std::uint64_t>(Threads());
+    Run([&](int chunk) {
+      const auto begin = static_cast<std::uint32_t>(count * static_cast<std::uint64_t>(chunk) / chunks);
+      const auto end = static_cast<std::uint32_t>(count * static_cast<std::uint64_t>(chunk + 1) / chunks);
+      for (std::uint32_t i = begin; i < end; ++i) body(i);
+    });
+  }
+
+ private:
+  void Run(const std::function<void(int chunk)>& job);
+  void Work(int chunk);
+
+  std::vector<std::thread> workers_;
+  const std::function<void(int)>* job_ = nullptr;
+  std::atomic<std::uint64_t> generation_{0};  ///< bumped to hand out a job (or to stop)
+  std::atomic<int> pending_{0};               ///< workers still on the current job
+  bool stopping_ = false;
+};
+
+}  // namespace engine::detail
