@@ -2,8 +2,10 @@
 // among 20 boxes (10 static, 10 dynamic) on a floor, with and without collisions, against the
 // same world without emitters, so the difference is the effects' alone; and a pour of rigid
 // circles in a box for the cost of one rigid body's step, measured in the same run. Times are
-// the thread's CPU time (the machine is shared). `bench_particles [--steps N] [--repeats N]
-// [--out DIR]`.
+// the thread's CPU time (the machine is shared). Fluid: dam breaks of 2 500 and 10 000
+// particles on one thread and on two (WorldDef::particles.threads), by the wall clock, since
+// two threads share the work. `bench_particles [--steps N] [--repeats N] [--out DIR]`.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -104,6 +106,44 @@ engine::World CirclePour(int count) {
   return world;
 }
 
+// A dam break: a block of water `count` particles 0.05 m apart, twice as wide as tall, released
+// in a tank three times its width. Stepped 1 s first, so the measured steps are mid-splash.
+engine::World DamBreak(int count, int threads) {
+  engine::WorldDef def;
+  def.particles.threads = threads;
+  engine::World world(def);
+  const double spacing = 0.05;
+  const double height = std::round(std::sqrt(count / 2.0)) * spacing;
+  const double width = 2.0 * height, tank = 3.0 * width;
+  world.CreateBody(stress::Ground({0.0, -0.5}, {tank + 2.0, 1.0}));
+  world.CreateBody(stress::Ground({-0.5 * tank - 0.5, 2.0 * height}, {1.0, 4.0 * height}));
+  world.CreateBody(stress::Ground({0.5 * tank + 0.5, 2.0 * height}, {1.0, 4.0 * height}));
+  engine::FluidDef water;
+  water.spacing = spacing;
+  water.viscosity = 0.02;
+  water.region = {{-0.5 * tank, 0.0}, {-0.5 * tank + width, height}};
+  world.AddFluid(water);
+  return world;
+}
+
+struct FluidRow {
+  std::size_t particles;
+  int threads;
+  double ms_per_step;
+};
+
+FluidRow MeasureFluid(int count, int threads, const Options& options) {
+  engine::World world = DamBreak(count, threads);
+  for (int i = 0; i < 60; ++i) world.Step();
+  std::vector<double> times;
+  for (int r = 0; r < options.repeats; ++r) {
+    const auto start = bench::Clock::now();
+    for (int s = 0; s < options.steps; ++s) world.Step();
+    times.push_back(1e3 * bench::SecondsSince(start) / options.steps);
+  }
+  return {world.FluidPositions().size(), threads, bench::Median(times)};
+}
+
 bool ParseOptions(int argc, char** argv, Options* options) {
   for (int i = 1; i < argc; ++i) {
     const bool has_value = i + 1 < argc;
@@ -138,6 +178,13 @@ int main(int argc, char** argv) {
   rows.push_back(Measure("20 boxes + effects, colliding", EffectsScene(Effects::kColliding), options));
   bench::Progress("rigid circles");
   rows.push_back(Measure("1000 rigid circles poured", CirclePour(1000), options));
+  std::vector<FluidRow> fluid;
+  for (const int count : {2500, 10000}) {
+    for (const int threads : {1, 2}) {
+      bench::Progress("fluid: " + std::to_string(count) + " particles, " + std::to_string(threads) + " thread(s)");
+      fluid.push_back(MeasureFluid(count, threads, options));
+    }
+  }
   bench::Progress("");
   bench::PrintMachine(load);
   std::printf("\nmedian of %d repeats of %d steps (dt 1/60, rotation on), after 180 steps to fill up\n\n",
@@ -156,6 +203,15 @@ int main(int argc, char** argv) {
                 bench::Number(1e6 / per_particle, "%.3g").c_str(), per_particle / body_us);
   }
   std::printf("\none rigid circle in a pour of 1000: %.2f µs/step\n", body_us);
+  std::printf("\nfluid: a dam break 1 s in, substeps of 1/480 s (8 a step), wall clock\n\n"
+              "| fluid particles | threads | ms/step | particle-steps/s | speed-up |\n|---:|---:|---:|---:|---:|\n");
+  for (std::size_t k = 0; k < fluid.size(); ++k) {
+    const FluidRow& f = fluid[k];
+    const double one_thread = fluid[k - k % 2].ms_per_step;
+    std::printf("| %zu | %d | %.2f | %s | %.2f |\n", f.particles, f.threads, f.ms_per_step,
+                bench::Number(1e3 * static_cast<double>(f.particles) / f.ms_per_step, "%.3g").c_str(),
+                one_thread / f.ms_per_step);
+  }
   bench::File csv = bench::OpenInFolder(options.out_dir, "effects.csv");
   if (csv) {
     std::fprintf(csv.get(), "scene,bodies,effect_particles,us_per_step\n");
@@ -164,5 +220,11 @@ int main(int argc, char** argv) {
                    r.us_per_step);
     }
   }
-  return bench::ReportCsv(csv != nullptr, options.out_dir, {"effects.csv (µs per step of each scene)"}, 0);
+  bench::File fluid_csv = bench::OpenInFolder(options.out_dir, "fluid.csv");
+  if (fluid_csv) {
+    std::fprintf(fluid_csv.get(), "fluid_particles,threads,ms_per_step\n");
+    for (const FluidRow& f : fluid) std::fprintf(fluid_csv.get(), "%zu,%d,%.4f\n", f.particles, f.threads, f.ms_per_step);
+  }
+  return bench::ReportCsv(csv != nullptr && fluid_csv != nullptr, options.out_dir,
+                          {"effects.csv (µs per step of each scene)", "fluid.csv (ms per step, by thread count)"}, 0);
 }
