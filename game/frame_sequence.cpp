@@ -13,6 +13,7 @@
 #include "game/hud.h"
 #include "game/interrupt.h"
 #include "game/progress_bar.h"
+#include "game/scene_colors.h"
 #include "render/bitmap_text.h"
 #include "render/context.h"
 #include "render/renderer.h"
@@ -76,9 +77,9 @@ Status Simulate(Session& session, FilmCamera& camera, std::int64_t steps) {
 }
 
 render::Image DrawFrame(render::Renderer& renderer, const Session& session,
-                        const FilmCamera& camera, const std::vector<render::Color>& colors,
-                        bool hud) {
-  renderer.Draw(session.World(), colors, camera.For(session.ImageWidth(), session.ImageHeight()));
+                        const FilmCamera& camera, const SceneColors& colors, bool hud) {
+  renderer.Draw(session.World(), colors.bodies, camera.For(session.ImageWidth(), session.ImageHeight()),
+                {}, colors.particles);
   render::Image image;
   renderer.ReadImage(image);
   if (hud) {
@@ -104,8 +105,7 @@ Expected<FrameSequenceStats> RenderFrameSequence(Session& session,
   if (!opened.HasValue()) return opened.Error();
   FilmOutput& output = *opened.Value();
 
-  std::vector<render::Color> colors;
-  for (const SceneBody& body : session.SceneDef().bodies) colors.push_back(body.color);
+  const SceneColors colors = ColorsOf(session.SceneDef());
   FilmCamera camera(options.view.camera.value_or(session.View()), options.view.follow, session.World());
   InterruptGuard interrupt;
   ProgressBar progress("render", options.frames, "frames", options.show_progress);

@@ -15,6 +15,7 @@
 #include "game/output_file.h"
 #include "game/play_controller.h"
 #include "game/play_view.h"
+#include "game/scene_colors.h"
 #include "game/screenshot.h"
 #include "render/bitmap_text.h"
 #include "render/renderer.h"
@@ -89,10 +90,10 @@ std::string Title(const PlayController& controller) {
 }
 
 void TakeScreenshot(render::Renderer& renderer, const PlayController& controller,
-                    const std::vector<render::Color>& colors) {
+                    const SceneColors& colors) {
   // Drawn afresh from the current state, so the file shows exactly the step its name says.
   const Session& session = controller.GetSession();
-  renderer.Draw(session.World(), colors, controller.Camera());
+  renderer.Draw(session.World(), colors.bodies, controller.Camera(), {}, colors.particles);
   render::Image image;
   renderer.ReadImage(image);
   Expected<std::string> path = SaveScreenshot(
@@ -161,7 +162,7 @@ class DragInput {
 
 // The window loop. Returns when the user quits, the stop step is reached, or GL fails.
 Status RunWindow(render::Window& window, render::Renderer& renderer, PlayController& controller,
-                 const std::vector<render::Color>& colors) {
+                 const SceneColors& colors) {
   using Clock = std::chrono::steady_clock;
   Clock::time_point last = Clock::now();
   FpsMeter fps;
@@ -236,7 +237,7 @@ Status RunWindow(render::Window& window, render::Renderer& renderer, PlayControl
       }
     }
     const Session& session = controller.GetSession();
-    renderer.Draw(session.World(), colors, controller.Camera());
+    renderer.Draw(session.World(), colors.bodies, controller.Camera(), {}, colors.particles);
     const double time = static_cast<double>(session.StepIndex()) * session.World().Def().dt;
     const std::vector<render::FilledRect> overlay = StatusOverlay(
         StatusLine(session.StepIndex(), time, fps.Fps(), controller.Paused()), framebuffer_width);
@@ -301,10 +302,7 @@ Status RunPlay(const PlayOptions& options) {
   std::unique_ptr<render::Renderer> renderer =
       render::Renderer::Create(*window, width, height, error);
   if (!renderer) return RuntimeFailure(error);
-  std::vector<render::Color> colors;
-  for (const SceneBody& body : controller.GetSession().SceneDef().bodies) {
-    colors.push_back(body.color);
-  }
+  const SceneColors colors = ColorsOf(controller.GetSession().SceneDef());
 
   Status status;
   {

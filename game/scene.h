@@ -30,15 +30,12 @@ struct SceneJoint {
   engine::JointDef def;   ///< bodies as BodyId{index into Scene::bodies}
 };
 
-// Particle colours: kept here until the renderer draws particles (render::Renderer::Draw takes
-// only the bodies' colours today); the commands pass them on once it does.
-
 /// A soft body of the scene's `soft_bodies` list (docs/scene-format.md#soft-bodies).
 struct SceneSoftBody {
   std::string id;         ///< unique among the soft bodies; names its particles in the dump
   bool id_given = false;  ///< false: the id is the default soft<index>
   engine::SoftBodyDef def;  ///< attach_to as BodyId{index into Scene::bodies}
-  render::Color color;
+  render::Color color;      ///< its fill; render::kSoftBodyColor when the scene gives none
 };
 
 /// A block of the scene's `fluids` list (docs/scene-format.md#fluids).
@@ -46,6 +43,8 @@ struct SceneFluid {
   std::string id;         ///< unique among the fluids; names its particles in the dump
   bool id_given = false;  ///< false: the id is the default fluid<index>
   engine::FluidDef def;
+  /// The liquid's colour, the same in every block (the renderer draws one liquid): the first
+  /// block's, else render::kFluidColor.
   render::Color color;
   std::size_t particles = 0;  ///< how many the engine makes of it (FluidParticleCount)
 };

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <tuple>
 #include <utility>
 
 #include "game/limits.h"
+#include "render/particle_style.h"
 
 namespace game {
 
@@ -37,8 +39,6 @@ std::size_t FluidParticleCount(const engine::FluidDef& def) {
   for (double x = def.region.lower.x + 0.5 * s; x <= def.region.upper.x - 0.5 * s + 1e-9 * s; x += s) ++columns;
   return rows * columns;
 }
-
-render::Color DefaultSoftBodyColor(std::size_t index) { return render::PaletteColor(index); }
 
 }  // namespace game
 
@@ -222,7 +222,7 @@ void ReadSoftNumbers(const Json& soft, const std::string& path, engine::SoftBody
   if (const Json* v = Find(soft, "pressure")) def->pressure = ReadPositive(*v, key("pressure"));
 }
 
-SceneSoftBody ReadSoftBody(const Json& soft, const std::string& path, std::size_t index,
+SceneSoftBody ReadSoftBody(const Json& soft, const std::string& path,
                            const std::map<std::string, std::size_t>& body_ids) {
   RejectUnknownKeys(soft, path,
                     {"id", "shape", "radius", "size", "position", "angle", "velocity", "density", "spacing",
@@ -233,7 +233,7 @@ SceneSoftBody ReadSoftBody(const Json& soft, const std::string& path, std::size_
   ReadSoftNumbers(soft, path, &out.def);
   CheckSoftSpacing(soft, path, out.def);
   if (const Json* v = Find(soft, "attach_to")) out.def.attach_to = ReadBodyRef(*v, Join(path, "attach_to"), body_ids);
-  out.color = DefaultSoftBodyColor(index);
+  out.color = render::kSoftBodyColor;
   if (const Json* v = Find(soft, "color")) out.color = ReadColor(*v, Join(path, "color"));
   return out;
 }
@@ -280,8 +280,16 @@ void CheckFluidLattice(const Json& fluid, const std::string& path, SceneFluid* o
   CountParticles(static_cast<double>(out->particles), path, particles);
 }
 
-// `shared_spacing`: the first block's spacing, or 0 when this is the first.
-SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_spacing, std::size_t* particles) {
+// "#rrggbb", as a message quotes a colour.
+std::string Hex(render::Color c) {
+  char text[8];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c.r, c.g, c.b);
+  return text;
+}
+
+// `first`: the first block, or null when this is the first; a later block takes its spacing
+// and colour.
+SceneFluid ReadFluid(const Json& fluid, const std::string& path, const SceneFluid* first, std::size_t* particles) {
   RejectUnknownKeys(fluid, path,
                     {"id", "region", "spacing", "density", "velocity", "viscosity", "vorticity", "friction", "color"});
   auto key = [&](const char* k) { return Join(path, k); };
@@ -289,11 +297,11 @@ SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_s
   engine::FluidDef& def = out.def;
   def.region = ReadRegion(fluid, path);
   // Every block shares the first one's spacing (the engine's kernel has one size).
-  if (shared_spacing > 0.0) def.spacing = shared_spacing;
+  if (first) def.spacing = first->def.spacing;
   if (const Json* v = Find(fluid, "spacing")) {
     const double spacing = ReadPositive(*v, key("spacing"));
     if (!(spacing >= kMinBodySize)) throw SceneError{key("spacing"), TooSmall()};
-    if (shared_spacing > 0.0 && spacing != def.spacing) {
+    if (first && spacing != def.spacing) {
       throw SceneError{key("spacing"), "is " + Number(spacing) + ", but fluids[0] has " + Number(def.spacing) +
                                            ": every fluid shares one spacing (leave it out to take the first's)"};
     }
@@ -308,8 +316,16 @@ SceneFluid ReadFluid(const Json& fluid, const std::string& path, double shared_s
   if (const Json* v = Find(fluid, "vorticity")) def.vorticity = ReadNonNegative(*v, key("vorticity"));
   if (const Json* v = Find(fluid, "friction")) def.friction = ReadNonNegative(*v, key("friction"));
   CheckFluidLattice(fluid, path, &out, particles);
-  out.color = kDefaultFluidColor;
-  if (const Json* v = Find(fluid, "color")) out.color = ReadColor(*v, key("color"));
+  // Every block shares the first one's colour too: the renderer draws the fluid as one liquid.
+  out.color = first ? first->color : render::kFluidColor;
+  if (const Json* v = Find(fluid, "color")) {
+    const render::Color color = ReadColor(*v, key("color"));
+    if (first && color != out.color) {
+      throw SceneError{key("color"), "is " + Quote(Hex(color)) + ", but fluids[0] has " + Quote(Hex(out.color)) +
+                                         ": every fluid is drawn as one liquid in one colour (leave it out to take the first's)"};
+    }
+    out.color = color;
+  }
   return out;
 }
 
@@ -408,19 +424,19 @@ void ReadParticleSettings(const Json& value, const std::string& path, engine::Wo
 std::vector<SceneSoftBody> ReadSoftBodies(const Json& list, const std::map<std::string, std::size_t>& body_ids,
                                           std::size_t* particles) {
   return ReadList<SceneSoftBody>(list, "soft_bodies", "soft", kMaxSoftBodies,
-                                 [&](const Json& soft, const std::string& path, std::size_t i) {
-                                   SceneSoftBody out = ReadSoftBody(soft, path, i, body_ids);
+                                 [&](const Json& soft, const std::string& path, std::size_t) {
+                                   SceneSoftBody out = ReadSoftBody(soft, path, body_ids);
                                    CountParticles(static_cast<double>(SoftBodyParticleCount(out.def)), path, particles);
                                    return out;
                                  });
 }
 
 std::vector<SceneFluid> ReadFluids(const Json& list, std::size_t* particles) {
-  double shared_spacing = 0.0;  // the first block's, once read
+  std::optional<SceneFluid> first;  // the first block, once read
   return ReadList<SceneFluid>(list, "fluids", "fluid", kMaxParticles,
                               [&](const Json& fluid, const std::string& path, std::size_t) {
-                                SceneFluid out = ReadFluid(fluid, path, shared_spacing, particles);
-                                shared_spacing = out.def.spacing;
+                                SceneFluid out = ReadFluid(fluid, path, first ? &*first : nullptr, particles);
+                                if (!first) first = out;
                                 return out;
                               });
 }

@@ -23,10 +23,6 @@ std::size_t SoftBodyParticleCount(const engine::SoftBodyDef& def);
 /// How many particles World::AddFluid makes of a block, by the engine's own arithmetic.
 std::size_t FluidParticleCount(const engine::FluidDef& def);
 
-/// The defaults of a soft body's and a fluid's colour when the scene gives none.
-render::Color DefaultSoftBodyColor(std::size_t index);
-inline constexpr render::Color kDefaultFluidColor{0x3a, 0x7b, 0xd5};
-
 }  // namespace game
 
 namespace game::scene_values {

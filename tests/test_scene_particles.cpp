@@ -13,6 +13,7 @@
 
 #include "game/scene.h"
 #include "game/scene_particles.h"
+#include "render/particle_style.h"
 #include "run_program.h"
 
 namespace {
@@ -119,17 +120,16 @@ TEST_CASE("scene particles: a soft body's unset keys are the engine's defaults",
     CHECK(def.friction == engine_default.friction);
     CHECK_FALSE(def.attach_to.has_value());
     CHECK(scene.soft_bodies[i].id == "soft" + std::to_string(i));
-    CHECK(scene.soft_bodies[i].color == game::DefaultSoftBodyColor(i));
+    CHECK(scene.soft_bodies[i].color == render::kSoftBodyColor);  // the renderer's default
   }
-  CHECK_FALSE(scene.soft_bodies[0].color == scene.soft_bodies[1].color);
 }
 
 TEST_CASE("scene particles: a fluid with every key, and the defaults", "[scene][particles]") {
   const game::Scene scene = RequireParsed(SceneWith(R"("fluids": [
     {"id": "pool", "region": [[1, 2], [-1, 0.5]], "spacing": 0.1, "density": 800, "velocity": [0.5, -1],
      "viscosity": 0.2, "vorticity": 0.3, "friction": 0.4, "color": "#08f"},
-    {"region": [[2, 0], [3, 1]]}])"));
-  REQUIRE(scene.fluids.size() == 2);
+    {"region": [[2, 0], [3, 1]]}, {"region": [[4, 0], [5, 1]], "color": "#0088ff"}])"));
+  REQUIRE(scene.fluids.size() == 3);
   const engine::FluidDef& def = scene.fluids[0].def;
   CHECK(scene.fluids[0].id == "pool");
   CHECK(Same(def.region.lower, {-1, 0.5}));  // two opposite corners, in either order
@@ -152,11 +152,13 @@ TEST_CASE("scene particles: a fluid with every key, and the defaults", "[scene][
   CHECK(second.viscosity == engine_default.viscosity);
   CHECK(second.vorticity == engine_default.vorticity);
   CHECK(second.friction == engine_default.friction);
-  CHECK(scene.fluids[1].color == game::kDefaultFluidColor);
+  CHECK(scene.fluids[1].color == scene.fluids[0].color);  // one liquid: the first block's colour
+  CHECK(scene.fluids[2].color == scene.fluids[0].color);  // the same colour written another way
 
   const game::Scene alone = RequireParsed(SceneWith(R"("fluids": [{"region": [[0, 0], [1, 1]]}])"));
   CHECK(alone.fluids.at(0).def.spacing == engine_default.spacing);
   CHECK(alone.fluids[0].particles == 400);
+  CHECK(alone.fluids[0].color == render::kFluidColor);  // the renderer's default
 }
 
 TEST_CASE("scene particles: an emitter with every key", "[scene][particles]") {
@@ -350,6 +352,12 @@ TEST_CASE("scene particles: every bad fluid value is named by its key path", "[s
       {R"([{"region": [[0, 0], [1, 1]], "vorticity": -1}])", "fluids[0].vorticity: must be >= 0"},
       {R"([{"region": [[0, 0], [1, 1]], "friction": -1}])", "fluids[0].friction: must be >= 0"},
       {R"([{"region": [[0, 0], [1, 1]], "color": "blue"}])", R"(fluids[0].color: must be a colour "#rgb" or "#rrggbb", got "blue")"},
+      {R"([{"region": [[0, 0], [1, 1]], "color": "#08f"}, {"region": [[2, 0], [3, 1]], "color": "#f00"}])",
+       R"(fluids[1].color: is "#ff0000", but fluids[0] has "#0088ff": every fluid is drawn as one liquid in one )"
+       R"(colour (leave it out to take the first's))"},
+      {R"([{"region": [[0, 0], [1, 1]]}, {"region": [[2, 0], [3, 1]], "color": "#f00"}])",
+       R"(fluids[1].color: is "#ff0000", but fluids[0] has "#2f86d6": every fluid is drawn as one liquid in one )"
+       R"(colour (leave it out to take the first's))"},
       {R"([{"region": [[0, 0], [1, 1]], "density": 1e-9, "spacing": 0.01}])",
        "fluids[0]: its particles' mass, about density * spacing^2, must be at least 1e-12 kg (docs/limits.md)"},
       {R"([{"region": [[0, 0], [1001, 1000]], "spacing": 1}])",
