@@ -10,6 +10,7 @@
 #include "game/film_camera.h"
 #include "game/film_output.h"
 #include "game/frame_writer.h"
+#include "game/gif_colors.h"
 #include "game/hud.h"
 #include "game/interrupt.h"
 #include "game/progress_bar.h"
@@ -35,15 +36,7 @@ FilmOutputOptions OutputOptions(const Session& session, const FrameSequenceOptio
     out.video.width = session.ImageWidth();
     out.video.height = session.ImageHeight();
     out.video.frame_seconds = session.World().Def().dt * static_cast<double>(options.every);
-    // A GIF palette holds the colours known to fill large areas exactly.
-    out.video.gif_keep = {render::kBackgroundColor, render::kPanelBackdrop, render::kPanelText};
-    for (const SceneBody& body : session.SceneDef().bodies) out.video.gif_keep.push_back(body.color);
-    // Only where there are links, so a film without them keeps its palette, byte for byte.
-    const engine::World& world = session.World();
-    if (!world.Springs().empty() || !world.JointIds().empty()) {
-      out.video.gif_keep.insert(out.video.gif_keep.end(),
-                                {render::kSpringColor, render::kJointColor});
-    }
+    out.video.gif_keep = GifKeepColors(session.SceneDef(), session.World());
   }
   return out;
 }
