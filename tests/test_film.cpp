@@ -4,7 +4,6 @@
 
 #include "print_ids.h"
 
-#include <stb/stb_image.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,6 +23,7 @@
 #include "render/bitmap_text.h"
 #include "render/color.h"
 #include "render/image.h"
+#include "png_file.h"
 #include "run_program.h"
 
 namespace fs = std::filesystem;
@@ -34,15 +34,7 @@ namespace {
 
 fs::path FreshDir(const std::string& name) { return testing::FreshTestDir("film", name); }
 
-render::Image LoadPng(const fs::path& path) {
-  int w = 0, h = 0, n = 0;
-  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &n, 3);
-  INFO(path);
-  REQUIRE(pixels != nullptr);
-  render::Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + static_cast<std::size_t>(w) * h * 3)};
-  stbi_image_free(pixels);
-  return image;
-}
+using testing::LoadPng;
 
 // A scene with one static box, 2 m square at (10, 10), coloured #c84 (0xcc, 0x88, 0x44).
 void WriteBoxScene(const fs::path& path) {

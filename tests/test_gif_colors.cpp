@@ -4,8 +4,6 @@
 // does not show yet, come out of the GIF close to their PNG frames.
 #include <catch2/catch.hpp>
 
-#include <stb/stb_image.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +17,7 @@
 #include "offscreen_gl.h"
 #include "render/bitmap_text.h"
 #include "render/color.h"
+#include "png_file.h"
 #include "run_program.h"
 
 namespace fs = std::filesystem;
@@ -98,12 +97,7 @@ TEST_CASE("render --video: a GIF shows effect particles born after its first fra
   auto load = [&](int frame) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.png", frame);
-    int w = 0, h = 0, n = 0;
-    stbi_uc* png = stbi_load((dir / "frames" / name).c_str(), &w, &h, &n, 3);
-    REQUIRE(png != nullptr);
-    std::vector<std::uint8_t> rgb(png, png + static_cast<std::size_t>(w) * h * 3);
-    stbi_image_free(png);
-    return rgb;
+    return testing::LoadPng(dir / "frames" / name).rgb;
   };
   const std::vector<std::uint8_t> first = load(0);
   for (const int frame : {15, 29}) {

@@ -4,11 +4,8 @@
 // `ballbox play` draws them the same (a screenshot under Xvfb, skipped where it is missing).
 #include <catch2/catch.hpp>
 
-#include <stb/stb_image.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -17,8 +14,9 @@
 #include "render/color.h"
 #include "render/image.h"
 #include "render/particle_style.h"
-#include "render/window.h"
+#include "png_file.h"
 #include "run_program.h"
+#include "xvfb_session.h"
 
 namespace fs = std::filesystem;
 using render::Color;
@@ -27,15 +25,7 @@ namespace {
 
 fs::path FreshDir(const std::string& name) { return testing::FreshTestDir("scene_colors", name); }
 
-render::Image LoadPng(const fs::path& path) {
-  int w = 0, h = 0, n = 0;
-  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &n, 3);
-  INFO(path);
-  REQUIRE(pixels != nullptr);
-  render::Image image{w, h, std::vector<std::uint8_t>(pixels, pixels + static_cast<std::size_t>(w) * h * 3)};
-  stbi_image_free(pixels);
-  return image;
-}
+using testing::LoadPng;
 
 // No gravity, so frame 0 and a few steps later look alike. The camera is 20 m across 200x150
 // pixels (4:3, so the 800x600 region): 0.1 m a pixel, world (x, y) at pixel
@@ -102,10 +92,6 @@ render::Image RenderStill(const fs::path& dir, const std::string& scene) {
   return LoadPng(dir / "f" / "frame_00000.png");
 }
 
-bool HaveProgram(const std::string& name) {
-  return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
-}
-
 }  // namespace
 
 TEST_CASE("render draws each soft body and the fluid in the scene's colours", "[scene_colors][render]") {
@@ -135,35 +121,16 @@ TEST_CASE("render draws soft bodies and fluid in the renderer's defaults where t
 
 TEST_CASE("play draws the scene's particle colours as render does (a screenshot under Xvfb)",
           "[scene_colors][play][xvfb]") {
-  if (!render::WindowSupportBuilt()) {
-    WARN("SKIPPED: this ballbox is built without GLFW, so play opens no window");
-    return;
-  }
-  for (const char* program : {"xvfb-run", "xauth", "xdotool", "flock", "timeout"}) {
-    if (!HaveProgram(program)) {
-      WARN("SKIPPED: " << program << " is missing (make deps installs xvfb, xauth and xdotool)");
-      return;
-    }
-  }
+  if (!testing::WindowTestsCanRun()) return;
   const fs::path dir = FreshDir("play");
   std::ofstream(dir / "scene.json") << StillScene("#ff0000", "#0000ff", "#00ff00");
-  // Paused at step 0, S for a screenshot, Esc; one Xvfb at a time (tests/test_play_window.cpp).
-  std::ofstream(dir / "session.sh")
-      << "set -u\nBALLBOX_PLAY_PAUSE_AT=0 timeout 120 '" BALLBOX_EXE "' play scene.json --size 200x150"
-         " >play.out 2>play.err &\npid=$!\n"
-         "wid=$(timeout 60 xdotool search --sync --name 'paused at step 0\\)' | head -n 1)\n"
-         "if [ -z \"$wid\" ]; then kill $pid; wait $pid; exit 3; fi\n"
-         "timeout 30 xdotool windowfocus --sync \"$wid\"\n"
-         "timeout 30 xdotool key --delay 50 s Escape\nwait $pid\n";
-  const std::string lock = (fs::path(BALLBOX_TEST_TMP) / "xvfb.lock").string();
-  testing::ProgramRun session;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    session = testing::RunShell("flock '" + lock + "' xvfb-run -a -s '-screen 0 1024x768x24' sh session.sh",
-                                dir, dir.parent_path() / "play_captured");
-    if (session.err.find("Xvfb failed to start") == std::string::npos) break;
-  }
+  const testing::ProgramRun session = testing::UnderXvfb(
+      testing::StartPausedPlay("BALLBOX_PLAY_PAUSE_AT=0", "scene.json --size 200x150", 0) +
+          "timeout 30 xdotool key --delay 50 s Escape\n" + testing::EndPlay(),
+      dir);
   INFO("session: " << session.err << "play: " << testing::ReadFile(dir / "play.err"));
   REQUIRE(session.exit_code == 0);
+  REQUIRE(testing::ReadFile(dir / "play.rc") == "0\n");
   const render::Image image = LoadPng(dir / "screenshots" / "colours_step_000000.png");
   REQUIRE(image.width == 200);
   const Spots spots = Inside();
