@@ -39,6 +39,7 @@ if [[ "${BENCH_PAGE_ONLY:-0}" != 1 ]]; then
   run bench_skip --out "$out"
   run bench_broadphase --out "$out"
   run bench_render --out "$out/render"
+  run bench_particles --out "$out/particles"
 
   echo "bench: plots -> $img" >&2
   for plot in work_precision stability scaling peers; do
