@@ -109,6 +109,8 @@ class ParticleSystem {
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
   void SolveParticleContacts();
+  /// The friction of particle i's material: its soft body's, or its fluid block's.
+  double OwnFriction(std::uint32_t i) const;
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
   static void PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h);
   void SolveBodyContacts(double h, std::vector<BodyPush>& pushes);
