@@ -119,7 +119,7 @@ TEST_CASE("render draws soft bodies and fluid in the renderer's defaults where t
   CheckSpots(image, spots.fluid, Over(render::kFluidColor, render::kFluidOpacity, render::kBackgroundColor), 2);
 }
 
-TEST_CASE("play draws the scene's particle colours as render does (a screenshot under Xvfb)",
+TEST_CASE("play window: the scene's particle colours drawn as render draws them (a screenshot under Xvfb)",
           "[scene_colors][play][xvfb]") {
   if (!testing::WindowTestsCanRun()) return;
   const fs::path dir = FreshDir("play");
