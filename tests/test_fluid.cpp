@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/world.h"
+#include "world_builders.h"
 
 namespace {
 
@@ -14,20 +15,11 @@ using engine::Vec2;
 using engine::World;
 using engine::WorldDef;
 
-void StaticBox(World& world, Vec2 center, Vec2 half) {
-  BodyDef def;
-  def.shape.type = engine::ShapeType::kBox;
-  def.shape.half_extents = half;
-  def.position = center;
-  def.is_static = true;
-  world.CreateBody(def);
-}
-
 // A tank with its floor at y = 0 and walls at x = ±half_width.
 void Tank(World& world, double half_width) {
-  StaticBox(world, {0.0, -0.5}, {half_width + 1.0, 0.5});
-  StaticBox(world, {-half_width - 0.5, 2.0}, {0.5, 2.0});
-  StaticBox(world, {half_width + 0.5, 2.0}, {0.5, 2.0});
+  world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {2.0 * half_width + 2.0, 1.0})));
+  world.CreateBody(testing::Static(testing::Box({-half_width - 0.5, 2.0}, {1.0, 4.0})));
+  world.CreateBody(testing::Static(testing::Box({half_width + 0.5, 2.0}, {1.0, 4.0})));
 }
 
 }  // namespace
@@ -40,10 +32,7 @@ TEST_CASE("a crate of density 500 floats in water half submerged (Archimedes)", 
   water.spacing = 0.05;
   water.density = 1000.0;
   world.AddFluid(water);
-  BodyDef crate;
-  crate.shape.type = engine::ShapeType::kBox;
-  crate.shape.half_extents = {0.25, 0.25};
-  crate.position = {0.0, 0.9};
+  BodyDef crate = testing::Box({0.0, 0.9}, {0.5, 0.5});
   crate.density = 500.0;
   const engine::BodyId id = world.CreateBody(crate);
   // The water's level far from the crate: the top particles' centres plus a radius.
@@ -124,10 +113,7 @@ TEST_CASE("a light crate thrown by a dam break against the wall gains no energy"
   world.AddFluid(water);
   water.region = {{1.7, 0.0}, {3.7, 0.32}};
   world.AddFluid(water);
-  BodyDef crate;
-  crate.shape.type = engine::ShapeType::kBox;
-  crate.shape.half_extents = {0.2, 0.2};
-  crate.position = {1.5, 0.32};
+  BodyDef crate = testing::Box({1.5, 0.32}, {0.4, 0.4});
   crate.density = 500.0;
   crate.friction = 0.4;
   const engine::BodyId id = world.CreateBody(crate);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/world.h"
+#include "world_builders.h"
 
 namespace {
 
@@ -16,12 +17,7 @@ using engine::World;
 using engine::WorldDef;
 
 engine::BodyId StaticBox(World& world, Vec2 center, Vec2 half) {
-  BodyDef def;
-  def.shape.type = engine::ShapeType::kBox;
-  def.shape.half_extents = half;
-  def.position = center;
-  def.is_static = true;
-  return world.CreateBody(def);
+  return world.CreateBody(testing::Static(testing::Box(center, 2.0 * half)));
 }
 
 double OutlineArea(const World& world, SoftBodyId id) {

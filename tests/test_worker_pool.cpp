@@ -5,6 +5,7 @@
 
 #include "engine/world.h"
 #include "parallel/worker_pool.h"
+#include "world_builders.h"
 
 TEST_CASE("ParallelFor visits every index once, whatever the threads and the count", "[parallel]") {
   for (const int threads : {1, 2, 3, 5}) {
@@ -26,12 +27,7 @@ TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[para
     engine::WorldDef def;
     def.particles.threads = threads;
     engine::World world(def);
-    engine::BodyDef floor;
-    floor.shape.type = engine::ShapeType::kBox;
-    floor.shape.half_extents = {3.0, 0.5};
-    floor.position = {0.0, -0.5};
-    floor.is_static = true;
-    world.CreateBody(floor);
+    world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {6.0, 1.0})));
     engine::FluidDef water;  // 2 400 particles: enough that every pass is split
     water.region = {{-1.0, 0.0}, {1.0, 1.5}};
     water.spacing = 0.035;

@@ -12,6 +12,11 @@
 namespace render {
 namespace {
 
+// One instance of the splat pass: a particle's centre (centers_ holds them as float pairs).
+struct SplatCenter {
+  float x, y;
+};
+
 constexpr const char* kSplatVertexShader = R"(#version 330 core
 layout(location = 0) in vec2 corner;
 layout(location = 1) in vec2 center;
@@ -104,21 +109,9 @@ bool FluidSurface::Create(const GlFunctions& fn, GLuint quad_buffer, std::string
   fn.Uniform1f(fn.GetUniformLocation(shade_program_, "rim_pixels"),
                static_cast<float>(kFluidRimPixels));
 
-  fn.GenVertexArrays(1, &splat_vertex_array_);
-  fn.BindVertexArray(splat_vertex_array_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
-  fn.EnableVertexAttribArray(0);
-  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-  fn.GenBuffers(1, &instance_buffer_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
-  fn.EnableVertexAttribArray(1);
-  fn.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-  fn.VertexAttribDivisor(1, 1);
-  fn.GenVertexArrays(1, &shade_vertex_array_);
-  fn.BindVertexArray(shade_vertex_array_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
-  fn.EnableVertexAttribArray(0);
-  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  NewInstancedQuad(fn, quad_buffer, splat_vertex_array_, instance_buffer_);
+  SetInstanceAttribute<SplatCenter>(fn, 1, 2, GL_FLOAT, GL_FALSE, 0);
+  shade_vertex_array_ = NewQuadArray(fn, quad_buffer);
 
   fn.GenTextures(1, &field_texture_);
   fn.GenFramebuffers(1, &field_framebuffer_);

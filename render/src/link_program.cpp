@@ -76,13 +76,7 @@ bool LinkProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string&
   halo_location_ = fn.GetUniformLocation(program_, "halo");
   halo_color_location_ = fn.GetUniformLocation(program_, "halo_color");
 
-  fn.GenVertexArrays(1, &vertex_array_);
-  fn.BindVertexArray(vertex_array_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
-  fn.EnableVertexAttribArray(0);
-  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-  fn.GenBuffers(1, &instance_buffer_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  NewInstancedQuad(fn, quad_buffer, vertex_array_, instance_buffer_);
   SetInstanceAttribute<LinkInstance>(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, a));
   SetInstanceAttribute<LinkInstance>(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, b));
   SetInstanceAttribute<LinkInstance>(fn, 3, 1, GL_FLOAT, GL_FALSE, offsetof(LinkInstance, radius));

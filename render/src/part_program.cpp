@@ -212,13 +212,7 @@ bool PartProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string&
   fn.UseProgram(program_);
   fn.Uniform1i(fn.GetUniformLocation(program_, "shapes"), 0);  // texture unit 0
 
-  fn.GenVertexArrays(1, &vertex_array_);
-  fn.BindVertexArray(vertex_array_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
-  fn.EnableVertexAttribArray(0);
-  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-  fn.GenBuffers(1, &instance_buffer_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  NewInstancedQuad(fn, quad_buffer, vertex_array_, instance_buffer_);
   SetInstanceAttribute<PartInstance>(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, origin));
   SetInstanceAttribute<PartInstance>(fn, 2, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, rotation));
   SetInstanceAttribute<PartInstance>(fn, 3, 2, GL_FLOAT, GL_FALSE, offsetof(PartInstance, quad_center));

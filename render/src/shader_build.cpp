@@ -48,4 +48,20 @@ bool BuildProgram(const GlFunctions& fn, const char* vertex_source, const char* 
   return false;
 }
 
+GLuint NewQuadArray(const GlFunctions& fn, GLuint quad_buffer) {
+  GLuint vertex_array = 0;
+  fn.GenVertexArrays(1, &vertex_array);
+  fn.BindVertexArray(vertex_array);
+  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
+  fn.EnableVertexAttribArray(0);
+  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  return vertex_array;
+}
+
+void NewInstancedQuad(const GlFunctions& fn, GLuint quad_buffer, GLuint& vertex_array, GLuint& instance_buffer) {
+  vertex_array = NewQuadArray(fn, quad_buffer);
+  fn.GenBuffers(1, &instance_buffer);
+  fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer);
+}
+
 }  // namespace render

@@ -47,13 +47,7 @@ void main() {
 bool SpriteProgram::Create(const GlFunctions& fn, GLuint quad_buffer, std::string& error) {
   if (!BuildProgram(fn, kVertexShader, kFragmentShader, "sprite", program_, error)) return false;
   view_half_size_location_ = fn.GetUniformLocation(program_, "view_half_size");
-  fn.GenVertexArrays(1, &vertex_array_);
-  fn.BindVertexArray(vertex_array_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, quad_buffer);
-  fn.EnableVertexAttribArray(0);
-  fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
-  fn.GenBuffers(1, &instance_buffer_);
-  fn.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  NewInstancedQuad(fn, quad_buffer, vertex_array_, instance_buffer_);
   SetInstanceAttribute<SpriteInstance>(fn, 1, 2, GL_FLOAT, GL_FALSE, offsetof(SpriteInstance, center));
   SetInstanceAttribute<SpriteInstance>(fn, 2, 1, GL_FLOAT, GL_FALSE, offsetof(SpriteInstance, radius));
   SetInstanceAttribute<SpriteInstance>(fn, 3, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(SpriteInstance, color));

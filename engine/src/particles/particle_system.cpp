@@ -406,18 +406,23 @@ void ParticleSystem::FindWalls(std::vector<BodyPush>& pushes) {
   wall_share_.assign(n, 0.0);
   wall_slope_.assign(n, Vec2{});
   wall_denominator_.assign(n, 0.0);
-  const auto distance = [&](const PlaneContact& c) {
-    const BodyPush& body = pushes[c.body];
-    return Dot(Rotate(body.rotation, c.normal), x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
-  };
+  // Each fluid plane's distance, then how many particles each body has within reach (the
+  // count mass splitting needs before any particle's share is worked out).
+  wall_distances_.resize(planes_.size());
   for (const PlaneContact& c : planes_) pushes[c.body].wall_particles = 0;
-  for (const PlaneContact& c : planes_) {
-    if (c.particle >= first && distance(c) < wall_->Reach()) ++pushes[c.body].wall_particles;
-  }
-  for (const PlaneContact& c : planes_) {
+  for (std::size_t k = 0; k < planes_.size(); ++k) {
+    const PlaneContact& c = planes_[k];
     if (c.particle < first) continue;
     const BodyPush& body = pushes[c.body];
-    const double d = distance(c);
+    wall_distances_[k] = Dot(Rotate(body.rotation, c.normal),
+                             x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
+    if (wall_distances_[k] < wall_->Reach()) ++pushes[c.body].wall_particles;
+  }
+  for (std::size_t k = 0; k < planes_.size(); ++k) {
+    const PlaneContact& c = planes_[k];
+    if (c.particle < first) continue;
+    const BodyPush& body = pushes[c.body];
+    const double d = wall_distances_[k];
     if (d >= wall_->Reach()) continue;
     const std::uint32_t f = c.particle - first;
     const Vec2 normal = Rotate(body.rotation, c.normal);

@@ -152,6 +152,7 @@ class ParticleSystem {
   std::vector<Vec2> pair_gradients_;
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
+  std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)
   std::vector<double> wall_denominator_;  ///< the pushed bodies' part of each PBF denominator
   std::vector<Vec2> delta_, soft_scratch_;
 };
