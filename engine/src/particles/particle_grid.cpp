@@ -42,8 +42,8 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 }
 
 void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                                  std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                                  std::vector<std::uint32_t>* mirrors) const {
+                                  std::vector<std::uint32_t>* offsets,
+                                  std::vector<std::uint32_t>* neighbours) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
@@ -81,16 +81,12 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
   neighbours->resize(2 * total);
-  mirrors->resize(2 * total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (const auto& [i, j] : pairs_[t]) {
-      const std::uint32_t a = fill[i]++, b = fill[j]++;
-      (*neighbours)[a] = j;
-      (*neighbours)[b] = i;
-      (*mirrors)[a] = b;
-      (*mirrors)[b] = a;
+      (*neighbours)[fill[i]++] = j;
+      (*neighbours)[fill[j]++] = i;
     }
   }
 }

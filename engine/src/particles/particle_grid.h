@@ -19,13 +19,11 @@ class ParticleGrid {
   void Build(std::span<const Vec2> positions, double cell);
 
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
-  /// neighbours[offsets[i] .. offsets[i + 1]), and mirrors[a] is the entry of the same pair
-  /// in the other particle's list (so a pair's terms are worked out once for both).
+  /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
   /// cell order: the same lists with any thread count.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                      std::vector<std::uint32_t>* mirrors) const;
+                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>

@@ -288,7 +288,7 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   const double skin = kernel > 0.0 ? std::min(2.0 * travel, 0.25 * kernel) : 2.0 * travel;
   const double reach = std::max(kernel, 2.0 * largest_radius_) + skin;
   grid_.Build(x_, reach);
-  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &neighbour_mirrors_);
+  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_);
   planes_.clear();
   std::vector<BodyPlane> found;
   for (const BodyId id : bodies.live_ids) {
@@ -328,47 +328,52 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
   FindWalls(pushes);
-  pair_weights_.resize(neighbours_.size());
-  pair_gradients_.resize(neighbours_.size());
-  // Each fluid pair's kernel and gradient, once for both its entries (soft particles meet the
-  // fluid by contact, not pressure: their entries stay 0).
-  // (An entry is written only by the lower-numbered particle of its pair: no two threads meet.)
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    const std::uint32_t i = first + f;
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      const std::uint32_t j = neighbours_[a];
-      if (j < first) pair_weights_[a] = 0.0;
-      if (j <= i) continue;
-      const std::uint32_t mirror = neighbour_mirrors_[a];
-      const Vec2 d = x_[i] - x_[j];
-      const double r2 = LengthSquared(d);
-      if (r2 >= k.h2) {
-        pair_weights_[a] = pair_weights_[mirror] = 0.0;
-        continue;
-      }
-      const double r = std::sqrt(r2);
-      pair_weights_[a] = pair_weights_[mirror] = k.W(r2, r);
-      pair_gradients_[a] = k.Gradient(d, r);
-      pair_gradients_[mirror] = -pair_gradients_[a];
-    }
-  });
+  // Each particle's fluid neighbours within the kernel this substep, packed at the start of
+  // its run of the step's neighbour list with their kernel and gradient: the two passes below
+  // then read a dense run with no test per entry (the entries beyond the kernel, a third of
+  // them mid-splash, cost a mispredicted branch each when skipped in place).
+  near_particles_.resize(neighbours_.size());
+  near_weights_.resize(neighbours_.size());
+  near_gradients_.resize(neighbours_.size());
+  near_counts_.resize(n);
+  const Vec2* const x = x_.data();
+  const double* const inv_mass = inv_mass_.data();
+  const double* const mass = fluid_.mass.data();
+  const std::uint32_t* const offsets = neighbour_offsets_.data();
+  const std::uint32_t* const neighbours = neighbours_.data();
+  std::uint32_t* const near = near_particles_.data();
+  double* const weights = near_weights_.data();
+  Vec2* const gradients = near_gradients_.data();
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+  pool_->ParallelFor(n, kMinParallel, [&, x, inv_mass, mass, offsets, neighbours, near, weights, gradients](std::uint32_t f) {
     const std::uint32_t i = first + f;
+    const Vec2 xi = x[i];
+    // Soft particles meet the fluid by contact, not pressure: they are left out.
+    std::uint32_t count = 0;
+    for (std::uint32_t a = offsets[i]; a < offsets[i + 1]; ++a) {
+      const std::uint32_t j = neighbours[a];
+      near[offsets[i] + count] = j;
+      count += (j >= first) & (LengthSquared(xi - x[j]) < k.h2);
+    }
+    near_counts_[f] = count;
     const double rest = fluid_.rest_density[f], inv_rest = 1.0 / rest;
     double density = fluid_.mass[f] * k.W(0.0, 0.0) + rest * wall_share_[f];
     Vec2 gradient_i = wall_slope_[f];
     double denominator = 0.0;
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      if (pair_weights_[a] == 0.0) continue;
-      const std::uint32_t j = neighbours_[a];
-      const double mj = fluid_.mass[j - first];
-      density += mj * pair_weights_[a];
-      const Vec2 g = (mj * inv_rest) * pair_gradients_[a];
+    for (std::uint32_t a = offsets[i]; a < offsets[i] + count; ++a) {
+      const std::uint32_t j = near[a];
+      const Vec2 d = xi - x[j];
+      const double r2 = LengthSquared(d);
+      const double r = std::sqrt(r2);
+      weights[a] = k.W(r2, r);
+      gradients[a] = k.Gradient(d, r);
+      const double mj = mass[j - first];
+      density += mj * weights[a];
+      const Vec2 g = (mj * inv_rest) * gradients[a];
       gradient_i += g;
-      denominator += inv_mass_[j] * LengthSquared(g);
+      denominator += inv_mass[j] * LengthSquared(g);
     }
-    denominator += inv_mass_[i] * LengthSquared(gradient_i) + wall_denominator_[f];
+    denominator += inv_mass[i] * LengthSquared(gradient_i) + wall_denominator_[f];
     fluid_.density[f] = density;
     // Only compression is pushed apart: a free surface, below the rest density, is left alone
     // rather than pulled together.
@@ -380,20 +385,22 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const double clumping_scale = -kClumpingStrength / density_denominator_;
   const double inv_clumping_w = 1.0 / clumping_w;
   delta_.resize(n);
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+  const double* const lambda = lambda_.data();
+  const double* const lambda_over_rest = lambda_over_rest_.data();
+  pool_->ParallelFor(n, kMinParallel, [&, inv_mass, mass, offsets, near, weights, gradients, lambda,
+                                       lambda_over_rest](std::uint32_t f) {
     const std::uint32_t i = first + f;
     const double inv_rest_i = 1.0 / fluid_.rest_density[f], mass_i = fluid_.mass[f];
     Vec2 step;
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      if (pair_weights_[a] == 0.0) continue;
-      const std::uint32_t g = neighbours_[a] - first;
-      const double ratio = pair_weights_[a] * inv_clumping_w;
+    for (std::uint32_t a = offsets[i]; a < offsets[i] + near_counts_[f]; ++a) {
+      const std::uint32_t g = near[a] - first;
+      const double ratio = weights[a] * inv_clumping_w;
       const double ratio2 = ratio * ratio;
       const double clumping = clumping_scale * (ratio2 * ratio2);
-      const double weight = (lambda_[f] + clumping) * (fluid_.mass[g] * inv_rest_i) + mass_i * lambda_over_rest_[g];
-      step += weight * pair_gradients_[a];
+      const double weight = (lambda[f] + clumping) * (mass[g] * inv_rest_i) + mass_i * lambda_over_rest[g];
+      step += weight * gradients[a];
     }
-    delta_[f] = inv_mass_[i] * (step + kWallFactor * lambda_[f] * wall_slope_[f]);
+    delta_[f] = inv_mass[i] * (step + kWallFactor * lambda[f] * wall_slope_[f]);
   });
   PushWalls(h, pushes);
   // Jacobi: a pair pushes each of its particles from both their constraints, which in a

@@ -138,7 +138,7 @@ class ParticleSystem {
 
   // The step's scratch.
   ParticleGrid grid_;
-  std::vector<std::uint32_t> neighbour_offsets_, neighbours_, neighbour_mirrors_;
+  std::vector<std::uint32_t> neighbour_offsets_, neighbours_;
   std::vector<PlaneContact> planes_;
   std::vector<Vec2> start_centers_;
   std::vector<double> start_angles_;
@@ -148,8 +148,11 @@ class ParticleSystem {
   std::vector<double> lambda_;
   std::unique_ptr<WorkerPool> pool_;  ///< WorldDef::particles.threads, made at the first step
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
-  std::vector<double> pair_weights_;   ///< per neighbour entry: the fluid kernel, 0 beyond it
-  std::vector<Vec2> pair_gradients_;
+  /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
+  /// them from its offset in the neighbour list, with their kernel and its gradient.
+  std::vector<std::uint32_t> near_particles_, near_counts_;
+  std::vector<double> near_weights_;
+  std::vector<Vec2> near_gradients_;
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
   std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)
