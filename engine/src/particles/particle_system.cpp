@@ -577,6 +577,13 @@ void ParticleSystem::ApplyViscosity(double dt) {
   const SphKernels k(KernelRadius(fluid_.spacing));
   const std::uint32_t first = fluid_first_, n = FluidCount();
   delta_.assign(n, Vec2{});
+  // The share per viscosity: a block's particles share one, so pow runs once per block.
+  shares_.resize(n);
+  for (std::uint32_t f = 0; f < n; ++f) {
+    shares_[f] = f > 0 && fluid_.viscosity[f] == fluid_.viscosity[f - 1]
+                     ? shares_[f - 1]
+                     : 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
+  }
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     if (fluid_.viscosity[f] == 0.0) return;
     const std::uint32_t i = first + f;
@@ -589,8 +596,7 @@ void ParticleSystem::ApplyViscosity(double dt) {
       const std::uint32_t g = j - first;
       pull += (fluid_.mass[g] / fluid_.density[g] * k.W(r2)) * (v_[j] - v_[i]);
     }
-    const double share = 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
-    delta_[f] = share * pull;
+    delta_[f] = shares_[f] * pull;
   });
   for (std::uint32_t f = 0; f < n; ++f) v_[first + f] += delta_[f];
 }

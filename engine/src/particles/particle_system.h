@@ -145,6 +145,7 @@ class ParticleSystem {
   std::vector<BodyPush> pushes_;
   std::vector<BodyIndex> touched_;
   std::vector<double> omega_;
+  std::vector<double> shares_;  ///< ApplyViscosity's, per particle
   std::vector<double> lambda_;
   std::unique_ptr<WorkerPool> pool_;  ///< WorldDef::particles.threads, made at the first step
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
