@@ -520,6 +520,7 @@ TEST_CASE("effects: the effect system saves and loads its whole state", "[effect
   using engine::detail::ByteWriter;
   using engine::detail::EffectSystem;
   const engine::detail::Bodies no_bodies;
+  engine::detail::WorkerPool pool(1);
   WorldDef def;
   EffectSystem a;
   EmitterDef e;
@@ -532,9 +533,9 @@ TEST_CASE("effects: the effect system saves and loads its whole state", "[effect
   e.body.reset();
   e.rate = 37.0;
   a.Create(e);
-  for (int n = 0; n < 30; ++n) a.Step(def, no_bodies);
+  for (int n = 0; n < 30; ++n) a.Step(def, no_bodies, pool);
   a.Destroy(first.index);  // draining
-  for (int n = 0; n < 3; ++n) a.Step(def, no_bodies);
+  for (int n = 0; n < 3; ++n) a.Step(def, no_bodies, pool);
   std::vector<std::uint8_t> bytes;
   ByteWriter out(&bytes);
   a.Save(out);
@@ -543,8 +544,8 @@ TEST_CASE("effects: the effect system saves and loads its whole state", "[effect
   REQUIRE(b.Load(in));
   CHECK(in.Remaining() == 0);
   for (int n = 0; n < 60; ++n) {
-    a.Step(def, no_bodies);
-    b.Step(def, no_bodies);
+    a.Step(def, no_bodies, pool);
+    b.Step(def, no_bodies, pool);
   }
   REQUIRE(a.Particles().size() == b.Particles().size());
   REQUIRE(!a.Particles().empty());

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <variant>
 
@@ -17,6 +18,7 @@
 #include "sensor_overlaps.h"
 #include "snapshot/byte_stream.h"
 #include "narrow_phase/narrow_phase.h"
+#include "parallel/worker_pool.h"
 #include "particles/effects.h"
 #include "particles/particle_system.h"
 #include "sleep.h"
@@ -86,6 +88,9 @@ struct World::Impl {
   detail::SensorOverlaps sensors;
   detail::ParticleSystem particles;   ///< soft bodies and fluid, stepped after the bodies
   detail::EffectSystem effects;       ///< emitters and their effect particles
+  /// WorldDef::particles.threads, shared by the particles' and the effects' steps; made when
+  /// first needed.
+  std::unique_ptr<detail::WorkerPool> particle_pool;
   StepEvents events;                  ///< the last step's
   std::int64_t step_count = 0;
   std::optional<NumericFault> fault;

@@ -55,8 +55,9 @@ struct SubstepFeatures {
 struct ParticleSettings {
   double substep = 1.0 / 480.0;  ///< s: the longest substep; a step takes ceil(dt / substep)
   int iterations = 1;            ///< constraint passes per substep (more: stiffer sooner, no change at rest)
-  /// Threads (≥ 1, the caller's included) sharing the fluid's per-particle passes. The results
-  /// are the same bits with any count: each particle's sums run in the same order on any thread.
+  /// Threads (≥ 1, the caller's included) sharing the fluid's per-particle passes and the effect
+  /// particles' motion and bounces. The results are the same bits with any count: each
+  /// particle's sums run in the same order on any thread.
   int threads = 1;
 };
 

@@ -18,6 +18,20 @@ namespace {
 constexpr double kBirthTolerance = 1e-9;
 /// m: a disc this close to a body's surface touches it.
 constexpr double kTouch = 1e-9;
+/// Fewer particles than this move and bounce on one thread: handing out the chunks costs a few
+/// microseconds, more than a thousand particles' work.
+constexpr std::size_t kMinParallel = 2048;
+
+/// Calls body(begin, end, chunk) for the chunks of [0, count) on `pool`'s threads (one chunk if
+/// `count` is small). A chunk always holds the same indices, so the results do not depend on
+/// the thread count.
+template <typename Body>
+void ForChunks(WorkerPool& pool, std::size_t count, std::vector<std::size_t>* bounds, Body&& body) {
+  const auto chunks = static_cast<std::uint32_t>(count < kMinParallel ? 1 : pool.Threads());
+  bounds->resize(chunks + 1);
+  for (std::uint32_t c = 0; c <= chunks; ++c) (*bounds)[c] = count * c / chunks;
+  pool.ParallelFor(chunks, 2, [&](std::uint32_t c) { body((*bounds)[c], (*bounds)[c + 1], c); });
+}
 
 // One particle through `time` s: gravity, then drag as exact decay (stable at any step), then
 // the position with the new velocity (semi-implicit Euler).
@@ -100,12 +114,12 @@ void EffectSystem::BodyGone(BodyIndex body) {
   }
 }
 
-void EffectSystem::Step(const WorldDef& def, const Bodies& bodies) {
-  AgeAndBury(def.dt);     // the dead go; the survivors keep their order, oldest first
-  ReleaseDrained();       // a destroyed emitter's slot is free once its last particle has died
-  Move(def);              // those alive when the step began move a whole step
-  Emit(def, bodies);      // the newborns, each moved from its moment of birth to the step's end
-  Collide(def, bodies);   // bounces off the bodies, which never feel them
+void EffectSystem::Step(const WorldDef& def, const Bodies& bodies, WorkerPool& pool) {
+  AgeAndBury(def.dt);         // the dead go; the survivors keep their order, oldest first
+  ReleaseDrained();           // a destroyed emitter's slot is free once its last particle has died
+  Move(def, pool);            // those alive when the step began move a whole step
+  Emit(def, bodies);          // the newborns, each moved from its moment of birth to the step's end
+  Collide(def, bodies, pool); // bounces off the bodies, which never feel them
 }
 
 void EffectSystem::AgeAndBury(double dt) {
@@ -133,22 +147,26 @@ void EffectSystem::ReleaseDrained() {
   draining_.resize(kept);
 }
 
-void EffectSystem::Move(const WorldDef& def) {
+void EffectSystem::Move(const WorldDef& def, WorkerPool& pool) {
   motions_.resize(defs_.size());
   for (std::uint32_t s = 0; s < defs_.size(); ++s) {
     const EmitterDef& e = defs_[s];
     motions_[s] = {(1.0 - e.buoyancy) * def.gravity, Exp(-e.drag * def.dt), 0.5 * std::max(e.size_start, e.size_end)};
   }
   starts_.resize(particles_.size());
-  double farthest = 0.0;  // a local: the member, written through each turn, halved the loop's speed
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    EffectParticle& p = particles_[i];
-    starts_[i] = p.position;
-    const Motion& m = motions_[p.emitter.index];
-    Advance(&p, m.gravity, m.decay, def.dt);
-    farthest = std::max(farthest, LengthSquared(p.position - starts_[i]));
-  }
-  farthest_ = farthest;
+  chunk_farthest_.assign(pool.Threads(), 0.0);
+  ForChunks(pool, particles_.size(), &chunk_bounds_, [&](std::size_t begin, std::size_t end, std::uint32_t chunk) {
+    double farthest = 0.0;  // a local: the member, written through each turn, halved the loop's speed
+    for (std::size_t i = begin; i < end; ++i) {
+      EffectParticle& p = particles_[i];
+      starts_[i] = p.position;
+      const Motion& m = motions_[p.emitter.index];
+      Advance(&p, m.gravity, m.decay, def.dt);
+      farthest = std::max(farthest, LengthSquared(p.position - starts_[i]));
+    }
+    chunk_farthest_[chunk] = farthest;
+  });
+  farthest_ = *std::max_element(chunk_farthest_.begin(), chunk_farthest_.end());
 }
 
 void EffectSystem::Emit(const WorldDef& def, const Bodies& bodies) {
@@ -213,7 +231,7 @@ void EffectSystem::EmitFrom(std::uint32_t slot, const WorldDef& def, const Bodie
   if (count < due) owed_births_[slot] = std::min(owed_births_[slot], 1.0);
 }
 
-void EffectSystem::Collide(const WorldDef& def, const Bodies& bodies) {
+void EffectSystem::Collide(const WorldDef& def, const Bodies& bodies, WorkerPool& pool) {
   double largest_radius = -1.0;
   for (std::uint32_t s = 0; s < defs_.size(); ++s) {
     const bool has_particles = alive_[s] || alive_counts_[s] > 0;
@@ -223,41 +241,46 @@ void EffectSystem::Collide(const WorldDef& def, const Bodies& bodies) {
   // Any particle's swept disc lies within the largest radius and the farthest move of its start.
   bins_.Build(bodies, largest_radius + std::sqrt(farthest_) + kTouch);
   if (bins_.Empty()) return;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    EffectParticle& p = particles_[i];
-    const EmitterDef& e = defs_[p.emitter.index];
-    if (!e.collide) continue;
-    const Vec2 start = starts_[i];
-    // Where the disc went this step, with the emitter's largest disc: a box, so no square root.
-    const Vec2 grow{motions_[p.emitter.index].radius, motions_[p.emitter.index].radius};
-    const AABB swept{Vec2{std::min(start.x, p.position.x), std::min(start.y, p.position.y)} - grow,
-                     Vec2{std::max(start.x, p.position.x), std::max(start.y, p.position.y)} + grow};
-    double radius = -1.0;  // worked out only for a particle near some body
-    bins_.ForEachOverlapping(start, swept, [&](BodyIndex b) {
-      if (radius < 0.0) radius = 0.5 * SizeOf(e, p);
-      CollideWith(&p, start, radius, b, e, def, bodies);
-    });
-  }
+  scratch_.resize(pool.Threads());
+  ForChunks(pool, particles_.size(), &chunk_bounds_, [&](std::size_t begin, std::size_t end, std::uint32_t chunk) {
+    for (std::size_t i = begin; i < end; ++i) {
+      EffectParticle& p = particles_[i];
+      const EmitterDef& e = defs_[p.emitter.index];
+      if (!e.collide) continue;
+      const Vec2 start = starts_[i];
+      // Where the disc went this step, with the emitter's largest disc: a box, so no square root.
+      const Vec2 grow{motions_[p.emitter.index].radius, motions_[p.emitter.index].radius};
+      const AABB swept{Vec2{std::min(start.x, p.position.x), std::min(start.y, p.position.y)} - grow,
+                       Vec2{std::max(start.x, p.position.x), std::max(start.y, p.position.y)} + grow};
+      double radius = -1.0;  // worked out only for a particle near some body
+      bins_.ForEachOverlapping(start, swept, [&](BodyIndex b) {
+        if (radius < 0.0) radius = 0.5 * SizeOf(e, p);
+        CollideWith(&p, start, radius, b, e, def, bodies, scratch_[chunk]);
+      });
+    }
+  });
 }
 
 // Planes are found where the particle began, so a fast one cannot pass through a thin body
 // unseen (speculative contact, as Catto's "Speculative contacts", GDC 2013, and the soft bodies
 // here do it); those it only passes beside the corner of are checked where it crosses them.
 bool EffectSystem::CollideWith(EffectParticle* p, Vec2 start, double radius, BodyIndex body, const EmitterDef& e,
-                               const WorldDef& def, const Bodies& bodies) {
-  planes_.clear();
+                               const WorldDef& def, const Bodies& bodies, PlaneScratch& scratch) {
+  std::vector<BodyPlane>& planes = scratch.planes;
+  std::vector<BodyPlane>& touching = scratch.touching;
+  planes.clear();
   const double travel = Length(p->position - start);
-  if (AppendBodyPlanes(bodies, body, start, radius, travel + kTouch, &planes_) == 0) return false;
+  if (AppendBodyPlanes(bodies, body, start, radius, travel + kTouch, &planes) == 0) return false;
   const BodyState& state = bodies.states[body];
   bool hit = false, passed_beside = false;
-  for (const BodyPlane& plane : planes_) {
+  for (const BodyPlane& plane : planes) {
     const double before = Dot(plane.normal, start - plane.surface) - radius;
     const double after = Dot(plane.normal, p->position - plane.surface) - radius;
     if (after >= 0.0) continue;
     if (before > kTouch) {
       const Vec2 meet = start + (before / (before - after)) * (p->position - start);
-      touching_.clear();
-      if (AppendBodyPlanes(bodies, body, meet, radius, 16.0 * kTouch, &touching_) == 0) {
+      touching.clear();
+      if (AppendBodyPlanes(bodies, body, meet, radius, 16.0 * kTouch, &touching) == 0) {
         passed_beside = true;  // the face's plane, not the face: a ghost
         continue;
       }
@@ -268,9 +291,9 @@ bool EffectSystem::CollideWith(EffectParticle* p, Vec2 start, double radius, Bod
   }
   if (hit || !passed_beside) return hit;
   // Past a corner or round a curve: whatever the particle overlaps where it ended pushes it out.
-  touching_.clear();
-  AppendBodyPlanes(bodies, body, p->position, radius, 0.0, &touching_);
-  for (const BodyPlane& plane : touching_) {
+  touching.clear();
+  AppendBodyPlanes(bodies, body, p->position, radius, 0.0, &touching);
+  for (const BodyPlane& plane : touching) {
     const double after = Dot(plane.normal, p->position - plane.surface) - radius;
     if (after >= 0.0) continue;
     p->position += (-after) * plane.normal;

@@ -11,6 +11,7 @@
 #include "engine/ids.h"
 #include "engine/particles.h"
 #include "engine/world_def.h"
+#include "parallel/worker_pool.h"
 #include "particles/body_bins.h"
 #include "particles/body_contact.h"
 
@@ -37,7 +38,8 @@ class EffectSystem {
   bool EverUsed() const { return ever_used_; }
 
   /// One step of dt: ageing and deaths, motion, births, and bounces off the bodies.
-  void Step(const WorldDef& def, const Bodies& bodies);
+  /// Motion and bounces are shared among `pool`'s threads, each particle on its own.
+  void Step(const WorldDef& def, const Bodies& bodies, WorkerPool& pool);
 
   /// Every slot, the free list, the generators and the particles (effects_snapshot.cpp).
   void Save(ByteWriter& out) const;
@@ -59,13 +61,18 @@ class EffectSystem {
     Vec2 start;  ///< where it was born
   };
 
+  /// A thread's planes while it bounces particles.
+  struct PlaneScratch {
+    std::vector<BodyPlane> planes, touching;
+  };
+
   void AgeAndBury(double dt);
-  void Move(const WorldDef& def);
+  void Move(const WorldDef& def, WorkerPool& pool);
   void Emit(const WorldDef& def, const Bodies& bodies);
   void EmitFrom(std::uint32_t slot, const WorldDef& def, const Bodies& bodies);
-  void Collide(const WorldDef& def, const Bodies& bodies);
-  bool CollideWith(EffectParticle* p, Vec2 start, double radius, BodyIndex body, const EmitterDef& emitter,
-                   const WorldDef& def, const Bodies& bodies);
+  void Collide(const WorldDef& def, const Bodies& bodies, WorkerPool& pool);
+  static bool CollideWith(EffectParticle* p, Vec2 start, double radius, BodyIndex body, const EmitterDef& emitter,
+                          const WorldDef& def, const Bodies& bodies, PlaneScratch& scratch);
   void ReleaseDrained();
   void RebuildLiveIds();
   bool LoadParticles(ByteReader& in, std::span<const std::uint8_t> roles);
@@ -90,7 +97,9 @@ class EffectSystem {
   std::vector<Vec2> starts_;     ///< each particle's position when the step began (or it was born)
   double farthest_ = 0.0;        ///< m²: the square of the farthest any particle moved this step
   BodyBins bins_;
-  std::vector<BodyPlane> planes_, touching_;
+  std::vector<PlaneScratch> scratch_;     ///< one per thread
+  std::vector<double> chunk_farthest_;    ///< Move's, one per thread
+  std::vector<std::size_t> chunk_bounds_;
 };
 
 }  // namespace engine::detail

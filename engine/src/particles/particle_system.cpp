@@ -180,10 +180,10 @@ void ParticleSystem::MarkStepStart(const Bodies& bodies) {
   }
 }
 
-void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake,
+void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake, WorkerPool& pool,
                           std::vector<BodyIndex>* to_wake) {
   if (x_.empty()) return;
-  if (!pool_ || pool_->Threads() != def.particles.threads) pool_ = std::make_unique<WorkerPool>(def.particles.threads);
+  pool_ = &pool;
   const int substeps = std::max(1, static_cast<int>(std::ceil(def.dt / def.particles.substep - 1e-9)));
   const double h = def.dt / substeps;
   FindContacts(def, bodies);

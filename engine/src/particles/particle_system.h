@@ -66,7 +66,7 @@ class ParticleSystem {
   /// One step of dt: the particles move, and push the bodies they touch (velocity, and the
   /// position they were pushed by). Appends to `to_wake` the sleeping bodies pushed hard enough
   /// to wake.
-  void Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake,
+  void Step(const WorldDef& def, Bodies& bodies, std::span<const std::uint8_t> awake, WorkerPool& pool,
             std::vector<BodyIndex>* to_wake);
 
   void Save(ByteWriter& out) const;
@@ -147,7 +147,7 @@ class ParticleSystem {
   std::vector<double> omega_;
   std::vector<double> shares_;  ///< ApplyViscosity's, per particle
   std::vector<double> lambda_;
-  std::unique_ptr<WorkerPool> pool_;  ///< WorldDef::particles.threads, made at the first step
+  WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::particles.threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
   /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
   /// them from its offset in the neighbour list, with their kernel and its gradient.
