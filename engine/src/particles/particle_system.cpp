@@ -239,13 +239,16 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       x_[i] += h * v_[i];
     }
     for (int pass = 0; pass < def.particles.iterations; ++pass) {
+      // Contacts between particles are swept forward and back on alternate passes (see
+      // SolveParticleContacts); a soft body's own constraints go by colour (OrderByColour).
+      const bool backward = (step * def.particles.iterations + pass) % 2 == 1;
       for (const SoftBodyId id : soft_live_ids_) {
         const SoftBody& soft = soft_[id.index];
         lambda_.assign(soft.edges.size() + soft.areas.size(), 0.0);
         SolveSoftBody(soft, h, x_, inv_mass_, lambda_, soft_scratch_);
       }
       if (FluidCount() > 0) SolveFluid(h, pushes_);
-      SolveParticleContacts();
+      SolveParticleContacts(backward);
       SolveAttachments(h, pushes_);
       SolveBodyContacts(h, pushes_);
     }
@@ -457,37 +460,47 @@ void ParticleSystem::PushWalls(double h, std::vector<BodyPush>& pushes) {
   }
 }
 
-void ParticleSystem::SolveParticleContacts() {
-  // Discs of different bodies (two soft bodies, or a soft body and the fluid) keep apart.
-  for (std::uint32_t i = 0; i < fluid_first_; ++i) {
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      const std::uint32_t j = neighbours_[a];
-      if ((j < fluid_first_ && j <= i) || group_[j] == group_[i]) continue;
-      const Vec2 d = x_[j] - x_[i];
-      const double reach = radius_[i] + radius_[j];
-      const double r2 = LengthSquared(d);
-      if (r2 >= reach * reach || r2 == 0.0) continue;
-      const double w = inv_mass_[i] + inv_mass_[j];
-      if (w == 0.0) continue;
-      const double r = std::sqrt(r2);
-      const Vec2 n = d / r;
-      const double push = (reach - r) / w;
-      x_[i] -= (inv_mass_[i] * push) * n;
-      x_[j] += (inv_mass_[j] * push) * n;
-      // Friction as against a body (SolveBodyContacts): the pair's slide over each other this
-      // substep taken away up to μ times the push, μ the geometric mean of the two materials'.
-      const double friction = std::sqrt(OwnFriction(i) * OwnFriction(j));
-      if (friction == 0.0) continue;
-      const Vec2 slide = (x_[j] - previous_[j]) - (x_[i] - previous_[i]);
-      const Vec2 tangent_slide = slide - Dot(slide, n) * n;
-      const double length = Length(tangent_slide);
-      if (length == 0.0) continue;
-      const Vec2 t = tangent_slide / length;
-      const double tangential = std::min(length, friction * (reach - r)) / w;
-      x_[i] += (inv_mass_[i] * tangential) * t;
-      x_[j] -= (inv_mass_[j] * tangential) * t;
+void ParticleSystem::SolveParticleContacts(bool backward) {
+  // Discs of different bodies (two soft bodies, or a soft body and the fluid) keep apart; each
+  // pair once, from its lower-numbered particle (a fluid particle's pairs from the soft side).
+  // Gauss-Seidel leans the way it sweeps: in index order every substep, a soft box landing flat
+  // on another was pushed sideways and tipped. Swept back every other pass, the lean cancels.
+  const std::uint32_t n = fluid_first_;
+  for (std::uint32_t s = 0; s < n; ++s) {
+    const std::uint32_t i = backward ? n - 1 - s : s;
+    const std::uint32_t begin = neighbour_offsets_[i], end = neighbour_offsets_[i + 1];
+    for (std::uint32_t k = 0; k < end - begin; ++k) {
+      const std::uint32_t j = neighbours_[backward ? end - 1 - k : begin + k];
+      if ((j < n && j <= i) || group_[j] == group_[i]) continue;
+      SolveParticlePair(i, j);
     }
   }
+}
+
+void ParticleSystem::SolveParticlePair(std::uint32_t i, std::uint32_t j) {
+  const Vec2 d = x_[j] - x_[i];
+  const double reach = radius_[i] + radius_[j];
+  const double r2 = LengthSquared(d);
+  if (r2 >= reach * reach || r2 == 0.0) return;
+  const double w = inv_mass_[i] + inv_mass_[j];
+  if (w == 0.0) return;
+  const double r = std::sqrt(r2);
+  const Vec2 n = d / r;
+  const double push = (reach - r) / w;
+  x_[i] -= (inv_mass_[i] * push) * n;
+  x_[j] += (inv_mass_[j] * push) * n;
+  // Friction as against a body (SolveBodyContacts): the pair's slide over each other this
+  // substep taken away up to μ times the push, μ the geometric mean of the two materials'.
+  const double friction = std::sqrt(OwnFriction(i) * OwnFriction(j));
+  if (friction == 0.0) return;
+  const Vec2 slide = (x_[j] - previous_[j]) - (x_[i] - previous_[i]);
+  const Vec2 tangent_slide = slide - Dot(slide, n) * n;
+  const double length = Length(tangent_slide);
+  if (length == 0.0) return;
+  const Vec2 t = tangent_slide / length;
+  const double tangential = std::min(length, friction * (reach - r)) / w;
+  x_[i] += (inv_mass_[i] * tangential) * t;
+  x_[j] -= (inv_mass_[j] * tangential) * t;
 }
 
 double ParticleSystem::OwnFriction(std::uint32_t i) const {

@@ -108,7 +108,9 @@ class ParticleSystem {
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
-  void SolveParticleContacts();
+  /// `backward`: the particles, and their pairs, in reverse order.
+  void SolveParticleContacts(bool backward);
+  void SolveParticlePair(std::uint32_t i, std::uint32_t j);
   /// The friction of particle i's material: its soft body's, or its fluid block's.
   double OwnFriction(std::uint32_t i) const;
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.

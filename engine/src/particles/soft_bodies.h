@@ -42,8 +42,8 @@ struct SoftBody {
   double particle_mass = 0.0;
   double radius = 0.0;
   std::vector<Vec2> rest_positions;  ///< where the particles were made, world
-  std::vector<SoftEdge> edges;       ///< stretch edges first, then shear diagonals
-  std::vector<SoftArea> areas;
+  std::vector<SoftEdge> edges;       ///< by colour: edges of one colour share no particle
+  std::vector<SoftArea> areas;       ///< by colour, as the edges
   std::vector<std::uint32_t> area_vertices;
   std::vector<SoftAttachment> attachments;
   std::vector<std::uint32_t> outline;  ///< the rim, anticlockwise
