@@ -250,7 +250,7 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       if (FluidCount() > 0) SolveFluid(h, pushes_);
       SolveParticleContacts(backward);
       SolveAttachments(h, pushes_);
-      SolveBodyContacts(h, pushes_);
+      SolveBodyContacts(h, def.max_push_out_speed, pushes_);
     }
     for (std::size_t i = 0; i < x_.size(); ++i) v_[i] = (x_[i] - previous_[i]) / h;
     for (const SoftBodyId id : soft_live_ids_) DampSoftBody(soft_[id.index], h, x_, v_, inv_mass_);
@@ -520,19 +520,31 @@ void ParticleSystem::PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double i
   body.sleeping_impulse += impulse_h / h;
 }
 
-void ParticleSystem::SolveBodyContacts(double h, std::vector<BodyPush>& pushes) {
+void ParticleSystem::SolveBodyContacts(double h, double max_push_out_speed, std::vector<BodyPush>& pushes) {
   for (const PlaneContact& c : planes_) {
     BodyPush& body = pushes[c.body];
     const Vec2 n = Rotate(body.rotation, c.normal);
     const Vec2 surface_arm = Rotate(body.rotation, c.surface);
     const std::uint32_t i = c.particle;
     const double gap = Dot(n, x_[i] - (body.center + surface_arm)) - radius_[i];
-    if (gap >= 0.0) continue;
+    // A soft particle that began the substep inside the body (a body made overlapping a soft
+    // one, or slipped between its particles) comes out no faster than max_push_out_speed, as
+    // rigid bodies do: resolved at once, a depth d became a speed d/h, and a plank made inside
+    // a blown-up soft ball was shot out at hundreds of m/s. New contacts are solved in full.
+    double allowed = 0.0;
+    if (i < fluid_first_) {
+      const Vec2 n_before = Rotate(body.last_rotation, c.normal);
+      const Vec2 surface_before = body.last_center + Rotate(body.last_rotation, c.surface);
+      const double gap_before = Dot(n_before, previous_[i] - surface_before) - radius_[i];
+      allowed = std::min(0.0, gap_before + max_push_out_speed * h);
+    }
+    if (gap >= allowed) continue;
     const double wp = inv_mass_[i];
     const double rn = Cross(surface_arm, n);
     const double w = wp + body.inv_mass + body.inv_inertia * rn * rn;
     if (w == 0.0) continue;
-    const double normal = -gap / w;
+    const double depth = allowed - gap;
+    const double normal = depth / w;
     x_[i] += (wp * normal) * n;
     PushBody(body, surface_arm, n, normal, h);
     if (c.friction == 0.0) continue;
@@ -548,7 +560,7 @@ void ParticleSystem::SolveBodyContacts(double h, std::vector<BodyPush>& pushes) 
     const Vec2 t = tangent_slide / length;
     const double rt = Cross(surface_arm, t);
     const double wt = wp + body.inv_mass + body.inv_inertia * rt * rt;
-    const double tangential = std::min(length, c.friction * (-gap)) / wt;
+    const double tangential = std::min(length, c.friction * depth) / wt;
     x_[i] -= (wp * tangential) * t;
     PushBody(body, surface_arm, -t, tangential, h);
   }

@@ -115,7 +115,7 @@ class ParticleSystem {
   double OwnFriction(std::uint32_t i) const;
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
   static void PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h);
-  void SolveBodyContacts(double h, std::vector<BodyPush>& pushes);
+  void SolveBodyContacts(double h, double max_push_out_speed, std::vector<BodyPush>& pushes);
   void SolveAttachments(double h, std::vector<BodyPush>& pushes);
   void ApplyViscosity(double dt);
   void ApplyVorticity(double dt);
