@@ -182,6 +182,36 @@ void SolveArea(const SoftBody& body, const SoftArea& a, double inv_h2, std::span
   for (std::size_t i = 0; i < a.count; ++i) x[o + v[i]] += step[i];
 }
 
+// A ring has no constraint against bending: its shape can change with no edge stretched and,
+// to first order, its area kept, so edge damping never reaches those motions, and a ball
+// rolling in a V traded energy with them for tens of seconds. Its velocities relative to its
+// rigid motion (the particles' mean velocity and mean spin) lose `share` instead (Müller et
+// al. 2007, "Position based dynamics", §3.5): momentum and angular momentum kept.
+void DampShape(const SoftBody& body, double share, std::span<const Vec2> x, std::span<Vec2> v) {
+  const std::uint32_t o = body.first;
+  const double n = static_cast<double>(body.count);  // the particles' masses are all equal
+  Vec2 centre, velocity;
+  for (std::uint32_t i = 0; i < body.count; ++i) {
+    centre += x[o + i];
+    velocity += v[o + i];
+  }
+  centre = centre / n;
+  velocity = velocity / n;
+  double spin = 0.0, inertia = 0.0;
+  for (std::uint32_t i = 0; i < body.count; ++i) {
+    const Vec2 r = x[o + i] - centre;
+    spin += Cross(r, v[o + i] - velocity);
+    inertia += LengthSquared(r);
+  }
+  if (inertia == 0.0) return;
+  const double omega = spin / inertia;
+  for (std::uint32_t i = 0; i < body.count; ++i) {
+    const Vec2 r = x[o + i] - centre;
+    const Vec2 rigid = velocity + omega * Vec2{-r.y, r.x};
+    v[o + i] += share * (rigid - v[o + i]);
+  }
+}
+
 }  // namespace
 
 bool IsValidSoftBodyDef(const SoftBodyDef& def) {
@@ -241,6 +271,7 @@ void DampSoftBody(const SoftBody& body, double h, std::span<const Vec2> x, std::
     v[o + e.a] += (wa * impulse) * n;
     v[o + e.b] -= (wb * impulse) * n;
   }
+  if (body.def.shape.type == ShapeType::kCircle) DampShape(body, share, x, v);
 }
 
 double SoftBodyElasticEnergy(const SoftBody& body, std::span<const Vec2> x) {
