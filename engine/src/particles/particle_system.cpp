@@ -249,6 +249,7 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       }
       if (FluidCount() > 0) SolveFluid(h, pushes_);
       SolveParticleContacts(backward);
+      if (FluidCount() > 0) SolveRimContacts();
       SolveAttachments(h, pushes_);
       SolveBodyContacts(h, def.max_push_out_speed, pushes_);
     }
@@ -501,6 +502,49 @@ void ParticleSystem::SolveParticlePair(std::uint32_t i, std::uint32_t j) {
   const double tangential = std::min(length, friction * (reach - r)) / w;
   x_[i] += (inv_mass_[i] * tangential) * t;
   x_[j] -= (inv_mass_[j] * tangential) * t;
+}
+
+void ParticleSystem::SolveRimContacts() {
+  // Fluid against each soft body's rim as a chain of capsules, not only of discs: where the rim
+  // is stretched its discs part, and fluid went between them (a quarter of a block poured into
+  // a soft ring ended outside it). A fluid particle is taken from the neighbours of the end of
+  // the edge it lies nearer, so each pair is solved once; its contacts with the discs at the
+  // ends are SolveParticleContacts'.
+  for (const SoftBodyId id : soft_live_ids_) {
+    const SoftBody& soft = soft_[id.index];
+    const std::size_t n = soft.outline.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t a = soft.first + soft.outline[k], b = soft.first + soft.outline[(k + 1) % n];
+      for (const std::uint32_t end : {a, b}) {
+        for (std::uint32_t e = neighbour_offsets_[end]; e < neighbour_offsets_[end + 1]; ++e) {
+          const std::uint32_t j = neighbours_[e];
+          if (j >= fluid_first_) SolveRimPair(a, b, j, end == a);
+        }
+      }
+    }
+  }
+}
+
+void ParticleSystem::SolveRimPair(std::uint32_t a, std::uint32_t b, std::uint32_t j, bool near_a) {
+  const Vec2 edge = x_[b] - x_[a];
+  const double length2 = LengthSquared(edge);
+  if (length2 == 0.0) return;
+  const double t = Dot(x_[j] - x_[a], edge) / length2;
+  // Inside the edge only (the ends are discs), and from the nearer end's neighbours only.
+  if (t <= 0.0 || t >= 1.0 || (t <= 0.5) != near_a) return;
+  const Vec2 d = x_[j] - (x_[a] + t * edge);
+  const double reach = (1.0 - t) * radius_[a] + t * radius_[b] + radius_[j];
+  const double r2 = LengthSquared(d);
+  if (r2 >= reach * reach || r2 == 0.0) return;
+  // C = |x_j − (x_a + t·(x_b − x_a))| − reach, t held: gradients n, −(1 − t)·n, −t·n.
+  const double w = inv_mass_[j] + (1.0 - t) * (1.0 - t) * inv_mass_[a] + t * t * inv_mass_[b];
+  if (w == 0.0) return;
+  const double r = std::sqrt(r2);
+  const Vec2 normal = d / r;
+  const double push = (reach - r) / w;
+  x_[j] += (inv_mass_[j] * push) * normal;
+  x_[a] -= ((1.0 - t) * inv_mass_[a] * push) * normal;
+  x_[b] -= (t * inv_mass_[b] * push) * normal;
 }
 
 double ParticleSystem::OwnFriction(std::uint32_t i) const {

@@ -111,6 +111,11 @@ class ParticleSystem {
   /// `backward`: the particles, and their pairs, in reverse order.
   void SolveParticleContacts(bool backward);
   void SolveParticlePair(std::uint32_t i, std::uint32_t j);
+  /// Fluid particles against the soft bodies' rims taken as capsules between their particles.
+  void SolveRimContacts();
+  /// Fluid particle j against the rim edge from particle a to b (`near_a`: found among a's
+  /// neighbours), if it lies nearer that end.
+  void SolveRimPair(std::uint32_t a, std::uint32_t b, std::uint32_t j, bool near_a);
   /// The friction of particle i's material: its soft body's, or its fluid block's.
   double OwnFriction(std::uint32_t i) const;
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
