@@ -63,7 +63,8 @@ SoftBody MakeSoftBody(const SoftBodyDef& def);
 void SolveSoftBody(const SoftBody& body, double h, std::span<Vec2> x, std::span<const double> w,
                    std::span<double> lambda, std::vector<Vec2>& scratch);
 
-/// Damps each edge's stretching speed by the body's damping rate over a substep h.
+/// Damps each edge's stretching speed by the body's damping rate over a substep h, and a
+/// ring's velocities relative to its rigid motion too (it has no bending constraint).
 void DampSoftBody(const SoftBody& body, double h, std::span<const Vec2> x, std::span<Vec2> v,
                   std::span<const double> w);
 
