@@ -71,7 +71,9 @@ struct WorldDef {
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;
   ContactSolver solver = ContactSolver::kSubstep;
   int substeps = 0;                     ///< substep solver: substeps per step; 0: 4, or 8 with rotation
-  double max_push_out_speed = 3.0;      ///< substep solver: m/s; overlap goes no faster than this
+  /// m/s: overlap goes no faster than this (the substep solver's contacts, and soft-body
+  /// particles that start a substep inside a rigid body)
+  double max_push_out_speed = 3.0;
   /// Contact solver passes: per step for the sequential-impulse solver (0: 10), per substep for
   /// the substep solver (0: 1, or 4 with rotation).
   int velocity_iterations = 0;

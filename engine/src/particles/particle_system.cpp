@@ -239,15 +239,19 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       x_[i] += h * v_[i];
     }
     for (int pass = 0; pass < def.particles.iterations; ++pass) {
+      // Contacts between particles are swept forward and back on alternate passes (see
+      // SolveParticleContacts); a soft body's own constraints go by colour (OrderByColour).
+      const bool backward = (step * def.particles.iterations + pass) % 2 == 1;
       for (const SoftBodyId id : soft_live_ids_) {
         const SoftBody& soft = soft_[id.index];
         lambda_.assign(soft.edges.size() + soft.areas.size(), 0.0);
         SolveSoftBody(soft, h, x_, inv_mass_, lambda_, soft_scratch_);
       }
       if (FluidCount() > 0) SolveFluid(h, pushes_);
-      SolveParticleContacts();
+      SolveParticleContacts(backward);
+      if (FluidCount() > 0) SolveRimContacts();
       SolveAttachments(h, pushes_);
-      SolveBodyContacts(h, pushes_);
+      SolveBodyContacts(h, def.max_push_out_speed, pushes_);
     }
     for (std::size_t i = 0; i < x_.size(); ++i) v_[i] = (x_[i] - previous_[i]) / h;
     for (const SoftBodyId id : soft_live_ids_) DampSoftBody(soft_[id.index], h, x_, v_, inv_mass_);
@@ -464,37 +468,90 @@ void ParticleSystem::PushWalls(double h, std::vector<BodyPush>& pushes) {
   }
 }
 
-void ParticleSystem::SolveParticleContacts() {
-  // Discs of different bodies (two soft bodies, or a soft body and the fluid) keep apart.
-  for (std::uint32_t i = 0; i < fluid_first_; ++i) {
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      const std::uint32_t j = neighbours_[a];
-      if ((j < fluid_first_ && j <= i) || group_[j] == group_[i]) continue;
-      const Vec2 d = x_[j] - x_[i];
-      const double reach = radius_[i] + radius_[j];
-      const double r2 = LengthSquared(d);
-      if (r2 >= reach * reach || r2 == 0.0) continue;
-      const double w = inv_mass_[i] + inv_mass_[j];
-      if (w == 0.0) continue;
-      const double r = std::sqrt(r2);
-      const Vec2 n = d / r;
-      const double push = (reach - r) / w;
-      x_[i] -= (inv_mass_[i] * push) * n;
-      x_[j] += (inv_mass_[j] * push) * n;
-      // Friction as against a body (SolveBodyContacts): the pair's slide over each other this
-      // substep taken away up to μ times the push, μ the geometric mean of the two materials'.
-      const double friction = std::sqrt(OwnFriction(i) * OwnFriction(j));
-      if (friction == 0.0) continue;
-      const Vec2 slide = (x_[j] - previous_[j]) - (x_[i] - previous_[i]);
-      const Vec2 tangent_slide = slide - Dot(slide, n) * n;
-      const double length = Length(tangent_slide);
-      if (length == 0.0) continue;
-      const Vec2 t = tangent_slide / length;
-      const double tangential = std::min(length, friction * (reach - r)) / w;
-      x_[i] += (inv_mass_[i] * tangential) * t;
-      x_[j] -= (inv_mass_[j] * tangential) * t;
+void ParticleSystem::SolveParticleContacts(bool backward) {
+  // Discs of different bodies (two soft bodies, or a soft body and the fluid) keep apart; each
+  // pair once, from its lower-numbered particle (a fluid particle's pairs from the soft side).
+  // Gauss-Seidel leans the way it sweeps: in index order every substep, a soft box landing flat
+  // on another was pushed sideways and tipped. Swept back every other pass, the lean cancels.
+  const std::uint32_t n = fluid_first_;
+  for (std::uint32_t s = 0; s < n; ++s) {
+    const std::uint32_t i = backward ? n - 1 - s : s;
+    const std::uint32_t begin = neighbour_offsets_[i], end = neighbour_offsets_[i + 1];
+    for (std::uint32_t k = 0; k < end - begin; ++k) {
+      const std::uint32_t j = neighbours_[backward ? end - 1 - k : begin + k];
+      if ((j < n && j <= i) || group_[j] == group_[i]) continue;
+      SolveParticlePair(i, j);
     }
   }
+}
+
+void ParticleSystem::SolveParticlePair(std::uint32_t i, std::uint32_t j) {
+  const Vec2 d = x_[j] - x_[i];
+  const double reach = radius_[i] + radius_[j];
+  const double r2 = LengthSquared(d);
+  if (r2 >= reach * reach || r2 == 0.0) return;
+  const double w = inv_mass_[i] + inv_mass_[j];
+  if (w == 0.0) return;
+  const double r = std::sqrt(r2);
+  const Vec2 n = d / r;
+  const double push = (reach - r) / w;
+  x_[i] -= (inv_mass_[i] * push) * n;
+  x_[j] += (inv_mass_[j] * push) * n;
+  // Friction as against a body (SolveBodyContacts): the pair's slide over each other this
+  // substep taken away up to μ times the push, μ the geometric mean of the two materials'.
+  const double friction = std::sqrt(OwnFriction(i) * OwnFriction(j));
+  if (friction == 0.0) return;
+  const Vec2 slide = (x_[j] - previous_[j]) - (x_[i] - previous_[i]);
+  const Vec2 tangent_slide = slide - Dot(slide, n) * n;
+  const double length = Length(tangent_slide);
+  if (length == 0.0) return;
+  const Vec2 t = tangent_slide / length;
+  const double tangential = std::min(length, friction * (reach - r)) / w;
+  x_[i] += (inv_mass_[i] * tangential) * t;
+  x_[j] -= (inv_mass_[j] * tangential) * t;
+}
+
+void ParticleSystem::SolveRimContacts() {
+  // Fluid against each soft body's rim as a chain of capsules, not only of discs: where the rim
+  // is stretched its discs part, and fluid went between them (a quarter of a block poured into
+  // a soft ring ended outside it). A fluid particle is taken from the neighbours of the end of
+  // the edge it lies nearer, so each pair is solved once; its contacts with the discs at the
+  // ends are SolveParticleContacts'.
+  for (const SoftBodyId id : soft_live_ids_) {
+    const SoftBody& soft = soft_[id.index];
+    const std::size_t n = soft.outline.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t a = soft.first + soft.outline[k], b = soft.first + soft.outline[(k + 1) % n];
+      for (const std::uint32_t end : {a, b}) {
+        for (std::uint32_t e = neighbour_offsets_[end]; e < neighbour_offsets_[end + 1]; ++e) {
+          const std::uint32_t j = neighbours_[e];
+          if (j >= fluid_first_) SolveRimPair(a, b, j, end == a);
+        }
+      }
+    }
+  }
+}
+
+void ParticleSystem::SolveRimPair(std::uint32_t a, std::uint32_t b, std::uint32_t j, bool near_a) {
+  const Vec2 edge = x_[b] - x_[a];
+  const double length2 = LengthSquared(edge);
+  if (length2 == 0.0) return;
+  const double t = Dot(x_[j] - x_[a], edge) / length2;
+  // Inside the edge only (the ends are discs), and from the nearer end's neighbours only.
+  if (t <= 0.0 || t >= 1.0 || (t <= 0.5) != near_a) return;
+  const Vec2 d = x_[j] - (x_[a] + t * edge);
+  const double reach = (1.0 - t) * radius_[a] + t * radius_[b] + radius_[j];
+  const double r2 = LengthSquared(d);
+  if (r2 >= reach * reach || r2 == 0.0) return;
+  // C = |x_j − (x_a + t·(x_b − x_a))| − reach, t held: gradients n, −(1 − t)·n, −t·n.
+  const double w = inv_mass_[j] + (1.0 - t) * (1.0 - t) * inv_mass_[a] + t * t * inv_mass_[b];
+  if (w == 0.0) return;
+  const double r = std::sqrt(r2);
+  const Vec2 normal = d / r;
+  const double push = (reach - r) / w;
+  x_[j] += (inv_mass_[j] * push) * normal;
+  x_[a] -= ((1.0 - t) * inv_mass_[a] * push) * normal;
+  x_[b] -= (t * inv_mass_[b] * push) * normal;
 }
 
 double ParticleSystem::OwnFriction(std::uint32_t i) const {
@@ -514,19 +571,31 @@ void ParticleSystem::PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double i
   body.sleeping_impulse += impulse_h / h;
 }
 
-void ParticleSystem::SolveBodyContacts(double h, std::vector<BodyPush>& pushes) {
+void ParticleSystem::SolveBodyContacts(double h, double max_push_out_speed, std::vector<BodyPush>& pushes) {
   for (const PlaneContact& c : planes_) {
     BodyPush& body = pushes[c.body];
     const Vec2 n = Rotate(body.rotation, c.normal);
     const Vec2 surface_arm = Rotate(body.rotation, c.surface);
     const std::uint32_t i = c.particle;
     const double gap = Dot(n, x_[i] - (body.center + surface_arm)) - radius_[i];
-    if (gap >= 0.0) continue;
+    // A soft particle that began the substep inside the body (a body made overlapping a soft
+    // one, or slipped between its particles) comes out no faster than max_push_out_speed, as
+    // rigid bodies do: resolved at once, a depth d became a speed d/h, and a plank made inside
+    // a blown-up soft ball was shot out at hundreds of m/s. New contacts are solved in full.
+    double allowed = 0.0;
+    if (i < fluid_first_) {
+      const Vec2 n_before = Rotate(body.last_rotation, c.normal);
+      const Vec2 surface_before = body.last_center + Rotate(body.last_rotation, c.surface);
+      const double gap_before = Dot(n_before, previous_[i] - surface_before) - radius_[i];
+      allowed = std::min(0.0, gap_before + max_push_out_speed * h);
+    }
+    if (gap >= allowed) continue;
     const double wp = inv_mass_[i];
     const double rn = Cross(surface_arm, n);
     const double w = wp + body.inv_mass + body.inv_inertia * rn * rn;
     if (w == 0.0) continue;
-    const double normal = -gap / w;
+    const double depth = allowed - gap;
+    const double normal = depth / w;
     x_[i] += (wp * normal) * n;
     PushBody(body, surface_arm, n, normal, h);
     if (c.friction == 0.0) continue;
@@ -542,7 +611,7 @@ void ParticleSystem::SolveBodyContacts(double h, std::vector<BodyPush>& pushes) 
     const Vec2 t = tangent_slide / length;
     const double rt = Cross(surface_arm, t);
     const double wt = wp + body.inv_mass + body.inv_inertia * rt * rt;
-    const double tangential = std::min(length, c.friction * (-gap)) / wt;
+    const double tangential = std::min(length, c.friction * depth) / wt;
     x_[i] -= (wp * tangential) * t;
     PushBody(body, surface_arm, -t, tangential, h);
   }

@@ -108,12 +108,19 @@ class ParticleSystem {
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
-  void SolveParticleContacts();
+  /// `backward`: the particles, and their pairs, in reverse order.
+  void SolveParticleContacts(bool backward);
+  void SolveParticlePair(std::uint32_t i, std::uint32_t j);
+  /// Fluid particles against the soft bodies' rims taken as capsules between their particles.
+  void SolveRimContacts();
+  /// Fluid particle j against the rim edge from particle a to b (`near_a`: found among a's
+  /// neighbours), if it lies nearer that end.
+  void SolveRimPair(std::uint32_t a, std::uint32_t b, std::uint32_t j, bool near_a);
   /// The friction of particle i's material: its soft body's, or its fluid block's.
   double OwnFriction(std::uint32_t i) const;
   /// The body's side of a correction: `impulse_h` (impulse × h) against `direction` at `arm`.
   static void PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double impulse_h, double h);
-  void SolveBodyContacts(double h, std::vector<BodyPush>& pushes);
+  void SolveBodyContacts(double h, double max_push_out_speed, std::vector<BodyPush>& pushes);
   void SolveAttachments(double h, std::vector<BodyPush>& pushes);
   void ApplyViscosity(double dt);
   void ApplyVorticity(double dt);

@@ -42,8 +42,8 @@ struct SoftBody {
   double particle_mass = 0.0;
   double radius = 0.0;
   std::vector<Vec2> rest_positions;  ///< where the particles were made, world
-  std::vector<SoftEdge> edges;       ///< stretch edges first, then shear diagonals
-  std::vector<SoftArea> areas;
+  std::vector<SoftEdge> edges;       ///< by colour: edges of one colour share no particle
+  std::vector<SoftArea> areas;       ///< by colour, as the edges
   std::vector<std::uint32_t> area_vertices;
   std::vector<SoftAttachment> attachments;
   std::vector<std::uint32_t> outline;  ///< the rim, anticlockwise
@@ -63,7 +63,8 @@ SoftBody MakeSoftBody(const SoftBodyDef& def);
 void SolveSoftBody(const SoftBody& body, double h, std::span<Vec2> x, std::span<const double> w,
                    std::span<double> lambda, std::vector<Vec2>& scratch);
 
-/// Damps each edge's stretching speed by the body's damping rate over a substep h.
+/// Damps each edge's stretching speed by the body's damping rate over a substep h, and a
+/// ring's velocities relative to its rigid motion too (it has no bending constraint).
 void DampSoftBody(const SoftBody& body, double h, std::span<const Vec2> x, std::span<Vec2> v,
                   std::span<const double> w);
 
