@@ -2,9 +2,10 @@
 // among 20 boxes (10 static, 10 dynamic) on a floor, with and without collisions, against the
 // same world without emitters, so the difference is the effects' alone; and a pour of rigid
 // circles in a box for the cost of one rigid body's step, measured in the same run. Times are
-// the thread's CPU time (the machine is shared). Fluid: dam breaks of 2 500 and 10 000
-// particles on one thread and on two (WorldDef::particles.threads), by the wall clock, since
-// two threads share the work. `bench_particles [--steps N] [--repeats N] [--out DIR]`.
+// the thread's CPU time (the machine is shared). Then the colliding effects on one thread and on
+// two (WorldDef::particles.threads), and dam breaks of 2 500 and 10 000 fluid particles on one
+// and two, by the wall clock, since two threads share the work.
+// `bench_particles [--steps N] [--repeats N] [--out DIR]`.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -29,9 +30,10 @@ enum class Effects { kNone, kPassThrough, kColliding };
 
 // Floor, 10 static boxes at fixed places and 10 dynamic ones dropped on them, and optionally two
 // spark showers (2 × 2500/s living 1.2 s) and a smoke column (2000/s living 2 s): about 10 000 live.
-engine::World EffectsScene(Effects effects) {
+engine::World EffectsScene(Effects effects, int threads = 1) {
   engine::WorldDef def;
   def.rotation = true;
+  def.particles.threads = threads;
   engine::World world(def);
   world.CreateBody(stress::Ground({0, -0.5}, {40, 1}));
   for (int i = 0; i < 10; ++i) {
@@ -126,6 +128,32 @@ engine::World DamBreak(int count, int threads) {
   return world;
 }
 
+// ms per step by the wall clock: the median over repeats of `steps` steps each.
+double WallMillisecondsPerStep(engine::World& world, const Options& options) {
+  std::vector<double> times;
+  for (int r = 0; r < options.repeats; ++r) {
+    const auto start = bench::Clock::now();
+    for (int s = 0; s < options.steps; ++s) world.Step();
+    times.push_back(1e3 * bench::SecondsSince(start) / options.steps);
+  }
+  return bench::Median(times);
+}
+
+// The colliding effects' wall time beyond the bodies', on `threads` threads.
+struct EffectsThreadRow {
+  int threads;
+  std::size_t particles;
+  double with_ms, bodies_ms;
+};
+
+EffectsThreadRow MeasureEffectsThreads(int threads, const Options& options) {
+  engine::World with = EffectsScene(Effects::kColliding, threads);
+  engine::World bodies = EffectsScene(Effects::kNone, threads);
+  for (int i = 0; i < 180; ++i) with.Step(), bodies.Step();
+  return {threads, with.Effects().size(), WallMillisecondsPerStep(with, options),
+          WallMillisecondsPerStep(bodies, options)};
+}
+
 struct FluidRow {
   std::size_t particles;
   int threads;
@@ -135,13 +163,8 @@ struct FluidRow {
 FluidRow MeasureFluid(int count, int threads, const Options& options) {
   engine::World world = DamBreak(count, threads);
   for (int i = 0; i < 60; ++i) world.Step();
-  std::vector<double> times;
-  for (int r = 0; r < options.repeats; ++r) {
-    const auto start = bench::Clock::now();
-    for (int s = 0; s < options.steps; ++s) world.Step();
-    times.push_back(1e3 * bench::SecondsSince(start) / options.steps);
-  }
-  return {world.FluidPositions().size(), threads, bench::Median(times)};
+  const double ms = WallMillisecondsPerStep(world, options);
+  return {world.FluidPositions().size(), threads, ms};
 }
 
 bool ParseOptions(int argc, char** argv, Options* options) {
@@ -178,6 +201,11 @@ int main(int argc, char** argv) {
   rows.push_back(Measure("20 boxes + effects, colliding", EffectsScene(Effects::kColliding), options));
   bench::Progress("rigid circles");
   rows.push_back(Measure("1000 rigid circles poured", CirclePour(1000), options));
+  std::vector<EffectsThreadRow> effects_threads;
+  for (const int threads : {1, 2}) {
+    bench::Progress("effects: colliding, " + std::to_string(threads) + " thread(s)");
+    effects_threads.push_back(MeasureEffectsThreads(threads, options));
+  }
   std::vector<FluidRow> fluid;
   for (const int count : {2500, 10000}) {
     for (const int threads : {1, 2}) {
@@ -203,6 +231,16 @@ int main(int argc, char** argv) {
                 bench::Number(1e6 / per_particle, "%.3g").c_str(), per_particle / body_us);
   }
   std::printf("\none rigid circle in a pour of 1000: %.2f µs/step\n", body_us);
+  std::printf("\neffects colliding, wall clock: the bodies alone step on one thread either way\n\n"
+              "| threads | effect particles | ms/step | bodies alone | effects' ms | particle-steps/s | speed-up |\n"
+              "|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const EffectsThreadRow& e : effects_threads) {
+    const double effects_ms = e.with_ms - e.bodies_ms;
+    const double one = effects_threads[0].with_ms - effects_threads[0].bodies_ms;
+    std::printf("| %d | %zu | %.3f | %.3f | %.3f | %s | %.2f |\n", e.threads, e.particles, e.with_ms, e.bodies_ms,
+                effects_ms, bench::Number(1e3 * static_cast<double>(e.particles) / effects_ms, "%.3g").c_str(),
+                one / effects_ms);
+  }
   std::printf("\nfluid: a dam break 1 s in, substeps of 1/480 s (8 a step), wall clock\n\n"
               "| fluid particles | threads | ms/step | particle-steps/s | speed-up |\n|---:|---:|---:|---:|---:|\n");
   for (std::size_t k = 0; k < fluid.size(); ++k) {
@@ -225,6 +263,15 @@ int main(int argc, char** argv) {
     std::fprintf(fluid_csv.get(), "fluid_particles,threads,ms_per_step\n");
     for (const FluidRow& f : fluid) std::fprintf(fluid_csv.get(), "%zu,%d,%.4f\n", f.particles, f.threads, f.ms_per_step);
   }
-  return bench::ReportCsv(csv != nullptr && fluid_csv != nullptr, options.out_dir,
-                          {"effects.csv (µs per step of each scene)", "fluid.csv (ms per step, by thread count)"}, 0);
+  bench::File threads_csv = bench::OpenInFolder(options.out_dir, "effects_threads.csv");
+  if (threads_csv) {
+    std::fprintf(threads_csv.get(), "threads,effect_particles,ms_per_step,bodies_alone_ms_per_step\n");
+    for (const EffectsThreadRow& e : effects_threads) {
+      std::fprintf(threads_csv.get(), "%d,%zu,%.4f,%.4f\n", e.threads, e.particles, e.with_ms, e.bodies_ms);
+    }
+  }
+  return bench::ReportCsv(csv != nullptr && fluid_csv != nullptr && threads_csv != nullptr, options.out_dir,
+                          {"effects.csv (µs per step of each scene)", "fluid.csv (ms per step, by thread count)",
+                           "effects_threads.csv (colliding effects' ms per step, by thread count)"},
+                          0);
 }
