@@ -43,7 +43,7 @@ TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[para
   REQUIRE(run(3) == one);
 }
 
-TEST_CASE("effect particles move and bounce to the same bits on one, two and three threads", "[parallel][effects]") {
+TEST_CASE("20 000 effect particles move and bounce to the same bits on one, two and three threads", "[parallel][effects]") {
   const auto run = [](int threads) {
     engine::WorldDef def;
     def.particles.threads = threads;
@@ -52,11 +52,12 @@ TEST_CASE("effect particles move and bounce to the same bits on one, two and thr
     engine::BodyDef tilted = testing::Static(testing::Box({0.5, 1.0}, {2.0, 0.2}));
     tilted.angle = -0.4;
     world.CreateBody(tilted);
-    engine::EmitterDef spray;  // about 6 000 alive at once: enough that every pass is split
+    engine::EmitterDef spray;  // about 20 000 alive at once: enough that every pass is split
     spray.position = {0.0, 3.0};
     spray.direction = -1.2;
     spray.spread = 1.0;
-    spray.rate = 6000.0;
+    spray.rate = 20000.0;
+    spray.max_particles = 30000;
     spray.lifetime = 1.0;
     spray.size_start = spray.size_end = 0.02;
     world.CreateEmitter(spray);
@@ -64,7 +65,7 @@ TEST_CASE("effect particles move and bounce to the same bits on one, two and thr
     return std::vector<engine::EffectParticle>(world.Effects().begin(), world.Effects().end());
   };
   const auto one = run(1);
-  REQUIRE(one.size() > 4096);
+  REQUIRE(one.size() > 16384);
   // Some have bounced: they were turned upwards by the bodies, which nothing else does.
   REQUIRE(std::any_of(one.begin(), one.end(), [](const engine::EffectParticle& p) { return p.velocity.y > 0.5; }));
   for (const int threads : {2, 3}) {

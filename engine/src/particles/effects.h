@@ -61,8 +61,9 @@ class EffectSystem {
     Vec2 start;  ///< where it was born
   };
 
-  /// A thread's planes while it bounces particles.
-  struct PlaneScratch {
+  /// A thread's planes while it bounces particles; a cache line each, as the vectors' ends
+  /// change with every particle and two threads' on one line slowed both to one thread's speed.
+  struct alignas(64) PlaneScratch {
     std::vector<BodyPlane> planes, touching;
   };
 
@@ -98,8 +99,11 @@ class EffectSystem {
   double farthest_ = 0.0;        ///< m²: the square of the farthest any particle moved this step
   BodyBins bins_;
   std::vector<PlaneScratch> scratch_;     ///< one per thread
-  std::vector<double> chunk_farthest_;    ///< Move's, one per thread
-  std::vector<std::size_t> chunk_bounds_;
+  /// Move's farthest move, one per thread (a cache line each: written by every block).
+  struct alignas(64) Farthest {
+    double value = 0.0;
+  };
+  std::vector<Farthest> thread_farthest_;
 };
 
 }  // namespace engine::detail
