@@ -103,9 +103,7 @@ engine::World CirclePour(int count) {
   engine::WorldDef def;
   def.rotation = true;
   engine::World world(def);
-  const double width = 1.2 * std::sqrt(static_cast<double>(count)) * 0.2;
-  stress::AddContainer(world, width, 4.0 * width);
-  stress::AddCirclePour(world, count, 0.1, width - 0.4);
+  stress::AddBoxedPour(world, count);
   return world;
 }
 

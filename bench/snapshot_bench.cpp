@@ -33,9 +33,7 @@ Figures Measure(int count, int repeats) {
   engine::WorldDef def;
   def.rotation = true;
   engine::World world(def);
-  const double width = 1.2 * std::sqrt(static_cast<double>(count)) * 0.2;
-  stress::AddContainer(world, width, 4.0 * width);
-  stress::AddCirclePour(world, count, 0.1, width - 0.4);
+  stress::AddBoxedPour(world, count);
   for (int i = 0; i < 120; ++i) world.Step();  // falling and piling: contacts to carry
   std::vector<std::uint8_t> bytes;
   const double take = MedianMicroseconds(repeats, [&] { world.TakeSnapshot(&bytes); });

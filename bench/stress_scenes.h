@@ -77,4 +77,12 @@ inline void AddCirclePour(engine::World& world, int count, double radius, double
   });
 }
 
+/// A pour of `count` circles 0.1 m in radius into a closed container a fifth of √count × 1.2 m
+/// wide and four times as tall.
+inline void AddBoxedPour(engine::World& world, int count) {
+  const double width = 1.2 * std::sqrt(static_cast<double>(count)) * 0.2;
+  AddContainer(world, width, 4.0 * width);
+  AddCirclePour(world, count, 0.1, width - 0.4);
+}
+
 }  // namespace stress

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
+#include <span>
 
 #include "engine/world.h"
 #include "world_builders.h"
@@ -202,12 +203,13 @@ Valley BallInValley(double damping) {
   return valley;
 }
 
-Vec2 MeanVelocity(const World& world, SoftBodyId id) {
+Vec2 Mean(std::span<const Vec2> values) {
   Vec2 sum;
-  const auto velocities = world.SoftBodyVelocities(id);
-  for (const Vec2 v : velocities) sum += v;
-  return sum / static_cast<double>(velocities.size());
+  for (const Vec2 v : values) sum += v;
+  return sum / static_cast<double>(values.size());
 }
+
+Vec2 MeanVelocity(const World& world, SoftBodyId id) { return Mean(world.SoftBodyVelocities(id)); }
 
 }  // namespace
 
@@ -283,11 +285,16 @@ TEST_CASE("a soft box dropped on another never sinks into it", "[soft]") {
 namespace {
 
 // The centre of a soft body's particles (all of equal mass: its centre of mass).
-Vec2 Centre(const World& world, SoftBodyId id) {
-  Vec2 sum;
-  const auto positions = world.SoftBodyPositions(id);
-  for (const Vec2 p : positions) sum += p;
-  return sum / static_cast<double>(positions.size());
+Vec2 Centre(const World& world, SoftBodyId id) { return Mean(world.SoftBodyPositions(id)); }
+
+// Steps the world `steps` times: the furthest the soft body's centre went from x = 0.
+double FurthestOffAxis(World& world, SoftBodyId id, int steps) {
+  double worst = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    world.Step();
+    worst = std::max(worst, std::abs(Centre(world, id).x));
+  }
+  return worst;
 }
 
 }  // namespace
@@ -305,11 +312,7 @@ TEST_CASE("a soft box dropped flat on the floor lands without tipping", "[soft]"
   box.position = {0.0, 1.2};
   box.damping = 2.0;
   const SoftBodyId id = world.CreateSoftBody(box);
-  double worst = 0.0;
-  for (int s = 0; s < 600; ++s) {
-    world.Step();
-    worst = std::max(worst, std::abs(Centre(world, id).x));
-  }
+  const double worst = FurthestOffAxis(world, id, 600);
   INFO("furthest off the axis " << worst << " m");
   REQUIRE(Centre(world, id).y == Approx(0.2).margin(0.01));  // it did land, and stays
   REQUIRE(worst < 0.1 * box.spacing);
@@ -328,11 +331,7 @@ TEST_CASE("a soft ball set on the floor stays where it was set", "[soft]") {
   ball.position = {0.0, 0.3};  // its lowest particle touching the floor
   ball.damping = 2.0;
   const SoftBodyId id = world.CreateSoftBody(ball);
-  double worst = 0.0;
-  for (int s = 0; s < 600; ++s) {
-    world.Step();
-    worst = std::max(worst, std::abs(Centre(world, id).x));
-  }
+  const double worst = FurthestOffAxis(world, id, 600);
   INFO("furthest from where it was set " << worst << " m");
   REQUIRE(worst < 0.1 * ball.spacing);
 }
@@ -353,11 +352,7 @@ TEST_CASE("a soft box set down on another stays put", "[soft]") {
   top.shape.half_extents = {0.2, 0.2};
   top.position = {0.0, 0.8};  // set down from 0.2 m
   const SoftBodyId id = world.CreateSoftBody(top);
-  double worst = 0.0;
-  for (int s = 0; s < 660; ++s) {
-    world.Step();
-    worst = std::max(worst, std::abs(Centre(world, id).x));
-  }
+  const double worst = FurthestOffAxis(world, id, 660);
   INFO("furthest off the axis " << worst << " m");
   REQUIRE(worst < 0.03 * top.spacing);
 }

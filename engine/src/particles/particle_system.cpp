@@ -349,7 +349,7 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   double* const weights = near_weights_.data();
   Vec2* const gradients = near_gradients_.data();
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
-  pool_->ParallelFor(n, kMinParallel, [&, x, inv_mass, mass, offsets, neighbours, near, weights, gradients](std::uint32_t f) {
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
     const Vec2 xi = x[i];
     // Soft particles meet the fluid by contact, not pressure: they are left out.
@@ -391,8 +391,7 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   delta_.resize(n);
   const double* const lambda = lambda_.data();
   const double* const lambda_over_rest = lambda_over_rest_.data();
-  pool_->ParallelFor(n, kMinParallel, [&, inv_mass, mass, offsets, near, weights, gradients, lambda,
-                                       lambda_over_rest](std::uint32_t f) {
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
     const double inv_rest_i = 1.0 / fluid_.rest_density[f], mass_i = fluid_.mass[f];
     Vec2 step;
