@@ -28,6 +28,15 @@ std::string LineColumn(std::string_view text, std::size_t byte) {
   return std::to_string(line) + ":" + std::to_string(column);
 }
 
+// A key as it stands in a path: a plain name bare, anything else quoted and escaped, so that a
+// key holding a newline or a dot cannot break the message's one line or its reading.
+std::string PathKey(const std::string& key) {
+  const bool plain = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+  return plain ? key : Json(key).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 class CheckingSax {
  public:
   CheckingSax(std::string_view text, Json& root) : text_(text), dom_(root, false) {}
@@ -133,7 +142,7 @@ class CheckingSax {
       if (f.is_array) {
         if (f.index > 0) path += "[" + std::to_string(f.index - 1) + "]";
       } else if (f.has_key) {
-        path += (path.empty() ? "" : ".") + f.key;
+        path += (path.empty() ? "" : ".") + PathKey(f.key);
       }
     }
     return path;

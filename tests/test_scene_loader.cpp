@@ -123,6 +123,16 @@ TEST_CASE("scene number too large for a double is bad input naming its line, col
                                         "a double (at most about 1.8e308)");
 }
 
+TEST_CASE("scene number too large under a key with a newline: the path quotes the key, one line",
+          "[scene]") {
+  // Found by fuzz_scene: the key path of an overflowing number held the raw key, newline and all.
+  const std::string text = "{\"x\\ndies\": [{\"radius\": 1e999}]}";
+  const game::Expected<game::Scene> scene = game::ParseScene(text, "key.json", "key");
+  REQUIRE_FALSE(scene.HasValue());
+  CHECK(scene.Error().message ==
+        "key.json:1:25: \"x\\ndies\"[0].radius: the number 1e999 is too large for a double (at most about 1.8e308)");
+}
+
 TEST_CASE("scene error: a key given twice in one object names where", "[scene]") {
   // JSON parsers keep the later value silently; a scene would then run with a value the user
   // may not be looking at.
