@@ -3,7 +3,7 @@
 // same world without emitters, so the difference is the effects' alone; and a pour of rigid
 // circles in a box for the cost of one rigid body's step, measured in the same run. Times are
 // the thread's CPU time (the machine is shared). Then the colliding effects on one thread and on
-// two (WorldDef::particles.threads), and dam breaks of 2 500 and 10 000 fluid particles on one
+// two (WorldDef::threads), and dam breaks of 2 500 and 10 000 fluid particles on one
 // and two, by the wall clock, since two threads share the work.
 // `bench_particles [--steps N] [--repeats N] [--out DIR]`.
 #include <cmath>
@@ -33,7 +33,7 @@ enum class Effects { kNone, kPassThrough, kColliding };
 engine::World EffectsScene(Effects effects, int threads = 1, double rate_scale = 1.0) {
   engine::WorldDef def;
   def.rotation = true;
-  def.particles.threads = threads;
+  def.threads = threads;
   engine::World world(def);
   world.CreateBody(stress::Ground({0, -0.5}, {40, 1}));
   for (int i = 0; i < 10; ++i) {
@@ -111,7 +111,7 @@ engine::World CirclePour(int count) {
 // in a tank three times its width. Stepped 1 s first, so the measured steps are mid-splash.
 engine::World DamBreak(int count, int threads) {
   engine::WorldDef def;
-  def.particles.threads = threads;
+  def.threads = threads;
   engine::World world(def);
   const double spacing = 0.05;
   const double height = std::round(std::sqrt(count / 2.0)) * spacing;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "engine/world_def.h"
 #include "game/limits.h"
 #include "render/video_encoder.h"
 
@@ -35,6 +36,8 @@ constexpr const char* kRunFlags =
     "                   800x600 shows. Pixel clicks map through it unless the script has a\n"
     "                   `size W H` line\n"
     "  --misses         list each click that hit no ball (step, where, the nearest ball)\n"
+    "  --threads N      worker threads for the physics step (default: one per core); the\n"
+    "                   state hash and the images are the same for every N\n"
     "  --save-state FILE  at the end, write the whole simulation state to FILE\n"
     "  --load-state FILE  start from a state saved from this scene (script events before its\n"
     "                   step are skipped)\n";
@@ -104,6 +107,7 @@ const FlagSpec kFlags[] = {
     {"--from", {"render"}, true},                 {"--hud", {"render"}, false},
     {"--camera", {"render", "play"}, true},       {"--follow", {"render", "play"}, true},
     {"--record", {"play"}, true},
+    {"--threads", {"render", "sim", "play"}, true},
     {"--save-state", {"render", "sim", "play"}, true}, {"--load-state", {"render", "sim", "play"}, true},
 };
 
@@ -156,10 +160,12 @@ std::optional<render::Camera> ParseCamera(const std::string& text) {
 }
 
 // The counts. Steps may be 0 (hash the initial state), so may --from; frames and strides start at 1.
-Status ApplyCount(CommandLine& cl, const std::string& command, const std::string& flag,
+Status ApplyCount(CommandLine& cl, RunOptions& run, const std::string& command, const std::string& flag,
                   const std::string& v) {
   const std::int64_t min = flag == "--steps" || flag == "--from" ? 0 : 1;
-  const std::int64_t max = flag == "--frames" ? 100'000'000 : 1'000'000'000'000;
+  const std::int64_t max = flag == "--frames"    ? 100'000'000
+                           : flag == "--threads" ? engine::kMaxThreads
+                                                 : 1'000'000'000'000;
   const auto n = ParseCount(v, min, max);
   if (!n) {
     return Usage(command, flag + ": expected a whole number from " + std::to_string(min) + " to " +
@@ -170,6 +176,7 @@ Status ApplyCount(CommandLine& cl, const std::string& command, const std::string
   if (flag == "--frames") cl.render.frames = *n;
   if (flag == "--every") cl.render.every = *n;
   if (flag == "--from") cl.render.from = *n;
+  if (flag == "--threads") run.threads = static_cast<int>(*n);
   return std::nullopt;
 }
 
@@ -201,7 +208,7 @@ Status ApplyFlag(CommandLine& cl, RunOptions& run, const std::string& command,
   } else if (flag == "--dump" || flag == "--out" || flag == "--record") {
     (flag == "--dump" ? cl.sim.dump_path : flag == "--out" ? cl.render.out_dir : cl.play.record_path) = v;
   } else {
-    return ApplyCount(cl, command, flag, v);
+    return ApplyCount(cl, run, command, flag, v);
   }
   return std::nullopt;
 }

@@ -20,6 +20,7 @@ struct RunOptions {
   bool list_misses = false;  ///< --misses: a line for each click that hit no ball
   std::optional<std::string> save_state_path = std::nullopt;  ///< --save-state FILE: the state at the end
   std::optional<std::string> load_state_path = std::nullopt;  ///< --load-state FILE: the state to start from
+  int threads = 0;  ///< --threads N: the physics step's threads; 0: one per core
 };
 
 /// What the picture shows, apart from the scene's camera. Pixel clicks in scripts keep mapping

@@ -1,6 +1,8 @@
 // Where a run's scene and events come from (files, or the embedded default and its demo script),
 // and what became of the events at its end.
+#include <algorithm>
 #include <cstdio>
+#include <thread>
 
 #include "game/commands.h"
 #include "game/default_scene.h"
@@ -13,6 +15,10 @@ Expected<RunInput> LoadRunInput(const RunOptions& options) {
                               : ParseScene(DefaultSceneJson(), "<default scene>", "default");
   if (!scene.HasValue()) return scene.Error();
   RunInput input{std::move(scene.Value()), {}};
+  // Not part of the scene: any count steps to the same bits.
+  input.scene.world.threads =
+      options.threads > 0 ? options.threads
+                          : std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, engine::kMaxThreads);
   if (options.script_path || !options.scene_path) {
     Expected<std::vector<InputEvent>> events =
         options.script_path ? LoadScript(*options.script_path)

@@ -26,7 +26,7 @@ TEST_CASE("ParallelFor visits every index once, whatever the threads and the cou
 TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[parallel][fluid]") {
   const auto run = [](int threads) {
     engine::WorldDef def;
-    def.particles.threads = threads;
+    def.threads = threads;
     engine::World world(def);
     world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {6.0, 1.0})));
     engine::FluidDef water;  // 2 400 particles: enough that every pass is split
@@ -46,7 +46,7 @@ TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[para
 TEST_CASE("20 000 effect particles move and bounce to the same bits on one, two and three threads", "[parallel][effects]") {
   const auto run = [](int threads) {
     engine::WorldDef def;
-    def.particles.threads = threads;
+    def.threads = threads;
     engine::World world(def);
     world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {8.0, 1.0})));
     engine::BodyDef tilted = testing::Static(testing::Box({0.5, 1.0}, {2.0, 0.2}));

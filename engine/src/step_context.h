@@ -13,6 +13,7 @@
 #include "forces/force_model.h"
 #include "integrate.h"
 #include "joints/joint_solver.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -35,6 +36,7 @@ struct StepContext {
   JointSolver* joints;
   std::int64_t step;                      ///< the step's number, for a fault report
   std::optional<NumericFault>& fault;
+  WorkerPool& pool;                       ///< WorldDef::threads
 
   /// Records the first non-finite state as the fault; true if there is one (the solver then
   /// stops, so the fault is named where it appeared instead of spreading through the contacts).

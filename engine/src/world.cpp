@@ -20,6 +20,7 @@ void RequireValid(const WorldDef& def) {
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
   Require(def.substeps >= 0, "WorldDef::substeps must be >= 0");
+  Require(def.threads >= 1 && def.threads <= kMaxThreads, "WorldDef::threads must be in [1, 256]");
   Require(IsPositiveFinite(def.max_push_out_speed), "WorldDef::max_push_out_speed must be > 0");
   Require(IsNonNegativeFinite(def.restitution_threshold),
           "WorldDef::restitution_threshold must be finite and >= 0");
@@ -47,6 +48,7 @@ World::Impl::Impl(const WorldDef& world_def)
     : solver(MakeSolver(world_def.solver)) {
   RequireValid(world_def);
   def = WithAutomaticSettings(world_def, solver);
+  pool = std::make_unique<detail::WorkerPool>(def.threads);
 }
 
 detail::ForceModel World::Impl::Forces() const {
@@ -95,7 +97,7 @@ void World::Step() {
                              w.sleep.View());
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
-                        w.candidates.Margins(), bodies.with_parts > 0);
+                        w.candidates.Margins(), bodies.with_parts > 0, *w.pool);
   if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
@@ -114,7 +116,8 @@ void World::Step() {
                                             ? nullptr
                                             : &w.joint_solver,
                               .step = w.step_count,
-                              .fault = w.fault};
+                              .fault = w.fault,
+                              .pool = *w.pool};
   std::visit([&](auto& solver) { solver.Step(context); }, w.solver);
   bodies.ClearAppliedForces();
   if (w.fault) return;                  // broken down mid-step: stop where it appeared

@@ -88,9 +88,9 @@ struct World::Impl {
   detail::SensorOverlaps sensors;
   detail::ParticleSystem particles;   ///< soft bodies and fluid, stepped after the bodies
   detail::EffectSystem effects;       ///< emitters and their effect particles
-  /// WorldDef::particles.threads, shared by the particles' and the effects' steps; made when
-  /// first needed.
-  std::unique_ptr<detail::WorkerPool> particle_pool;
+  /// WorldDef::threads: the contact solver's, the particles' and the effects' (one thread: no
+  /// workers).
+  std::unique_ptr<detail::WorkerPool> pool;
   StepEvents events;                  ///< the last step's
   std::int64_t step_count = 0;
   std::optional<NumericFault> fault;

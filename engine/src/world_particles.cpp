@@ -72,12 +72,9 @@ std::uint32_t World::Impl::EmitterSlot(EmitterId id, const char* call) const {
 
 void World::Impl::StepParticles() {
   if (particles.Empty() && !effects.EverUsed()) return;
-  if (!particle_pool || particle_pool->Threads() != def.particles.threads) {
-    particle_pool = std::make_unique<detail::WorkerPool>(def.particles.threads);
-  }
   if (!particles.Empty()) {
     std::vector<BodyIndex> to_wake;
-    particles.Step(def, bodies, sleep.awake, *particle_pool, &to_wake);
+    particles.Step(def, bodies, sleep.awake, *pool, &to_wake);
     for (const BodyIndex b : to_wake) WakeAround(b);
     const auto positions = particles.Positions();
     const auto velocities = particles.Velocities();
@@ -92,7 +89,7 @@ void World::Impl::StepParticles() {
       }
     }
   }
-  if (effects.EverUsed()) effects.Step(def, bodies, *particle_pool);
+  if (effects.EverUsed()) effects.Step(def, bodies, *pool);
 }
 
 SoftBodyId World::CreateSoftBody(const SoftBodyDef& def) {

@@ -55,17 +55,21 @@ struct SubstepFeatures {
 struct ParticleSettings {
   double substep = 1.0 / 480.0;  ///< s: the longest substep; a step takes ceil(dt / substep)
   int iterations = 1;            ///< constraint passes per substep (more: stiffer sooner, no change at rest)
-  /// Threads (≥ 1, the caller's included) sharing the fluid's per-particle passes and the effect
-  /// particles' motion and bounces. The results are the same bits with any count: each
-  /// particle's sums run in the same order on any thread.
-  int threads = 1;
 };
+
+/// The most threads a world may use (WorldDef::threads).
+inline constexpr int kMaxThreads = 256;
 
 struct WorldDef {
   Vec2 gravity{0.0, -9.8};              ///< m/s²
   double fluid_density = 0.0;           ///< kg/m³ of the air or water around; 0: vacuum, no drag
   double gravitational_constant = 0.0;  ///< N·m²/kg² between bodies; 0: no mutual gravitation
   double dt = 1.0 / 60.0;               ///< the fixed step, s
+  /// Threads (≥ 1, the caller's included) that share the step: the contact solve's colours, the
+  /// fluid's per-particle passes, the effect particles' motion and bounces. The state is the
+  /// same bits with any count: work is split only where no two pieces touch the same body or
+  /// particle, and each piece's arithmetic runs in the same order on any thread.
+  int threads = 1;
   bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
   Integrator integrator = Integrator::kSemiImplicitEuler;
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;

@@ -87,31 +87,64 @@ bool ShapesOverlap(const BodyInfo& ia, const BodyState& a, const BodyGeometry* g
 
 void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-                         bool parts) {
-  if (parts) return Update<true>(pairs, states, infos, geometries, margins);
-  Update<false>(pairs, states, infos, geometries, margins);
+                         bool parts, WorkerPool& pool) {
+  previous_contacts_.swap(contacts_);
+  contacts_.clear();
+  const auto collide = [&](std::span<const BodyPair> part, std::vector<Contact>* out) {
+    // A part starts its walk through last step's contacts at its first pair: the walk from the
+    // start would have reached no further, as every contact before it is of an earlier pair.
+    const auto first = part.empty() ? previous_contacts_.end()
+                                    : std::lower_bound(previous_contacts_.begin(), previous_contacts_.end(),
+                                                       part.front(), [](const Contact& c, const BodyPair& p) {
+                                                         return BodyPair{c.a, c.b} < p;
+                                                       });
+    const auto cursor = static_cast<std::size_t>(first - previous_contacts_.begin());
+    if (parts) {
+      Collide<true>(part, states, infos, geometries, margins, cursor, out);
+    } else {
+      Collide<false>(part, states, infos, geometries, margins, cursor, out);
+    }
+  };
+  const int threads = pool.Threads();
+  if (threads == 1 || pairs.size() < kMinSharedPairs) {
+    collide(pairs, &contacts_);
+    return;
+  }
+  // Each thread collides a contiguous part of the pairs into its own list; the lists, joined in
+  // order, are the contacts one thread would have found.
+  thread_contacts_.resize(threads);
+  pool.RunOnAll([&](int t) {
+    const std::size_t begin = pairs.size() * t / threads, end = pairs.size() * (t + 1) / threads;
+    thread_contacts_[t].clear();
+    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t]);
+  });
+  std::vector<std::size_t> offsets(threads + 1, 0);
+  for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].size();
+  contacts_.resize(offsets[threads]);
+  pool.RunOnAll([&](int t) {
+    std::copy(thread_contacts_[t].begin(), thread_contacts_[t].end(), contacts_.begin() + offsets[t]);
+  });
 }
 
 template <bool kParts>
-void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-                         std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins) {
-  previous_contacts_.swap(contacts_);
-  contacts_.clear();
+void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
+                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
+                          std::size_t previous, std::vector<Contact>* out) const {
+  std::vector<Contact>& contacts = *out;
   // At most one contact a pair: reserving that much at once avoids growth by doubling, which
   // could hold twice what a large pile needs.
-  contacts_.reserve(pairs.size());
-  std::size_t previous = 0;
+  contacts.reserve(contacts.size() + pairs.size());
   for (const BodyPair& pair : pairs) {
     const BodyInfo& ia = infos[pair.a];
     const BodyInfo& ib = infos[pair.b];
     const double margin = margins[pair.a] + margins[pair.b];
     if constexpr (kParts) {
       if (!IsSimpleShape(ia.shape.type) || !IsSimpleShape(ib.shape.type)) {
-        const std::size_t first = contacts_.size();
+        const std::size_t first = contacts.size();
         CollidePieces({pair.a, ia, states[pair.a], geometries[pair.a].get()},
-                      {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts_);
-        for (std::size_t i = first; i < contacts_.size(); ++i) {
-          CarryImpulses<true>(previous_contacts_, &contacts_[i], &previous);
+                      {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts);
+        for (std::size_t i = first; i < contacts.size(); ++i) {
+          CarryImpulses<true>(previous_contacts_, &contacts[i], &previous);
         }
         continue;
       }
@@ -124,7 +157,7 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                     .restitution = std::max(ia.restitution, ib.restitution),
                     .friction = std::sqrt(ia.friction * ib.friction)};
     CarryImpulses<kParts>(previous_contacts_, &contact, &previous);
-    contacts_.push_back(contact);
+    contacts.push_back(contact);
   }
 }
 

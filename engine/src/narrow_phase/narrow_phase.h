@@ -10,6 +10,7 @@
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/ids.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -33,8 +34,10 @@ class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body.
   /// `parts`: some body is made of parts (else the loop is the one circles and boxes always had).
+  /// The pairs are shared among `pool`'s threads; the contacts come out the same in any case.
   void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins, bool parts);
+              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins, bool parts,
+              WorkerPool& pool);
 
   /// Forgets the body's contacts (destroyed or disabled), so none warm-starts a body that takes
   /// its slot.
@@ -46,12 +49,19 @@ class NarrowPhase {
   const std::vector<Contact>& Contacts() const { return contacts_; }
 
  private:
+  /// Fewer pairs than this are collided on one thread.
+  static constexpr std::size_t kMinSharedPairs = 1024;
+
+  /// Appends the contacts of `pairs` to `out`, carrying impulses from last step's contacts from
+  /// `previous` on.
   template <bool kParts>
-  void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
-              std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins);
+  void Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
+               std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
+               std::size_t previous, std::vector<Contact>* out) const;
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
+  std::vector<std::vector<Contact>> thread_contacts_;  ///< each thread's part, when shared
 };
 
 }  // namespace engine::detail

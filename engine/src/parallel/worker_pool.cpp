@@ -4,27 +4,10 @@
 
 #include <cassert>
 
+#include "parallel/spin_wait.h"
+
 namespace engine::detail {
 
-namespace {
-
-// About 10–20 µs of spinning before a thread sleeps: long enough to catch the next loop of the
-// same substep, short enough not to burn a core between steps.
-constexpr int kSpins = 4000;
-
-template <typename T, typename Done>
-void SpinThenWait(const std::atomic<T>& value, Done&& done) {
-  for (int spin = 0; spin < kSpins; ++spin) {
-    if (done()) return;
-  }
-  for (;;) {
-    const T seen = value.load(std::memory_order_acquire);
-    if (done()) return;
-    value.wait(seen, std::memory_order_acquire);
-  }
-}
-
-}  // namespace
 
 WorkerPool::WorkerPool(int threads) {
   assert(threads >= 1);

@@ -21,6 +21,16 @@ class WorkerPool {
 
   int Threads() const { return static_cast<int>(workers_.size()) + 1; }
 
+  /// Calls job(thread) once on each of the Threads() threads (the caller's is 0); returns when
+  /// all are done. For jobs whose threads meet at a SpinBarrier between parts.
+  void RunOnAll(const std::function<void(int thread)>& job) {
+    if (workers_.empty()) {
+      job(0);
+    } else {
+      Run(job);
+    }
+  }
+
   /// Calls body(i) for every i in [0, count): on the calling thread alone when there is one
   /// thread or fewer than `min_count` indices (a few microseconds of hand-off would cost more),
   /// else split into Threads() chunks, the caller taking the first. Returns when all are done.

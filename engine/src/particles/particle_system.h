@@ -154,7 +154,7 @@ class ParticleSystem {
   std::vector<double> omega_;
   std::vector<double> shares_;  ///< ApplyViscosity's, per particle
   std::vector<double> lambda_;
-  WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::particles.threads)
+  WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
   /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
   /// them from its offset in the neighbour list, with their kernel and its gradient.

@@ -7,26 +7,44 @@
 
 namespace engine::detail {
 
+namespace {
+
+// `slot` holds each contact's group on entry; on return its place in the contacts sorted by
+// group (ties in contact order), with `group_ends` each group's end.
+void SortByGroup(std::uint32_t groups, std::vector<std::uint32_t>* slot,
+                 std::vector<std::uint32_t>* group_ends) {
+  std::vector<std::uint32_t>& ends = *group_ends;
+  ends.assign(groups, 0);
+  for (const std::uint32_t g : *slot) ++ends[g];
+  std::uint32_t total = 0;
+  for (std::uint32_t& end : ends) end = total += end;
+  // Walking the groups' starts up from each group's start.
+  std::vector<std::uint32_t> next(groups);
+  for (std::uint32_t g = 0; g < groups; ++g) next[g] = g == 0 ? 0 : ends[g - 1];
+  for (std::uint32_t& s : *slot) s = next[s]++;
+}
+
+}  // namespace
+
 void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                    std::vector<std::uint64_t>* body_colours, std::vector<std::uint32_t>* slot) {
-  constexpr int kColours = 64;
-  std::vector<std::uint64_t>& taken = *body_colours;
+                    std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
+                    std::vector<std::uint32_t>* group_ends) {
+  constexpr int kColours = kSharedColour + 1;
+  std::vector<std::uint64_t>& taken = *body_marks;
   taken.assign(infos.size(), 0);
   slot->resize(contacts.size());
-  // First the colour of each contact (kept in `slot` for now) and how many take each one.
-  std::array<std::uint32_t, kColours + 1> first{};
+  int colours = 0;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const BodyIndex a = contacts[i].a, b = contacts[i].b;
-    // A body with every colour taken shares the last one: that only costs parallelism.
+    // A body with every colour taken shares the last one, which is solved on one thread.
     const int colour = std::min(std::countr_one(taken[a] | taken[b]), kColours - 1);
     const std::uint64_t bit = std::uint64_t{1} << colour;
     if (!HasInfiniteMass(infos[a])) taken[a] |= bit;
     if (!HasInfiniteMass(infos[b])) taken[b] |= bit;
     (*slot)[i] = static_cast<std::uint32_t>(colour);
-    ++first[colour + 1];
+    colours = std::max(colours, colour + 1);
   }
-  for (int c = 1; c <= kColours; ++c) first[c] += first[c - 1];
-  for (std::uint32_t& s : *slot) s = first[s]++;
+  SortByGroup(static_cast<std::uint32_t>(colours), slot, group_ends);
 }
 
 }  // namespace engine::detail

@@ -177,17 +177,35 @@ template <typename C, typename P>
   }
 }
 
-// WarmStart where every contact is loaded (gravity): the impulses go straight on.
+// Writes back the velocities of a constraint's bodies, worked on in copies, but only where a
+// body moves: a static or kinematic body is never written (its velocity is the same after any
+// impulse times its zero inverse mass), so threads solving contacts side by side may share it.
+template <typename C>
+[[gnu::always_inline]] inline void WriteBack(const C& sc, const BodyState& a, const BodyState& b,
+                                             std::span<BodyState> states) {
+  if (sc.inv_mass_a != 0.0) {
+    states[sc.a].velocity = a.velocity;
+    if constexpr (kCanTurn<C>) states[sc.a].angular_velocity = a.angular_velocity;
+  }
+  if (sc.inv_mass_b != 0.0) {
+    states[sc.b].velocity = b.velocity;
+    if constexpr (kCanTurn<C>) states[sc.b].angular_velocity = b.angular_velocity;
+  }
+}
+
+}  // namespace
+
 template <typename C>
 void WarmStartAll(std::span<C> constraints, std::span<BodyState> states) {
   for (C& sc : constraints) {
-    BodyState& a = states[sc.a];
-    BodyState& b = states[sc.b];
+    BodyState a = states[sc.a];
+    BodyState b = states[sc.b];
     const Vec2 t = LeftPerp(sc.normal);
     if (!Turns(sc)) {
       const Vec2 impulse = WarmImpulse(sc, Point(sc, 0), t, a, b);
       a.velocity -= sc.inv_mass_a * impulse;
       b.velocity += sc.inv_mass_b * impulse;
+      WriteBack(sc, a, b, states);
       continue;
     }
     if constexpr (kCanTurn<C>) {
@@ -195,9 +213,12 @@ void WarmStartAll(std::span<C> constraints, std::span<BodyState> states) {
         SubstepPoint& p = sc.points[k];
         ApplyImpulse(sc, p, WarmImpulse(sc, p, t, a, b), a, b);
       }
+      WriteBack(sc, a, b, states);
     }
   }
 }
+
+namespace {
 
 // The first half of WarmStart's scaling: applies the loaded contacts' impulses and adds the
 // force-free ones to their bodies' sums (`sums`) instead. Returns the targets' side of the
@@ -438,8 +459,8 @@ template <typename C>
 void SolveContacts(std::span<C> constraints, std::span<BodyState> states, const StepStart& start,
                    double inv_h, bool block_solve) {
   for (C& sc : constraints) {
-    BodyState& a = states[sc.a];
-    BodyState& b = states[sc.b];
+    BodyState a = states[sc.a];
+    BodyState b = states[sc.b];
     const Vec2 n = sc.normal;
     const Vec2 t = LeftPerp(n);
     if (!Turns(sc)) {
@@ -461,9 +482,13 @@ void SolveContacts(std::span<C> constraints, std::span<BodyState> states, const 
       p.tangent_impulse = new_tangent;
       a.velocity -= (sc.inv_mass_a * dt_impulse) * t;
       b.velocity += (sc.inv_mass_b * dt_impulse) * t;
+      WriteBack(sc, a, b, states);
       continue;
     }
-    if constexpr (kCanTurn<C>) SolveTurning(sc, a, b, start, states, inv_h, block_solve);
+    if constexpr (kCanTurn<C>) {
+      SolveTurning(sc, a, b, start, states, inv_h, block_solve);
+      WriteBack(sc, a, b, states);
+    }
   }
 }
 
@@ -471,10 +496,9 @@ template <typename C>
 void PushOut(std::span<C> constraints, std::span<const BodyState> states, const StepStart& start,
              PushVelocities push, double push_out_rate, double max_push_out_speed,
              double linear_slop) {
-  // Gauss-Seidel on the push velocities alone, from zero every substep: each point's push
-  // impulse starts at 0 (kept where the direct solver takes Gauss-Seidel's pushes back).
-  for (Vec2& v : push.linear) v = {};
-  for (double& w : push.angular) w = 0.0;
+  // Gauss-Seidel on the push velocities alone, from zero every substep (ClearPush): each
+  // point's push impulse starts at 0 (kept where the direct solver takes Gauss-Seidel's pushes
+  // back).
   for (C& sc : constraints) {
     const Vec2 n = sc.normal;
     for (int k = 0; k < PointCount(sc); ++k) {
@@ -483,8 +507,9 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states, const 
       const double s = CurrentSeparation(sc, p, states, start);
       if (s >= -linear_slop) continue;  // overlap within the slop is left alone: rest stays quiet
       const double target = std::min(push_out_rate * -(s + linear_slop), max_push_out_speed);
-      Vec2& va = push.linear[sc.a];
-      Vec2& vb = push.linear[sc.b];
+      // Copies, written back only where a body moves (as WriteBack).
+      Vec2 va = push.linear[sc.a];
+      Vec2 vb = push.linear[sc.b];
       double vn = Dot(vb - va, n);
       if constexpr (kCanTurn<C>) {
         if (sc.angular) {
@@ -495,14 +520,21 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states, const 
       if constexpr (kCanTurn<C>) p.push_impulse = dp;
       va -= (sc.inv_mass_a * dp) * n;
       vb += (sc.inv_mass_b * dp) * n;
+      if (sc.inv_mass_a != 0.0) push.linear[sc.a] = va;
+      if (sc.inv_mass_b != 0.0) push.linear[sc.b] = vb;
       if constexpr (kCanTurn<C>) {
         if (sc.angular) {
-          push.angular[sc.a] -= sc.inv_inertia_a * Cross(p.anchor_a, dp * n);
-          push.angular[sc.b] += sc.inv_inertia_b * Cross(p.anchor_b, dp * n);
+          if (sc.inv_mass_a != 0.0) push.angular[sc.a] -= sc.inv_inertia_a * Cross(p.anchor_a, dp * n);
+          if (sc.inv_mass_b != 0.0) push.angular[sc.b] += sc.inv_inertia_b * Cross(p.anchor_b, dp * n);
         }
       }
     }
   }
+}
+
+void ClearPush(PushVelocities push) {
+  for (Vec2& v : push.linear) v = {};
+  for (double& w : push.angular) w = 0.0;
 }
 
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h) {
@@ -544,6 +576,7 @@ void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t
                             WarmStartImpulses);                                                   \
   template double LimitContactEnergy(std::span<C>, std::span<BodyState>, std::span<const BodyInfo>, \
                                      double, WarmStartImpulses);                                   \
+  template void WarmStartAll(std::span<C>, std::span<BodyState>);                                \
   template void SolveContacts(std::span<C>, std::span<BodyState>, const StepStart&, double, bool); \
   template void PushOut(std::span<C>, std::span<const BodyState>, const StepStart&, PushVelocities, \
                         double, double, double);                                                  \

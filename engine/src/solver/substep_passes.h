@@ -84,6 +84,11 @@ double WarmStart(std::span<C> constraints, std::span<BodyState> states,
                  std::span<const BodyInfo> infos, std::span<const std::uint8_t> loaded,
                  const StepStart& start, double inv_h, WarmStartImpulses scratch);
 
+/// WarmStart where every body is loaded (`loaded` empty): the impulses go straight on. Each
+/// constraint writes only its own moving bodies: threads may run it on a group's ranges.
+template <typename C>
+void WarmStartAll(std::span<C> constraints, std::span<BodyState> states);
+
 /// Kinetic energy of all bodies, J (rotation counted only where the body can turn).
 double KineticEnergy(std::span<const BodyState> states, std::span<const BodyInfo> infos);
 
@@ -110,10 +115,14 @@ struct PushVelocities {
   std::span<double> angular;
 };
 
+/// Sets every push velocity to zero, before the substep's PushOut.
+void ClearPush(PushVelocities push);
+
 /// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
 /// out through separate push velocities at `push_out_rate` per second of overlap, at most
-/// `max_push_out_speed`. They move positions this substep and are then dropped, so resolving an
-/// overlap never launches a body.
+/// `max_push_out_speed`, starting from those ClearPush zeroed. They move positions this substep
+/// and are then dropped, so resolving an overlap never launches a body. Like SolveContacts, it
+/// writes only the constraints' moving bodies.
 template <typename C>
 void PushOut(std::span<C> constraints, std::span<const BodyState> states,
              const StepStart& start, PushVelocities push, double push_out_rate,

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/portable_math.h"
+#include "solver/constraint_groups.h"
 #include "solver/impact.h"
 #include "solver/pushed_bodies.h"
 
@@ -125,10 +126,20 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
   JointSolver* joints = context.joints;
   if (joints) joints->Begin(states, h, true);  // springs, then the joints' warm start
-  WarmStart(constraints, states, context.infos, loaded_, start, inv_h, warm);
+  // The passes over all contacts go group by group, each large group shared among the threads.
+  const auto each_group = [&](auto&& pass) {
+    ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
+      pass(constraints.subspan(begin, end - begin));
+    });
+  };
+  if (loaded_.empty()) {
+    each_group([&](std::span<C> part) { WarmStartAll(part, states); });
+  } else {  // the force-free contacts' scale sums over all of them: one thread
+    WarmStart(constraints, states, context.infos, loaded_, start, inv_h, warm);
+  }
   for (int pass = 0; pass < def.velocity_iterations; ++pass) {
     if (joints) joints->Solve(states, inv_h);
-    SolveContacts(constraints, states, start, inv_h, plan.block_solver);
+    each_group([&](std::span<C> part) { SolveContacts(part, states, start, inv_h, plan.block_solver); });
   }
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) SolveDirect(&direct_solver_, constraints, states, start, inv_h);
@@ -142,7 +153,10 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h);
   if (plan.track_turning) UpdateTurned(context);
-  PushOut(constraints, states, start, push, plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+  ClearPush(push);
+  each_group([&](std::span<C> part) {
+    PushOut(part, states, start, push, plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+  });
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
       PushOutDirect(&direct_solver_, constraints, states, start, push, plan.push_out_rate,

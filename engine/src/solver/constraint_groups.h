@@ -1,0 +1,56 @@
+// A pass over the contact constraints, group by group, with each large group shared among the
+// pool's threads. Internal to the engine.
+#pragma once
+
+#include <cstdint>
+
+#include "parallel/spin_barrier.h"
+#include "parallel/worker_pool.h"
+#include "solver/contact_order.h"
+
+namespace engine::detail {
+
+/// Groups smaller than this go to one thread: the threads' meeting between groups (about a
+/// microsecond) would cost more than sharing saves.
+inline constexpr std::uint32_t kMinSharedGroup = 128;
+
+/// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
+/// every group is done before the next starts. A group of at least kMinSharedGroup that shares
+/// no moving body (below order.parallel_groups) is cut into one range per thread; runs of the
+/// others go whole to the first thread. Since no two constraints in a shared group touch the same
+/// moving body, the arithmetic on each body is that of the constraints in storage order, the
+/// same bits with any number of threads.
+template <typename Pass>
+void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass) {
+  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
+  const int threads = pool.Threads();
+  if (threads == 1 || total < 2 * kMinSharedGroup) {
+    pass(std::uint32_t{0}, total);
+    return;
+  }
+  const std::size_t groups = order.group_ends.size();
+  const auto shared = [&](std::size_t g, std::uint32_t begin) {
+    return g < order.parallel_groups && order.group_ends[g] - begin >= kMinSharedGroup;
+  };
+  SpinBarrier barrier(threads);
+  pool.RunOnAll([&](int thread) {
+    std::uint32_t begin = 0;
+    std::size_t g = 0;
+    while (g < groups) {
+      if (shared(g, begin)) {
+        const std::uint64_t size = order.group_ends[g] - begin;
+        pass(static_cast<std::uint32_t>(begin + size * thread / threads),
+             static_cast<std::uint32_t>(begin + size * (thread + 1) / threads));
+        begin = order.group_ends[g++];
+      } else {
+        std::uint32_t end = order.group_ends[g++];
+        while (g < groups && !shared(g, end)) end = order.group_ends[g++];
+        if (thread == 0) pass(begin, end);
+        begin = end;
+      }
+      if (g < groups) barrier.Wait();  // the pool's own hand-back ends the last group
+    }
+  });
+}
+
+}  // namespace engine::detail
