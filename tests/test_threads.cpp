@@ -9,6 +9,7 @@
 #include "bench/stress_scenes.h"
 #include "engine/world.h"
 #include "solver/contact_order.h"
+#include "solver/substep_solver.h"
 #include "world_builders.h"
 
 namespace {
@@ -60,9 +61,10 @@ std::uint64_t PartsPileHash(int threads) {
 TEST_CASE("a pour steps to the same bits on one, two and three threads", "[parallel][solver]") {
   for (const bool rotation : {false, true}) {
     INFO((rotation ? "with rotation" : "axis-aligned"));
-    const std::uint64_t one = PourHash(2000, rotation, 1, 90);
-    CHECK(PourHash(2000, rotation, 2, 90) == one);
-    CHECK(PourHash(2000, rotation, 3, 90) == one);
+    // 2 500 circles: with rotation, past SubstepSolver::kMinStripContacts (the strip order).
+    const std::uint64_t one = PourHash(2500, rotation, 1, 90);
+    CHECK(PourHash(2500, rotation, 2, 90) == one);
+    CHECK(PourHash(2500, rotation, 3, 90) == one);
   }
 }
 
@@ -108,4 +110,63 @@ TEST_CASE("no two contacts of a colour share a moving body, and the groups cover
     if (g < order.parallel_groups) CHECK_FALSE(shared);
     begin = order.group_ends[g];
   }
+}
+
+TEST_CASE("strip order: the groups solved side by side share no moving body, and every contact is in one",
+          "[parallel][solver]") {
+  engine::WorldDef def;
+  def.rotation = true;
+  def.sleeping = false;
+  engine::World world(def);
+  stress::AddBoxedPour(world, 2500);
+  for (int s = 0; s < 90; ++s) world.Step();
+  const std::vector<engine::Contact>& contacts = world.Contacts();
+  REQUIRE(contacts.size() >= engine::detail::SubstepSolver::kMinStripContacts);
+  std::vector<engine::BodyInfo> infos;
+  std::vector<engine::BodyState> states;
+  for (std::size_t i = 0; i < world.BodyCount(); ++i) {
+    const engine::BodyId id{static_cast<engine::BodyIndex>(i)};
+    infos.push_back(world.Info(id));
+    states.push_back(world.State(id));
+  }
+  engine::detail::ContactOrder order;
+  order.InStrips(contacts, infos, states, def.gravity);
+  const engine::detail::StripGroups groups(engine::detail::ContactOrder::kStrips);
+  REQUIRE(order.group_ends.size() == groups.far + 1);
+  REQUIRE(order.group_ends.back() == contacts.size());
+  std::vector<std::uint32_t> contact_at(contacts.size(), 0);
+  std::vector<int> taken(contacts.size(), 0);
+  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+    ++taken[order.slot[i]];
+    contact_at[order.slot[i]] = i;
+  }
+  CHECK(std::count(taken.begin(), taken.end(), 1) == static_cast<long>(contacts.size()));
+  // Within the slots [begin, end), every contact comes in contact order.
+  const auto group_range = [&](std::uint32_t g) {
+    return std::pair{g == 0 ? 0u : order.group_ends[g - 1], order.group_ends[g]};
+  };
+  // Which group of the phase each moving body was touched by: none may be touched by two.
+  const std::uint32_t phases[] = {0, groups.strips, groups.strips + groups.even_edges, groups.far};
+  std::size_t inside_strips = 0;
+  for (int phase = 0; phase < 3; ++phase) {
+    std::vector<int> toucher(infos.size(), -1);
+    bool shared = false;
+    for (std::uint32_t g = phases[phase]; g < phases[phase + 1]; ++g) {
+      const auto [begin, end] = group_range(g);
+      if (phase == 0) inside_strips += end - begin;
+      for (std::uint32_t s = begin; s < end; ++s) {
+        if (s > begin) CHECK(contact_at[s - 1] < contact_at[s]);
+        const engine::Contact& c = contacts[contact_at[s]];
+        for (const engine::BodyIndex b : {c.a, c.b}) {
+          if (engine::HasInfiniteMass(infos[b])) continue;
+          shared = shared || (toucher[b] != -1 && toucher[b] != static_cast<int>(g));
+          toucher[b] = static_cast<int>(g);
+        }
+      }
+    }
+    INFO("phase " << phase);
+    CHECK_FALSE(shared);
+  }
+  // Upright strips of a pile: most contacts lie inside one.
+  CHECK(inside_strips > contacts.size() * 8 / 10);
 }

@@ -15,7 +15,8 @@ namespace engine::detail {
 inline constexpr std::uint32_t kMinSharedGroup = 128;
 
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
-/// every group is done before the next starts. A group of at least kMinSharedGroup that shares
+/// every group is done before the next starts. In strip order, each strip goes whole to one
+/// thread, side by side, then each even edge, then each odd one, and the rest to the first. Otherwise a group of at least kMinSharedGroup that shares
 /// no moving body (below order.parallel_groups) is cut into one range per thread; runs of the
 /// others go whole to the first thread. Since no two constraints in a shared group touch the same
 /// moving body, the arithmetic on each body is that of the constraints in storage order, the
@@ -26,6 +27,20 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass) {
   const int threads = pool.Threads();
   if (threads == 1 || total < 2 * kMinSharedGroup) {
     pass(std::uint32_t{0}, total);
+    return;
+  }
+  if (order.strips > 0) {  // each strip (then edge) whole to one thread, then the rest
+    const StripGroups groups(static_cast<int>(order.strips));
+    const auto run = [&](std::uint32_t g) { pass(g == 0 ? 0 : order.group_ends[g - 1], order.group_ends[g]); };
+    SpinBarrier barrier(threads);
+    pool.RunOnAll([&](int thread) {
+      const std::uint32_t phases[] = {0, groups.strips, groups.strips + groups.even_edges, groups.far};
+      for (int phase = 0; phase < 3; ++phase) {
+        for (std::uint32_t g = phases[phase] + thread; g < phases[phase + 1]; g += threads) run(g);
+        barrier.Wait();
+      }
+      if (thread == 0) run(groups.far);
+    });
     return;
   }
   const std::size_t groups = order.group_ends.size();

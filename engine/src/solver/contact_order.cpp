@@ -47,4 +47,52 @@ void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo>
   SortByGroup(static_cast<std::uint32_t>(colours), slot, group_ends);
 }
 
+void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
+                   std::span<const BodyState> states, Vec2 across, int strips,
+                   std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
+                   std::vector<std::uint32_t>* group_ends) {
+  // The span of the moving bodies in contact, along `across`.
+  double lo = 0.0, hi = 0.0;
+  bool any = false;
+  for (const Contact& c : contacts) {
+    for (const BodyIndex b : {c.a, c.b}) {
+      if (HasInfiniteMass(infos[b])) continue;
+      const double x = Dot(states[b].position, across);
+      lo = any ? std::min(lo, x) : x;
+      hi = any ? std::max(hi, x) : x;
+      any = true;
+    }
+  }
+  const double scale = hi > lo ? strips / (hi - lo) : 0.0;
+  // body_marks[b]: body b's strip, for the moving bodies of a contact.
+  std::vector<std::uint64_t>& strip_of = *body_marks;
+  strip_of.resize(infos.size());
+  for (const Contact& c : contacts) {
+    for (const BodyIndex b : {c.a, c.b}) {
+      const double s = (Dot(states[b].position, across) - lo) * scale;
+      const auto last = static_cast<std::uint64_t>(strips - 1);
+      strip_of[b] = s < strips - 1.0 ? (s > 0.0 ? static_cast<std::uint64_t>(s) : 0) : last;
+    }
+  }
+  const StripGroups groups(strips);
+  slot->resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const BodyIndex a = contacts[i].a, b = contacts[i].b;
+    const bool moves_a = !HasInfiniteMass(infos[a]), moves_b = !HasInfiniteMass(infos[b]);
+    std::uint32_t group = groups.far;
+    if (moves_a && moves_b) {
+      const auto sa = static_cast<std::uint32_t>(strip_of[a]), sb = static_cast<std::uint32_t>(strip_of[b]);
+      if (sa == sb) {
+        group = sa;
+      } else if (sa + 1 == sb || sb + 1 == sa) {
+        group = groups.Edge(std::min(sa, sb));
+      }
+    } else if (moves_a || moves_b) {
+      group = static_cast<std::uint32_t>(strip_of[moves_a ? a : b]);
+    }
+    (*slot)[i] = group;
+  }
+  SortByGroup(groups.far + 1, slot, group_ends);
+}
+
 }  // namespace engine::detail

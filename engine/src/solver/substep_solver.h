@@ -36,6 +36,9 @@ class SubstepSolver {
  public:
   /// Contacts start a margin apart, so fast bodies are caught before they touch.
   static constexpr bool kSpeculative = true;
+  /// Where something can turn, at least this many contacts go in strip order (threads can share
+  /// it); fewer stay in contact order, one chain (a turning pyramid of base 40 has about 1 600).
+  static constexpr std::size_t kMinStripContacts = 4096;
   /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
   /// with rotation (turning stacks couple their contacts, docs/solver.md).
   static void FillAutomaticSettings(WorldDef* def);
