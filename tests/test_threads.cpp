@@ -34,10 +34,12 @@ std::uint64_t PartsPileHash(int threads) {
   def.sleeping = false;
   def.threads = threads;
   engine::World world(def);
-  world.CreateBody(testing::Floor(40.0));
-  for (int i = 0; i < 900; ++i) {
-    const double x = -14.0 + 0.9 * (i % 30) + 0.1 * ((i / 30) % 2);
-    const double y = 0.6 + 0.9 * (i / 30);
+  world.CreateBody(testing::Floor(100.0));
+  // 3 600 bodies in rows of 90: past NarrowPhase's 4 096 pairs (and the strip order's 4 096
+  // contacts) once they touch.
+  for (int i = 0; i < 3600; ++i) {
+    const double x = -40.5 + 0.9 * (i % 90) + 0.1 * ((i / 90) % 2);
+    const double y = 0.6 + 0.82 * (i / 90);
     if (i % 2 == 0) {
       world.CreateBody(testing::Box({x, y}, {0.7, 0.5}));
       continue;
@@ -53,6 +55,7 @@ std::uint64_t PartsPileHash(int threads) {
     world.CreateBody(hexagon);
   }
   for (int s = 0; s < 40; ++s) world.Step();
+  REQUIRE(world.Contacts().size() > 4096);
   return world.StateHash();
 }
 

@@ -40,6 +40,7 @@ if [[ "${BENCH_PAGE_ONLY:-0}" != 1 ]]; then
   run bench_broadphase --out "$out"
   run bench_render --out "$out/render"
   run bench_particles --out "$out/particles"
+  run bench_threads --out "$out"
 
   echo "bench: plots -> $img" >&2
   for plot in work_precision stability scaling peers; do

@@ -49,8 +49,8 @@ class NarrowPhase {
   const std::vector<Contact>& Contacts() const { return contacts_; }
 
  private:
-  /// Fewer pairs than this are collided on one thread.
-  static constexpr std::size_t kMinSharedPairs = 1024;
+  /// Fewer pairs than this are collided on one thread (the hand-off would cost more).
+  static constexpr std::size_t kMinSharedPairs = 4096;
 
   /// Appends the contacts of `pairs` to `out`, carrying impulses from last step's contacts from
   /// `previous` on.

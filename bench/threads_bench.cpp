@@ -1,0 +1,105 @@
+// The rigid step on one thread and on two (WorldDef::threads): circle pours of 1 000, 4 000 and
+// 10 000 (axis-aligned and turning) and box pyramids of base 20 and 40 (fixed and turning), by
+// the wall clock, since two threads share the work; the state hash of both runs compared, as
+// the bits must not depend on the threads.
+// `bench_threads [--quick] [--repeats R] [--out DIR]`.
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/bench_args.h"
+#include "bench/bench_common.h"
+#include "bench/stress_scenes.h"
+#include "engine/world.h"
+
+namespace {
+
+struct Options : bench::RunOptions {
+  Options() : RunOptions(5) {}
+};
+
+struct Scene {
+  std::string name;
+  bool rotation;
+  std::function<void(engine::World&)> build;
+  int warmup;  ///< untimed steps: a pour has settled into a pile by then
+};
+
+struct Timing {
+  double ms_per_step;
+  std::uint64_t hash;
+  std::size_t contacts;
+};
+
+Timing Run(const Scene& scene, int threads, int steps) {
+  engine::WorldDef def;
+  def.rotation = scene.rotation;
+  def.sleeping = false;
+  def.threads = threads;
+  engine::World world(def);
+  scene.build(world);
+  for (int s = 0; s < scene.warmup; ++s) world.Step();
+  const auto start = bench::Clock::now();
+  for (int s = 0; s < steps; ++s) world.Step();
+  return {1000.0 * bench::SecondsSince(start) / steps, world.StateHash(), world.Contacts().size()};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  bench::Args args("bench_threads", "The rigid step's ms/step on one thread and on two, and whether the state hash "
+                                    "is the same.");
+  options.AddTo(args, "the 1 000-circle pour and the pyramid of 20 only, one repeat", "timed runs per scene and count");
+  if (const auto exit_code = args.Parse(argc, argv)) return *exit_code;
+  const std::string load = bench::LoadAverage();
+  std::vector<Scene> scenes;
+  for (const bool rotation : {false, true}) {
+    const std::string turning = rotation ? " (turning)" : "";
+    for (const int count : {1000, 4000, 10000}) {
+      if (options.quick && count > 1000) continue;
+      scenes.push_back({"pour " + std::to_string(count) + " circles" + turning, rotation,
+                        [count](engine::World& w) { stress::AddBoxedPour(w, count); }, 120});
+    }
+    for (const int base : {20, 40}) {
+      if (options.quick && base > 20) continue;
+      scenes.push_back({"pyramid base " + std::to_string(base) + turning, rotation,
+                        [base](engine::World& w) { stress::AddPyramid(w, base); }, 10});
+    }
+  }
+  const int repeats = options.quick ? 1 : options.repeats;
+  const int steps = options.quick ? 10 : 60;
+  std::printf("bench_threads: ms/step at 1 and 2 threads (WorldDef::threads), sleeping off, 60 Hz\n");
+  std::printf("timing: wall clock over %d steps after the warm-up, the median of %d runs, one and two threads "
+              "interleaved\n",
+              steps, repeats);
+  std::printf("\n| scene | contacts at the end | 1 thread, ms/step | 2 threads, ms/step | 2 ÷ 1 | same state hash |\n");
+  std::printf("|---|---:|---:|---:|---:|---|\n");
+  bench::File csv = bench::OpenInFolder(options.out_dir, "threads.csv");
+  if (csv) std::fprintf(csv.get(), "scene,ms_per_step_1_thread,ms_per_step_2_threads,same_hash\n");
+  int status = 0;
+  for (const Scene& scene : scenes) {
+    bench::Progress(scene.name);
+    std::vector<double> one, two;
+    bool same = true;
+    std::size_t contacts = 0;
+    for (int r = 0; r < repeats; ++r) {
+      const Timing a = Run(scene, 1, steps);
+      const Timing b = Run(scene, 2, steps);
+      one.push_back(a.ms_per_step);
+      two.push_back(b.ms_per_step);
+      same = same && a.hash == b.hash;
+      contacts = a.contacts;
+    }
+    const double m1 = bench::Median(one), m2 = bench::Median(two);
+    std::printf("| %s | %s | %s | %s | %s | %s |\n", scene.name.c_str(), std::to_string(contacts).c_str(), bench::Number(m1).c_str(),
+                bench::Number(m2).c_str(), bench::Number(m2 / m1, "%.2f").c_str(), same ? "yes" : "NO");
+    if (csv) std::fprintf(csv.get(), "%s,%.6g,%.6g,%d\n", bench::Quoted(scene.name).c_str(), m1, m2, same ? 1 : 0);
+    if (!same) status = 1;
+  }
+  bench::Progress("");
+  std::printf("\n");
+  bench::PrintMachine(load);
+  return bench::ReportCsv(csv != nullptr, options.out_dir, {"threads.csv (ms/step at 1 and 2 threads)"}, status);
+}
