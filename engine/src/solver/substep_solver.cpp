@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/portable_math.h"
 #include "solver/constraint_groups.h"
@@ -63,7 +64,33 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   // spread over the substeps: 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is
   // that times the overlap / h.
   plan.push_out_rate = (1.0 - NthRoot(1.0 - def.position_correction, def.substeps)) * plan.inv_h;
+  plan.passes = def.velocity_iterations;
+  // One Gauss-Seidel pass carries a deep pile's weight down only over many substeps; turning
+  // worlds take 4 passes already.
+  if (!def.rotation && plan.passes < 2 && Length(def.gravity) > 0.0 &&
+      PileHeightInBodies(context.contacts, context.infos, context.states, -def.gravity / Length(def.gravity)) >
+          kDeepPile) {
+    plan.passes = 2;
+  }
   return plan;
+}
+
+double PileHeightInBodies(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
+                          std::span<const BodyState> states, Vec2 up) {
+  double low = std::numeric_limits<double>::infinity(), high = -low, spacing = 0.0;
+  std::size_t pairs = 0;
+  for (const Contact& c : contacts) {
+    if (HasInfiniteMass(infos[c.a]) || HasInfiniteMass(infos[c.b])) continue;
+    const Vec2 a = states[c.a].position, b = states[c.b].position;
+    spacing += Length(b - a);
+    for (const double height : {Dot(a, up), Dot(b, up)}) {
+      low = std::min(low, height);
+      high = std::max(high, height);
+    }
+    ++pairs;
+  }
+  if (pairs == 0 || !(spacing > 0.0)) return 0.0;
+  return (high - low) / (spacing / static_cast<double>(pairs));
 }
 
 template <typename C>
@@ -144,7 +171,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   } else {  // the force-free contacts' scale sums over all of them: one thread
     WarmStart(constraints, states, context.infos, loaded_, start, inv_h, warm);
   }
-  for (int pass = 0; pass < def.velocity_iterations; ++pass) {
+  for (int pass = 0; pass < plan.passes; ++pass) {
     if (joints) joints->Solve(states, inv_h);
     each_group([&](std::span<C> part) { SolveContacts(part, states, start, inv_h, plan.block_solver); });
   }
