@@ -17,8 +17,10 @@ namespace peers {
 struct BallboxSetting {
   engine::ContactSolver solver = engine::ContactSolver::kSubstep;
   int substeps = 0;  ///< 0: the world's default (4, or 8 with rotation)
+  int threads = 1;   ///< WorldDef::threads
 
   std::string Label() const {
+    if (threads > 1) return std::to_string(threads) + " threads";
     if (solver == engine::ContactSolver::kSequentialImpulse) return "sequential_impulse";
     return substeps == 0 ? "default" : std::to_string(substeps) + (substeps == 1 ? " substep" : " substeps");
   }
@@ -29,8 +31,9 @@ class BallboxEngine : public PhysicsEngine {
   explicit BallboxEngine(BallboxSetting setting = {}) : setting_(setting) {}
 
   std::string Name() const override {
-    return setting_.solver == engine::ContactSolver::kSubstep && setting_.substeps == 0 ? "ballbox"
-                                                                                        : "ballbox " + setting_.Label();
+    const bool plain = setting_.solver == engine::ContactSolver::kSubstep && setting_.substeps == 0 &&
+                       setting_.threads == 1;
+    return plain ? "ballbox" : "ballbox " + setting_.Label();
   }
 
   std::string Settings(const SceneSpec& scene) const override {
@@ -39,7 +42,7 @@ class BallboxEngine : public PhysicsEngine {
     const int substeps = def.substeps > 0 ? def.substeps : (scene.rotation ? 8 : 4);
     const int passes = def.velocity_iterations > 0 ? def.velocity_iterations : (scene.rotation ? 4 : 1);
     return std::to_string(substeps) + " substeps x " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") +
-           ", double";
+           ", double" + (def.threads > 1 ? ", " + std::to_string(def.threads) + " threads" : "");
   }
 
   void Build(const SceneSpec& scene) override {
@@ -99,6 +102,7 @@ class BallboxEngine : public PhysicsEngine {
     def.sleeping = false;  // stability must not lean on sleep, and timing must not either
     def.solver = setting_.solver;
     def.substeps = setting_.substeps;
+    def.threads = setting_.threads;
     return def;
   }
 
