@@ -21,6 +21,9 @@ void RequireValid(const WorldDef& def) {
   Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
   Require(def.substeps >= 0, "WorldDef::substeps must be >= 0");
   Require(def.threads >= 1 && def.threads <= kMaxThreads, "WorldDef::threads must be in [1, 256]");
+  Require(def.substep_features.lanes == 0 || def.substep_features.lanes == 1 || def.substep_features.lanes == 2 ||
+              def.substep_features.lanes == 4,
+          "WorldDef::substep_features.lanes must be 0, 1, 2 or 4");
   Require(IsPositiveFinite(def.max_push_out_speed), "WorldDef::max_push_out_speed must be > 0");
   Require(IsNonNegativeFinite(def.restitution_threshold),
           "WorldDef::restitution_threshold must be finite and >= 0");

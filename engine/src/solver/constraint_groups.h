@@ -25,11 +25,12 @@ inline constexpr std::uint32_t kMinSharedConstraints = 4096;
 /// others go whole to the first thread. Since no two constraints in a shared group touch the same
 /// moving body, the arithmetic on each body is that of the constraints in storage order, the
 /// same bits with any number of threads.
+/// `per_unit`: how many constraints one unit of `order` holds (the wide solver's blocks hold 4).
 template <typename Pass>
-void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass) {
+void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || total < kMinSharedConstraints) {
+  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
     pass(std::uint32_t{0}, total);
     return;
   }
@@ -49,7 +50,7 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass) {
   }
   const std::size_t groups = order.group_ends.size();
   const auto shared = [&](std::size_t g, std::uint32_t begin) {
-    return g < order.parallel_groups && order.group_ends[g] - begin >= kMinSharedGroup;
+    return g < order.parallel_groups && std::uint64_t{order.group_ends[g] - begin} * per_unit >= kMinSharedGroup;
   };
   SpinBarrier barrier(threads);
   pool.RunOnAll([&](int thread) {

@@ -64,6 +64,7 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   // spread over the substeps: 1 − (1 − f)^(1/n) of it each substep, so the push-out speed is
   // that times the overlap / h.
   plan.push_out_rate = (1.0 - NthRoot(1.0 - def.position_correction, def.substeps)) * plan.inv_h;
+  plan.wide = nullptr;  // known once the constraints are built (Step)
   plan.passes = def.velocity_iterations;
   // One Gauss-Seidel pass carries a deep pile's weight down only over many substeps; turning
   // worlds take 4 passes already.
@@ -117,6 +118,14 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if (plan.impact_pass) {  // bounces first
     ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
   }
+  if constexpr (!kCanTurn<C>) {
+    // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts:
+    // one at a time).
+    if (def.substep_features.lanes != 1 && def.substep_features.colour_order && loaded_.empty()) {
+      plan.wide = &WidePassesFor(def.substep_features.lanes);
+      wide_.Pack(constraints, order_);
+    }
+  }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
   if (plan.track_turning) {
@@ -131,6 +140,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     Substep(context, constraints, plan, start);
     if (context.fault) return;
   }
+  if (plan.wide) wide_.UnpackImpulses(std::span<LinearConstraint>(linear_constraints_));
   if (context.joints) {
     // A bounce's lag moves the pair after the substeps, where no joint would pull it back: a
     // link of a whipping chain came off its joint by 14 cm for a step. Jointed bodies bounce
@@ -160,20 +170,10 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
   JointSolver* joints = context.joints;
   if (joints) joints->Begin(states, h, true);  // springs, then the joints' warm start
-  // The passes over all contacts go group by group, each large group shared among the threads.
-  const auto each_group = [&](auto&& pass) {
-    ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
-      pass(constraints.subspan(begin, end - begin));
-    });
-  };
-  if (loaded_.empty()) {
-    each_group([&](std::span<C> part) { WarmStartAll(part, states); });
-  } else {  // the force-free contacts' scale sums over all of them: one thread
-    WarmStart(constraints, states, context.infos, loaded_, start, inv_h, warm);
-  }
+  WarmStartPass(context, constraints, plan, start);
   for (int pass = 0; pass < plan.passes; ++pass) {
     if (joints) joints->Solve(states, inv_h);
-    each_group([&](std::span<C> part) { SolveContacts(part, states, start, inv_h, plan.block_solver); });
+    SolvePass(context, constraints, plan, start);
   }
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) SolveDirect(&direct_solver_, constraints, states, start, inv_h);
@@ -183,14 +183,16 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (plan.shock_propagation) {
     PropagateShock(shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
   }
-  MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
+  if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
+    MarkPushedWide(wide_.blocks, states.size(), &pushed_);
+  } else {
+    MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
+  }
   if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h);
   if (plan.track_turning) UpdateTurned(context);
   ClearPush(push);
-  each_group([&](std::span<C> part) {
-    PushOut(part, states, start, push, plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
-  });
+  PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
       PushOutDirect(&direct_solver_, constraints, states, start, push, plan.push_out_rate,
@@ -200,6 +202,60 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->PushOut(states, push, inv_h, def.velocity_iterations);
   MoveByPush(states, push, def.rotation, h);
   if (plan.track_turning) UpdateTurned(context);
+}
+
+// The passes over all contacts go group by group, each large group shared among the threads:
+// `pass` takes a part of the constraints, or of their blocks in the wide solver.
+template <typename C>
+void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                                  const StepStart& start) {
+  const std::span<BodyState> states = context.states;
+  if (plan.wide) {
+    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+      plan.wide->warm_start(wide_.blocks.data() + begin, end - begin, states.data());
+    }, kBlockLanes);
+  } else if (loaded_.empty()) {
+    ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
+      WarmStartAll(constraints.subspan(begin, end - begin), states);
+    });
+  } else {  // the force-free contacts' scale sums over all of them: one thread
+    WarmStart(constraints, states, context.infos, loaded_, start, plan.inv_h,
+              WarmStartImpulses{warm_free_, warm_free_angular_});
+  }
+}
+
+template <typename C>
+void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                              const StepStart& start) {
+  const std::span<BodyState> states = context.states;
+  if (plan.wide) {
+    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+      plan.wide->solve(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
+                       plan.inv_h);
+    }, kBlockLanes);
+    return;
+  }
+  ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
+    SolveContacts(constraints.subspan(begin, end - begin), states, start, plan.inv_h, plan.block_solver);
+  });
+}
+
+template <typename C>
+void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                                const StepStart& start, PushVelocities push) {
+  const WorldDef& def = context.def;
+  const std::span<BodyState> states = context.states;
+  if (plan.wide) {
+    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+      plan.wide->push_out(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
+                          push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+    }, kBlockLanes);
+    return;
+  }
+  ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
+    PushOut(constraints.subspan(begin, end - begin), states, start, push, plan.push_out_rate,
+            def.max_push_out_speed, def.linear_slop);
+  });
 }
 
 void SubstepSolver::FindLoadedBodies(const StepContext& context) {

@@ -12,6 +12,8 @@
 #include "solver/shock_propagation.h"
 #include "solver/substep_constraint.h"
 #include "solver/substep_passes.h"
+#include "solver/wide_constraints.h"
+#include "solver/wide_passes.h"
 #include "snapshot/byte_stream.h"
 #include "step_context.h"
 
@@ -31,6 +33,9 @@ struct SubstepPlan {
   double inv_h;
   double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep
   int passes;              ///< velocity passes per substep: WorldDef's, at least 2 in a deep pile
+  /// The wide solver's passes, where nothing turns, contacts go by colour and every body is
+  /// loaded (the warm start goes on whole); null: the one-at-a-time passes.
+  const WidePasses* wide;
 };
 
 /// How tall the bodies in contact stand along `up`, in body sizes: the span of their centres
@@ -73,12 +78,24 @@ class SubstepSolver {
   template <typename C>
   void Substep(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                const StepStart& start);
+  /// The substep's warm start, velocity passes and push-out over the constraints, one at a time
+  /// or in SIMD lanes (plan.wide); each pass goes group by group, large groups over the threads.
+  template <typename C>
+  void WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                     const StepStart& start);
+  template <typename C>
+  void SolvePass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                 const StepStart& start);
+  template <typename C>
+  void PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
+                   const StepStart& start, PushVelocities push);
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;
   ContactOrder order_;                                  ///< the solve order: by colour or as found
   std::vector<SubstepConstraint> substep_constraints_;  ///< where something can turn
   std::vector<LinearConstraint> linear_constraints_;    ///< where nothing can
+  WideConstraints wide_;                                ///< linear_constraints_ in blocks (SubstepPlan::wide)
   std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
   std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts
   std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage

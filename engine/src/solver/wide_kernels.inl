@@ -1,0 +1,144 @@
+// The wide passes' one source, included by each width's file after it defines `Lanes`: a type of
+// L doubles side by side with +, −, ×, comparisons to masks, Select, and gathers and scatters of
+// the bodies' Vec2s. Everything here has internal linkage (the including file's anonymous
+// namespace), so the AVX2 file's copy never stands in for another's.
+//
+// Each pass follows its one-at-a-time counterpart in substep_passes.cpp operation by operation:
+// keep them in step. std::max(x, 0.0) is (x < 0 ? 0 : x), std::min(x, m) is (m < x ? m : x) and
+// Clamp(v, lo, hi) is (v < lo ? lo : (v > hi ? hi : v)), so the masks below say exactly that.
+
+// The doubles between one body's state and the next's, and from one Vec2 to the next.
+constexpr std::size_t kStateStride = sizeof(BodyState) / sizeof(double);
+constexpr std::size_t kVec2Stride = 2;
+static_assert(sizeof(BodyState) == 6 * sizeof(double) && sizeof(Vec2) == 2 * sizeof(double));
+constexpr std::size_t kVelocityOffset = 2;  // BodyState::velocity after position
+
+// std::max(x, 0.0)
+[[gnu::always_inline]] inline Lanes Max0(Lanes x) { return Select(x < Lanes(0.0), Lanes(0.0), x); }
+
+// The separation now of the lanes' contacts (CurrentSeparation).
+[[gnu::always_inline]] inline Lanes SeparationNow(const LinearBlock& k, int o, const BodyState* states,
+                                                  const Vec2* start, Lanes nx, Lanes ny) {
+  const double* positions = &states[0].position.x;
+  const double* starts = &start[0].x;
+  Lanes pax, pay, pbx, pby, sax, say, sbx, sby;
+  Gather(positions, kStateStride, k.a + o, &pax, &pay);
+  Gather(positions, kStateStride, k.b + o, &pbx, &pby);
+  Gather(starts, kVec2Stride, k.a + o, &sax, &say);
+  Gather(starts, kVec2Stride, k.b + o, &sbx, &sby);
+  const Lanes mx = (pbx - sbx) - (pax - sax);
+  const Lanes my = (pby - sby) - (pay - say);
+  return Lanes::Load(k.base_separation + o) + (mx * nx + my * ny);
+}
+
+// Which lanes move their body: inverse mass not zero (a static or kinematic body is never
+// written, as WriteBack).
+[[gnu::always_inline]] inline unsigned Moving(const double* inv_mass) {
+  return Bits(Lanes::Load(inv_mass) != Lanes(0.0));
+}
+
+void WarmStartBlocks(LinearBlock* blocks, std::size_t count, BodyState* states) {
+  constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
+  double* velocities = &states[0].position.x + kVelocityOffset;
+  for (std::size_t i = 0; i < count; ++i) {
+    LinearBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      Lanes vax, vay, vbx, vby;
+      Gather(velocities, kStateStride, k.a + o, &vax, &vay);
+      Gather(velocities, kStateStride, k.b + o, &vbx, &vby);
+      const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
+      const Lanes tx = -ny, ty = nx;
+      const Lanes ni = Lanes::Load(k.normal_impulse + o);
+      Lanes ti = Lanes::Load(k.tangent_impulse + o);
+      const Lanes slide = ti * ((vbx - vax) * tx + (vby - vay) * ty);
+      const Lanes edge = (Lanes(kSliding) * Lanes::Load(k.friction + o)) * ni;
+      ti = Select((slide > Lanes(0.0)) & (Abs(ti) >= edge), Lanes(0.0), ti);
+      ti.Store(k.tangent_impulse + o);
+      const Lanes ix = ni * nx + ti * tx, iy = ni * ny + ti * ty;
+      const Lanes ima = Lanes::Load(k.inv_mass_a + o), imb = Lanes::Load(k.inv_mass_b + o);
+      vax = vax - ima * ix;
+      vay = vay - ima * iy;
+      vbx = vbx + imb * ix;
+      vby = vby + imb * iy;
+      Scatter(velocities, kStateStride, k.a + o, vax, vay, Moving(k.inv_mass_a + o));
+      Scatter(velocities, kStateStride, k.b + o, vbx, vby, Moving(k.inv_mass_b + o));
+    }
+  }
+}
+
+void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* start,
+                 double inv_h_scalar) {
+  double* velocities = &states[0].position.x + kVelocityOffset;
+  const Lanes inv_h(inv_h_scalar);
+  for (std::size_t i = 0; i < count; ++i) {
+    LinearBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
+      const Lanes min_vn = -Max0(SeparationNow(k, o, states, start, nx, ny)) * inv_h;
+      Lanes vax, vay, vbx, vby;
+      Gather(velocities, kStateStride, k.a + o, &vax, &vay);
+      Gather(velocities, kStateStride, k.b + o, &vbx, &vby);
+      const Lanes ima = Lanes::Load(k.inv_mass_a + o), imb = Lanes::Load(k.inv_mass_b + o);
+      const Lanes mass = Lanes::Load(k.normal_mass + o);
+
+      const Lanes vn = (vbx - vax) * nx + (vby - vay) * ny;
+      const Lanes normal = Lanes::Load(k.normal_impulse + o);
+      const Lanes new_normal = Max0(normal + mass * (min_vn - vn));
+      const Lanes dn = new_normal - normal;
+      new_normal.Store(k.normal_impulse + o);
+      const Lanes sa = ima * dn, sb = imb * dn;
+      vax = vax - sa * nx;
+      vay = vay - sa * ny;
+      vbx = vbx + sb * nx;
+      vby = vby + sb * ny;
+
+      // Coulomb friction, with the effective mass of any direction.
+      const Lanes tx = -ny, ty = nx;
+      const Lanes vt = (vbx - vax) * tx + (vby - vay) * ty;
+      const Lanes max_friction = Lanes::Load(k.friction + o) * new_normal;
+      const Lanes tangent = Lanes::Load(k.tangent_impulse + o);
+      const Lanes free = tangent - mass * vt;
+      const Lanes new_tangent =
+          Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
+      const Lanes dt = new_tangent - tangent;
+      new_tangent.Store(k.tangent_impulse + o);
+      const Lanes ta = ima * dt, tb = imb * dt;
+      vax = vax - ta * tx;
+      vay = vay - ta * ty;
+      vbx = vbx + tb * tx;
+      vby = vby + tb * ty;
+      Scatter(velocities, kStateStride, k.a + o, vax, vay, Moving(k.inv_mass_a + o));
+      Scatter(velocities, kStateStride, k.b + o, vbx, vby, Moving(k.inv_mass_b + o));
+    }
+  }
+}
+
+void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
+                   Vec2* push, double push_out_rate, double max_push_out_speed, double linear_slop) {
+  double* push_velocities = &push[0].x;
+  const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
+  for (std::size_t i = 0; i < count; ++i) {
+    LinearBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
+      const Lanes s = SeparationNow(k, o, states, start, nx, ny);
+      // Overlap within the slop is left alone.
+      const unsigned overlapping = ~Bits(s >= -slop) & ((1u << Lanes::kCount) - 1);
+      if (overlapping == 0) continue;
+      const Lanes wanted = rate * -(s + slop);
+      const Lanes target = Select(max_speed < wanted, max_speed, wanted);
+      Lanes vax, vay, vbx, vby;
+      Gather(push_velocities, kVec2Stride, k.a + o, &vax, &vay);
+      Gather(push_velocities, kVec2Stride, k.b + o, &vbx, &vby);
+      const Lanes vn = (vbx - vax) * nx + (vby - vay) * ny;
+      const Lanes dp = Max0(Lanes::Load(k.normal_mass + o) * (target - vn));
+      const Lanes sa = Lanes::Load(k.inv_mass_a + o) * dp, sb = Lanes::Load(k.inv_mass_b + o) * dp;
+      vax = vax - sa * nx;
+      vay = vay - sa * ny;
+      vbx = vbx + sb * nx;
+      vby = vby + sb * ny;
+      Scatter(push_velocities, kVec2Stride, k.a + o, vax, vay, overlapping & Moving(k.inv_mass_a + o));
+      Scatter(push_velocities, kVec2Stride, k.b + o, vbx, vby, overlapping & Moving(k.inv_mass_b + o));
+    }
+  }
+}

@@ -1,0 +1,40 @@
+// The wide solver's passes over blocks of axis-aligned contacts (WideConstraints), compiled for
+// each width of SIMD lanes and chosen when the step runs. Internal to the engine.
+#pragma once
+
+#include <cstddef>
+
+#include "engine/body.h"
+#include "solver/wide_constraints.h"
+
+namespace engine::detail {
+
+/// One width's passes. Each does, lane by lane, exactly the arithmetic of its one-at-a-time
+/// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint),
+/// so every width gives the same bits: lane-wise IEEE operations round as scalar ones do, and
+/// the blocks of a colour touch different moving bodies. Raw pointers, not spans: the AVX2
+/// passes live in a file compiled for AVX2, which must not emit any inline function that other
+/// files could link to.
+struct WidePasses {
+  int lanes;  ///< 1, 2 (SSE2) or 4 (AVX2)
+  void (*warm_start)(LinearBlock* blocks, std::size_t count, BodyState* states);
+  void (*solve)(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* start_positions,
+                double inv_h);
+  void (*push_out)(LinearBlock* blocks, std::size_t count, const BodyState* states,
+                   const Vec2* start_positions, Vec2* push, double push_out_rate,
+                   double max_push_out_speed, double linear_slop);
+};
+
+/// The widest lanes this processor runs: 4 with AVX2, 2 on any other x86-64, 1 elsewhere.
+int WidestLanes();
+
+/// The passes for `lanes` (1, 2 or 4), or for the widest this processor has when it lacks those
+/// or `lanes` is 0.
+const WidePasses& WidePassesFor(int lanes);
+
+// Each width's passes, defined in its own file.
+const WidePasses& WidePasses1();
+const WidePasses& WidePasses2();  ///< x86-64 only (BALLBOX_WIDE_X86)
+const WidePasses& WidePasses4();  ///< x86-64 only; call only where the processor has AVX2
+
+}  // namespace engine::detail
