@@ -1,7 +1,8 @@
-// The rigid step on one thread and on two (WorldDef::threads): circle pours of 1 000, 4 000 and
-// 10 000 (axis-aligned and turning) and box pyramids of base 20 and 40 (fixed and turning), by
-// the wall clock, since two threads share the work; the state hash of both runs compared, as
-// the bits must not depend on the threads.
+// The rigid step on one thread and on two (WorldDef::threads), and on one thread with the
+// contacts solved one at a time rather than in SIMD lanes (SubstepFeatures::lanes 1): circle
+// pours of 1 000, 4 000 and 10 000 (axis-aligned and turning) and box pyramids of base 20 and 40
+// (fixed and turning), by the wall clock, since two threads share the work; the state hashes of
+// the three runs compared, as the bits must depend on neither.
 // `bench_threads [--quick] [--repeats R] [--out DIR]`.
 #include <cstdio>
 #include <functional>
@@ -12,6 +13,7 @@
 #include "bench/bench_common.h"
 #include "bench/stress_scenes.h"
 #include "engine/world.h"
+#include "solver/wide_passes.h"
 
 namespace {
 
@@ -32,11 +34,12 @@ struct Timing {
   std::size_t contacts;
 };
 
-Timing Run(const Scene& scene, int threads, int steps) {
+Timing Run(const Scene& scene, int threads, int lanes, int steps) {
   engine::WorldDef def;
   def.rotation = scene.rotation;
   def.sleeping = false;
   def.threads = threads;
+  def.substep_features.lanes = lanes;
   engine::World world(def);
   scene.build(world);
   for (int s = 0; s < scene.warmup; ++s) world.Step();
@@ -70,32 +73,43 @@ int main(int argc, char** argv) {
   }
   const int repeats = options.quick ? 1 : options.repeats;
   const int steps = options.quick ? 10 : 60;
-  std::printf("bench_threads: ms/step at 1 and 2 threads (WorldDef::threads), sleeping off, 60 Hz\n");
-  std::printf("timing: wall clock over %d steps after the warm-up, the median of %d runs, one and two threads "
+  const int lanes = engine::detail::WidestLanes();
+  std::printf("bench_threads: ms/step at 1 and 2 threads (WorldDef::threads), sleeping off, 60 Hz; the axis-aligned "
+              "contacts in %d SIMD lanes (the processor's widest), and on one thread one at a time (lanes 1)\n",
+              lanes);
+  std::printf("timing: wall clock over %d steps after the warm-up, the median of %d runs, the three settings "
               "interleaved\n",
               steps, repeats);
-  std::printf("\n| scene | contacts at the end | 1 thread, ms/step | 2 threads, ms/step | 2 ÷ 1 | same state hash |\n");
-  std::printf("|---|---:|---:|---:|---:|---|\n");
+  std::printf("\n| scene | contacts at the end | 1 thread, 1 lane, ms/step | 1 thread, ms/step | lanes ÷ 1 lane "
+              "| 2 threads, ms/step | 2 ÷ 1 thread | same state hash |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---|\n");
   bench::File csv = bench::OpenInFolder(options.out_dir, "threads.csv");
-  if (csv) std::fprintf(csv.get(), "scene,ms_per_step_1_thread,ms_per_step_2_threads,same_hash\n");
+  if (csv) {
+    std::fprintf(csv.get(), "scene,ms_per_step_1_lane,ms_per_step_1_thread,ms_per_step_2_threads,same_hash\n");
+  }
   int status = 0;
   for (const Scene& scene : scenes) {
     bench::Progress(scene.name);
-    std::vector<double> one, two;
+    std::vector<double> scalar, one, two;
     bool same = true;
     std::size_t contacts = 0;
     for (int r = 0; r < repeats; ++r) {
-      const Timing a = Run(scene, 1, steps);
-      const Timing b = Run(scene, 2, steps);
+      const Timing s = Run(scene, 1, 1, steps);
+      const Timing a = Run(scene, 1, 0, steps);
+      const Timing b = Run(scene, 2, 0, steps);
+      scalar.push_back(s.ms_per_step);
       one.push_back(a.ms_per_step);
       two.push_back(b.ms_per_step);
-      same = same && a.hash == b.hash;
+      same = same && a.hash == b.hash && a.hash == s.hash;
       contacts = a.contacts;
     }
-    const double m1 = bench::Median(one), m2 = bench::Median(two);
-    std::printf("| %s | %s | %s | %s | %s | %s |\n", scene.name.c_str(), std::to_string(contacts).c_str(), bench::Number(m1).c_str(),
+    const double m0 = bench::Median(scalar), m1 = bench::Median(one), m2 = bench::Median(two);
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s |\n", scene.name.c_str(), std::to_string(contacts).c_str(),
+                bench::Number(m0).c_str(), bench::Number(m1).c_str(), bench::Number(m1 / m0, "%.2f").c_str(),
                 bench::Number(m2).c_str(), bench::Number(m2 / m1, "%.2f").c_str(), same ? "yes" : "NO");
-    if (csv) std::fprintf(csv.get(), "%s,%.6g,%.6g,%d\n", bench::Quoted(scene.name).c_str(), m1, m2, same ? 1 : 0);
+    if (csv) {
+      std::fprintf(csv.get(), "%s,%.6g,%.6g,%.6g,%d\n", bench::Quoted(scene.name).c_str(), m0, m1, m2, same ? 1 : 0);
+    }
     if (!same) status = 1;
   }
   bench::Progress("");
