@@ -118,10 +118,15 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if (plan.impact_pass) {  // bounces first
     ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
   }
-  if constexpr (!kCanTurn<C>) {
-    // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts:
-    // one at a time).
-    if (def.substep_features.lanes != 1 && def.substep_features.colour_order && loaded_.empty()) {
+  // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
+  // the direct solve takes its islands whole: one at a time).
+  if (def.substep_features.lanes != 1 && loaded_.empty()) {
+    if constexpr (kCanTurn<C>) {
+      if (!plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
+        plan.wide = &WidePassesFor(def.substep_features.lanes);
+        wide_turning_.Pack(constraints, order_);
+      }
+    } else if (def.substep_features.colour_order) {
       plan.wide = &WidePassesFor(def.substep_features.lanes);
       wide_.Pack(constraints, order_);
     }
@@ -140,7 +145,13 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     Substep(context, constraints, plan, start);
     if (context.fault) return;
   }
-  if (plan.wide) wide_.UnpackImpulses(std::span<LinearConstraint>(linear_constraints_));
+  if (plan.wide) {
+    if constexpr (kCanTurn<C>) {
+      wide_turning_.UnpackImpulses(constraints);
+    } else {
+      wide_.UnpackImpulses(constraints);
+    }
+  }
   if (context.joints) {
     // A bounce's lag moves the pair after the substeps, where no joint would pull it back: a
     // link of a whipping chain came off its joint by 14 cm for a step. Jointed bodies bounce
@@ -184,7 +195,11 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     PropagateShock(shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
   }
   if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
-    MarkPushedWide(wide_.blocks, states.size(), &pushed_);
+    if constexpr (kCanTurn<C>) {
+      MarkPushedWide(wide_turning_.blocks, states.size(), &pushed_);
+    } else {
+      MarkPushedWide(wide_.blocks, states.size(), &pushed_);
+    }
   } else {
     MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   }
@@ -211,9 +226,15 @@ void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints
                                   const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-      plan.wide->warm_start(wide_.blocks.data() + begin, end - begin, states.data());
-    }, kBlockLanes);
+    if constexpr (kCanTurn<C>) {
+      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->turning_warm_start(wide_turning_.blocks.data() + begin, end - begin, states.data());
+      }, kBlockLanes);
+    } else {
+      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->warm_start(wide_.blocks.data() + begin, end - begin, states.data());
+      }, kBlockLanes);
+    }
   } else if (loaded_.empty()) {
     ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
       WarmStartAll(constraints.subspan(begin, end - begin), states);
@@ -229,10 +250,17 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
                               const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-      plan.wide->solve(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
-                       plan.inv_h);
-    }, kBlockLanes);
+    if constexpr (kCanTurn<C>) {
+      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->turning_solve(wide_turning_.blocks.data() + begin, end - begin, states.data(),
+                                 start.positions.data(), start.turned.data(), plan.inv_h, plan.block_solver);
+      }, kBlockLanes);
+    } else {
+      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->solve(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
+                         plan.inv_h);
+      }, kBlockLanes);
+    }
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
@@ -246,10 +274,19 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-      plan.wide->push_out(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
-                          push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
-    }, kBlockLanes);
+    if constexpr (kCanTurn<C>) {
+      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->turning_push_out(wide_turning_.blocks.data() + begin, end - begin, states.data(),
+                                    start.positions.data(), start.turned.data(), push.linear.data(),
+                                    push.angular.data(), plan.push_out_rate, def.max_push_out_speed,
+                                    def.linear_slop);
+      }, kBlockLanes);
+    } else {
+      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+        plan.wide->push_out(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
+                            push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+      }, kBlockLanes);
+    }
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

@@ -33,8 +33,9 @@ struct SubstepPlan {
   double inv_h;
   double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep
   int passes;              ///< velocity passes per substep: WorldDef's, at least 2 in a deep pile
-  /// The wide solver's passes, where nothing turns, contacts go by colour and every body is
-  /// loaded (the warm start goes on whole); null: the one-at-a-time passes.
+  /// The wide solver's passes, where every body is loaded (the warm start goes on whole) and
+  /// either nothing turns and contacts go by colour, or every contact turns, in strip order,
+  /// with no island for the direct solve; null: the one-at-a-time passes.
   const WidePasses* wide;
 };
 
@@ -96,6 +97,7 @@ class SubstepSolver {
   std::vector<SubstepConstraint> substep_constraints_;  ///< where something can turn
   std::vector<LinearConstraint> linear_constraints_;    ///< where nothing can
   WideConstraints wide_;                                ///< linear_constraints_ in blocks (SubstepPlan::wide)
+  WideTurningConstraints wide_turning_;                 ///< substep_constraints_ in blocks, a strip to a lane
   std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
   std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts
   std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage

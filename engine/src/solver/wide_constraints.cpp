@@ -1,7 +1,9 @@
 // Packing the colour-ordered constraints into blocks of four lanes, and back.
 #include "solver/wide_constraints.h"
 
+#include <algorithm>
 #include <cassert>
+#include <utility>
 
 namespace engine::detail {
 
@@ -21,7 +23,108 @@ void PutLane(const LinearConstraint& c, LinearBlock* block, int lane) {
   block->friction[lane] = c.friction;
 }
 
+void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
+  block->a[lane] = static_cast<std::int32_t>(c.a);
+  block->b[lane] = static_cast<std::int32_t>(c.b);
+  block->two_points[lane] = c.point_count == 2 ? 1.0 : 0.0;
+  block->normal_x[lane] = c.normal.x;
+  block->normal_y[lane] = c.normal.y;
+  block->inv_mass_a[lane] = c.inv_mass_a;
+  block->inv_mass_b[lane] = c.inv_mass_b;
+  block->inv_inertia_a[lane] = c.inv_inertia_a;
+  block->inv_inertia_b[lane] = c.inv_inertia_b;
+  block->friction[lane] = c.friction;
+  for (int k = 0; k < c.point_count; ++k) {
+    const SubstepPoint& p = c.points[k];
+    TurningPointLanes& lanes = block->points[k];
+    lanes.base_separation[lane] = p.base_separation;
+    lanes.normal_mass[lane] = p.normal_mass;
+    lanes.tangent_mass[lane] = p.tangent_mass;
+    lanes.normal_impulse[lane] = p.normal_impulse;
+    lanes.tangent_impulse[lane] = p.tangent_impulse;
+    lanes.anchor_a_x[lane] = p.anchor_a.x;
+    lanes.anchor_a_y[lane] = p.anchor_a.y;
+    lanes.anchor_b_x[lane] = p.anchor_b.x;
+    lanes.anchor_b_y[lane] = p.anchor_b.y;
+  }
+}
+
+// Appends blocks whose lane l holds the k-th constraint of `runs[l]` (ranges of the strip
+// order, at most four), padding where a run is shorter than the longest.
+void AppendSideBySide(std::span<const SubstepConstraint> constraints,
+                      std::span<const std::pair<std::uint32_t, std::uint32_t>> runs,
+                      WideTurningConstraints* wide) {
+  assert(runs.size() <= static_cast<std::size_t>(kBlockLanes));
+  std::uint32_t longest = 0;
+  for (const auto& [begin, end] : runs) longest = std::max(longest, end - begin);
+  const std::size_t first = wide->blocks.size();
+  wide->blocks.resize(first + longest);  // value-initialised: zero, padding until filled
+  for (std::size_t l = 0; l < runs.size(); ++l) {
+    const auto [begin, end] = runs[l];
+    for (std::uint32_t j = begin; j < end; ++j) {
+      const std::size_t block = first + (j - begin);
+      PutLane(constraints[j], &wide->blocks[block], static_cast<int>(l));
+      wide->lane_of[j] = static_cast<std::uint32_t>(block * kBlockLanes + l);
+    }
+  }
+}
+
 }  // namespace
+
+bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order) {
+  if (order.strips == 0 || order.strips > 2 * static_cast<std::uint32_t>(kBlockLanes)) return false;
+  for (const SubstepConstraint& c : constraints) {
+    if (!c.angular) return false;
+  }
+  return true;
+}
+
+void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips) {
+  assert(Fits(constraints, strips));
+  const StripGroups groups(static_cast<int>(strips.strips));
+  const auto range = [&](std::uint32_t g) {
+    return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : strips.group_ends[g - 1], strips.group_ends[g]};
+  };
+  blocks.clear();
+  lane_of.resize(constraints.size());
+  order.group_ends.clear();
+  order.parallel_groups = 0;
+  order.strips = 2;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
+  // The even strips, then the odd ones: each set a group, the two side by side on two threads.
+  for (std::uint32_t parity = 0; parity < 2; ++parity) {
+    runs.clear();
+    for (std::uint32_t g = parity; g < groups.strips; g += 2) runs.push_back(range(g));
+    AppendSideBySide(constraints, runs, this);
+    order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
+  }
+  // The even edges, then the odd ones, in one group.
+  for (const auto& [begin, end] : {std::pair{groups.strips, groups.strips + groups.even_edges},
+                                  std::pair{groups.strips + groups.even_edges, groups.far}}) {
+    runs.clear();
+    for (std::uint32_t g = begin; g < end; ++g) runs.push_back(range(g));
+    AppendSideBySide(constraints, runs, this);
+  }
+  order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
+  // The rest, one to a block, in order.
+  const auto [far_begin, far_end] = range(groups.far);
+  for (std::uint32_t j = far_begin; j < far_end; ++j) {
+    runs.assign(1, {j, j + 1});
+    AppendSideBySide(constraints, runs, this);
+  }
+  order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
+}
+
+void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constraints) const {
+  for (std::size_t j = 0; j < constraints.size(); ++j) {
+    const TurningBlock& block = blocks[lane_of[j] / kBlockLanes];
+    const std::uint32_t lane = lane_of[j] % kBlockLanes;
+    for (int k = 0; k < constraints[j].point_count; ++k) {
+      constraints[j].points[k].normal_impulse = block.points[k].normal_impulse[lane];
+      constraints[j].points[k].tangent_impulse = block.points[k].tangent_impulse[lane];
+    }
+  }
+}
 
 void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours) {
   assert(colours.strips == 0);
@@ -51,6 +154,18 @@ void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints) co
     const std::uint32_t lane = lane_of[j] % kBlockLanes;
     constraints[j].normal_impulse = block.normal_impulse[lane];
     constraints[j].tangent_impulse = block.tangent_impulse[lane];
+  }
+}
+
+void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,
+                    std::vector<std::uint8_t>* pushed) {
+  pushed->assign(body_count, 0);
+  for (const TurningBlock& block : blocks) {
+    for (int lane = 0; lane < kBlockLanes; ++lane) {
+      if (block.points[0].normal_impulse[lane] > 0.0 || block.points[1].normal_impulse[lane] > 0.0) {
+        (*pushed)[block.a[lane]] = (*pushed)[block.b[lane]] = 1;
+      }
+    }
   }
 }
 

@@ -49,9 +49,59 @@ struct WideConstraints {
   void UnpackImpulses(std::span<LinearConstraint> constraints) const;
 };
 
+/// One point of four turning contacts, field by field (SubstepPoint's fields).
+struct alignas(32) TurningPointLanes {
+  double base_separation[kBlockLanes];
+  double normal_mass[kBlockLanes];
+  double tangent_mass[kBlockLanes];
+  double normal_impulse[kBlockLanes];
+  double tangent_impulse[kBlockLanes];
+  double anchor_a_x[kBlockLanes];
+  double anchor_a_y[kBlockLanes];
+  double anchor_b_x[kBlockLanes];
+  double anchor_b_y[kBlockLanes];
+};
+
+/// Four SubstepConstraints whose bodies can turn (`angular`), field by field. A lane with one
+/// point has zeros in its second; padding lanes are zero throughout, on body 0.
+struct alignas(32) TurningBlock {
+  std::int32_t a[kBlockLanes];
+  std::int32_t b[kBlockLanes];
+  double two_points[kBlockLanes];  ///< 1 where the contact has two points, 0 where one
+  double normal_x[kBlockLanes];
+  double normal_y[kBlockLanes];
+  double inv_mass_a[kBlockLanes];
+  double inv_mass_b[kBlockLanes];
+  double inv_inertia_a[kBlockLanes];
+  double inv_inertia_b[kBlockLanes];
+  double friction[kBlockLanes];
+  TurningPointLanes points[2];
+};
+
+/// The turning constraints of a strip order (ContactOrder::InStrips) in blocks, a strip to a lane:
+/// lane l of the k-th block of a set holds the k-th contact of its strip. Strips share no moving
+/// body and each keeps its contact order, so solving four strips side by side gives the bits of
+/// solving them one after another. Four sets of blocks, as groups for ForEachGroup's strip mode
+/// (two strips: the first two sets go side by side, then the third, then the last):
+/// the even strips; the odd strips; the even edges then the odd edges (within either, no two
+/// share a strip); the far contacts, one to a block, in order.
+struct WideTurningConstraints {
+  std::vector<TurningBlock> blocks;
+  ContactOrder order;                ///< the four sets' ends, in blocks (strips = 2)
+  std::vector<std::uint32_t> lane_of;  ///< as WideConstraints::lane_of
+
+  /// Whether the wide passes can take these constraints: every one angular (a pair that cannot
+  /// turn takes the centres' row, other arithmetic) and the order in strips.
+  static bool Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order);
+  void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips);
+  void UnpackImpulses(std::span<SubstepConstraint> constraints) const;
+};
+
 /// Sets `pushed` to 1 for both bodies of every constraint with a positive normal impulse (as
 /// MarkPushed); padding lanes carry none.
 void MarkPushedWide(std::span<const LinearBlock> blocks, std::size_t body_count,
+                    std::vector<std::uint8_t>* pushed);
+void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,
                     std::vector<std::uint8_t>* pushed);
 
 }  // namespace engine::detail

@@ -10,7 +10,8 @@
 namespace engine::detail {
 
 /// One width's passes. Each does, lane by lane, exactly the arithmetic of its one-at-a-time
-/// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint),
+/// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint
+/// and for angular SubstepConstraints),
 /// so every width gives the same bits: lane-wise IEEE operations round as scalar ones do, and
 /// the blocks of a colour touch different moving bodies. Raw pointers, not spans: the AVX2
 /// passes live in a file compiled for AVX2, which must not emit any inline function that other
@@ -23,6 +24,14 @@ struct WidePasses {
   void (*push_out)(LinearBlock* blocks, std::size_t count, const BodyState* states,
                    const Vec2* start_positions, Vec2* push, double push_out_rate,
                    double max_push_out_speed, double linear_slop);
+  // The same for turning contacts (angular SubstepConstraints), `turned` each body's rotation
+  // since the step's start; `block_solve` as SubstepPlan's.
+  void (*turning_warm_start)(TurningBlock* blocks, std::size_t count, BodyState* states);
+  void (*turning_solve)(TurningBlock* blocks, std::size_t count, BodyState* states, const Vec2* start_positions,
+                        const Rot* turned, double inv_h, bool block_solve);
+  void (*turning_push_out)(TurningBlock* blocks, std::size_t count, const BodyState* states,
+                           const Vec2* start_positions, const Rot* turned, Vec2* push, double* push_angular,
+                           double push_out_rate, double max_push_out_speed, double linear_slop);
 };
 
 /// The widest lanes this processor runs: 4 with AVX2, 2 on any other x86-64, 1 elsewhere.

@@ -13,6 +13,8 @@ struct Mask {
   bool lane;
 };
 inline Mask operator&(Mask a, Mask b) { return {a.lane && b.lane}; }
+inline Mask operator|(Mask a, Mask b) { return {a.lane || b.lane}; }
+inline Mask MaskOf(unsigned bits) { return {(bits & 1u) != 0}; }
 inline unsigned Bits(Mask m) { return m.lane ? 1u : 0u; }
 
 struct Lanes {
@@ -26,6 +28,7 @@ struct Lanes {
 inline Lanes operator+(Lanes a, Lanes b) { return Lanes(a.v + b.v); }
 inline Lanes operator-(Lanes a, Lanes b) { return Lanes(a.v - b.v); }
 inline Lanes operator*(Lanes a, Lanes b) { return Lanes(a.v * b.v); }
+inline Lanes operator/(Lanes a, Lanes b) { return Lanes(a.v / b.v); }
 inline Lanes operator-(Lanes a) { return Lanes(-a.v); }
 inline Mask operator<(Lanes a, Lanes b) { return {a.v < b.v}; }
 inline Mask operator>(Lanes a, Lanes b) { return {a.v > b.v}; }
@@ -47,9 +50,18 @@ inline void Scatter(double* base, std::size_t stride, const std::int32_t* index,
   p[1] = y.v;
 }
 
-#include "solver/wide_kernels.inl"
+inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+  return Lanes(base[static_cast<std::size_t>(index[0]) * stride]);
+}
+inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+  if (write & 1u) base[static_cast<std::size_t>(index[0]) * stride] = x.v;
+}
 
-constexpr WidePasses kPasses{1, WarmStartBlocks, SolveBlocks, PushOutBlocks};
+#include "solver/wide_kernels.inl"
+#include "solver/wide_turning_kernels.inl"
+
+constexpr WidePasses kPasses{1, WarmStartBlocks, SolveBlocks, PushOutBlocks,
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks};
 
 }  // namespace
 

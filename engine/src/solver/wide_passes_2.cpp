@@ -13,6 +13,10 @@ struct Mask {
   __m128d bits;
 };
 inline Mask operator&(Mask a, Mask b) { return {_mm_and_pd(a.bits, b.bits)}; }
+inline Mask operator|(Mask a, Mask b) { return {_mm_or_pd(a.bits, b.bits)}; }
+inline Mask MaskOf(unsigned bits) {
+  return {_mm_castsi128_pd(_mm_set_epi64x(bits & 2u ? -1 : 0, bits & 1u ? -1 : 0))};
+}
 inline unsigned Bits(Mask m) { return static_cast<unsigned>(_mm_movemask_pd(m.bits)); }
 
 struct Lanes {
@@ -27,6 +31,7 @@ struct Lanes {
 inline Lanes operator+(Lanes a, Lanes b) { return Lanes(_mm_add_pd(a.v, b.v)); }
 inline Lanes operator-(Lanes a, Lanes b) { return Lanes(_mm_sub_pd(a.v, b.v)); }
 inline Lanes operator*(Lanes a, Lanes b) { return Lanes(_mm_mul_pd(a.v, b.v)); }
+inline Lanes operator/(Lanes a, Lanes b) { return Lanes(_mm_div_pd(a.v, b.v)); }
 inline Lanes operator-(Lanes a) { return Lanes(_mm_xor_pd(a.v, _mm_set1_pd(-0.0))); }
 // The comparisons are false where either side is NaN, as C++'s are; != is true there.
 inline Mask operator<(Lanes a, Lanes b) { return {_mm_cmplt_pd(a.v, b.v)}; }
@@ -52,9 +57,19 @@ inline void Scatter(double* base, std::size_t stride, const std::int32_t* index,
   if (write & 2u) _mm_storeu_pd(base + static_cast<std::size_t>(index[1]) * stride, _mm_unpackhi_pd(x.v, y.v));
 }
 
-#include "solver/wide_kernels.inl"
+inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+  return Lanes(_mm_set_pd(base[static_cast<std::size_t>(index[1]) * stride], base[static_cast<std::size_t>(index[0]) * stride]));
+}
+inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+  if (write & 1u) _mm_storel_pd(base + static_cast<std::size_t>(index[0]) * stride, x.v);
+  if (write & 2u) _mm_storeh_pd(base + static_cast<std::size_t>(index[1]) * stride, x.v);
+}
 
-constexpr WidePasses kPasses{2, WarmStartBlocks, SolveBlocks, PushOutBlocks};
+#include "solver/wide_kernels.inl"
+#include "solver/wide_turning_kernels.inl"
+
+constexpr WidePasses kPasses{2, WarmStartBlocks, SolveBlocks, PushOutBlocks,
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks};
 
 }  // namespace
 

@@ -14,6 +14,11 @@ struct Mask {
   __m256d bits;
 };
 inline Mask operator&(Mask a, Mask b) { return {_mm256_and_pd(a.bits, b.bits)}; }
+inline Mask operator|(Mask a, Mask b) { return {_mm256_or_pd(a.bits, b.bits)}; }
+inline Mask MaskOf(unsigned bits) {
+  return {_mm256_castsi256_pd(_mm256_set_epi64x(bits & 8u ? -1 : 0, bits & 4u ? -1 : 0, bits & 2u ? -1 : 0,
+                                                bits & 1u ? -1 : 0))};
+}
 inline unsigned Bits(Mask m) { return static_cast<unsigned>(_mm256_movemask_pd(m.bits)); }
 
 struct Lanes {
@@ -28,6 +33,7 @@ struct Lanes {
 inline Lanes operator+(Lanes a, Lanes b) { return Lanes(_mm256_add_pd(a.v, b.v)); }
 inline Lanes operator-(Lanes a, Lanes b) { return Lanes(_mm256_sub_pd(a.v, b.v)); }
 inline Lanes operator*(Lanes a, Lanes b) { return Lanes(_mm256_mul_pd(a.v, b.v)); }
+inline Lanes operator/(Lanes a, Lanes b) { return Lanes(_mm256_div_pd(a.v, b.v)); }
 inline Lanes operator-(Lanes a) { return Lanes(_mm256_xor_pd(a.v, _mm256_set1_pd(-0.0))); }
 // Ordered, quiet comparisons: false where either side is NaN, as C++'s are; != is unordered,
 // true there.
@@ -62,9 +68,23 @@ inline void Scatter(double* base, std::size_t stride, const std::int32_t* index,
   if (write & 8u) _mm_storeu_pd(base + static_cast<std::size_t>(index[3]) * stride, _mm256_extractf128_pd(odd, 1));
 }
 
-#include "solver/wide_kernels.inl"
+inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+  return Lanes(_mm256_set_pd(base[static_cast<std::size_t>(index[3]) * stride], base[static_cast<std::size_t>(index[2]) * stride],
+                             base[static_cast<std::size_t>(index[1]) * stride], base[static_cast<std::size_t>(index[0]) * stride]));
+}
+inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+  const __m128d low = _mm256_castpd256_pd128(x.v), high = _mm256_extractf128_pd(x.v, 1);
+  if (write & 1u) _mm_storel_pd(base + static_cast<std::size_t>(index[0]) * stride, low);
+  if (write & 2u) _mm_storeh_pd(base + static_cast<std::size_t>(index[1]) * stride, low);
+  if (write & 4u) _mm_storel_pd(base + static_cast<std::size_t>(index[2]) * stride, high);
+  if (write & 8u) _mm_storeh_pd(base + static_cast<std::size_t>(index[3]) * stride, high);
+}
 
-constexpr WidePasses kPasses{4, WarmStartBlocks, SolveBlocks, PushOutBlocks};
+#include "solver/wide_kernels.inl"
+#include "solver/wide_turning_kernels.inl"
+
+constexpr WidePasses kPasses{4, WarmStartBlocks, SolveBlocks, PushOutBlocks,
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks};
 
 }  // namespace
 

@@ -1,0 +1,289 @@
+// The wide passes over turning contacts (TurningBlock), included after wide_kernels.inl. Each
+// follows its one-at-a-time counterpart in substep_passes.cpp (WarmStartAll, SolveContacts with
+// SolveTurning and SolveTwoPoints, PushOut for an angular SubstepConstraint) operation by
+// operation: keep them in step. A lane's second point is worked on in every lane and kept only
+// where the contact has two (Select), so a one-point contact's bodies see exactly one point.
+
+constexpr std::size_t kOmegaOffset = 5;  // BodyState::angular_velocity after position, velocity, angle
+static_assert(sizeof(Rot) == 2 * sizeof(double));
+
+// A body's velocity and angular velocity, as the passes work on them.
+struct Motion {
+  Lanes vx, vy, w;
+};
+
+[[gnu::always_inline]] inline Motion GatherMotion(BodyState* states, const std::int32_t* index) {
+  Motion m;
+  Gather(&states[0].position.x + kVelocityOffset, kStateStride, index, &m.vx, &m.vy);
+  m.w = GatherOne(&states[0].position.x + kOmegaOffset, kStateStride, index);
+  return m;
+}
+
+[[gnu::always_inline]] inline void ScatterMotion(BodyState* states, const std::int32_t* index, const Motion& m,
+                                                 unsigned write) {
+  Scatter(&states[0].position.x + kVelocityOffset, kStateStride, index, m.vx, m.vy, write);
+  ScatterOne(&states[0].position.x + kOmegaOffset, kStateStride, index, m.w, write);
+}
+
+[[gnu::always_inline]] inline Motion Select(Mask m, const Motion& if_set, const Motion& if_clear) {
+  return {Select(m, if_set.vx, if_clear.vx), Select(m, if_set.vy, if_clear.vy), Select(m, if_set.w, if_clear.w)};
+}
+
+// One point's lanes: its anchors and the fields the passes read.
+struct PointLanes {
+  Lanes rax, ray, rbx, rby;
+  Lanes base_separation, normal_mass, tangent_mass, normal_impulse, tangent_impulse;
+};
+
+[[gnu::always_inline]] inline PointLanes LoadPoint(const TurningPointLanes& p, int o) {
+  return {Lanes::Load(p.anchor_a_x + o),      Lanes::Load(p.anchor_a_y + o),   Lanes::Load(p.anchor_b_x + o),
+          Lanes::Load(p.anchor_b_y + o),      Lanes::Load(p.base_separation + o), Lanes::Load(p.normal_mass + o),
+          Lanes::Load(p.tangent_mass + o),    Lanes::Load(p.normal_impulse + o), Lanes::Load(p.tangent_impulse + o)};
+}
+
+// The lanes' fields of a block that every pass reads.
+struct PairLanes {
+  Lanes nx, ny, ima, imb, iia, iib;
+  unsigned moving_a, moving_b;  ///< lanes whose body moves (WriteBack)
+  Mask two;                     ///< lanes with two points
+};
+
+[[gnu::always_inline]] inline PairLanes LoadPair(const TurningBlock& k, int o) {
+  PairLanes p{Lanes::Load(k.normal_x + o),      Lanes::Load(k.normal_y + o),      Lanes::Load(k.inv_mass_a + o),
+              Lanes::Load(k.inv_mass_b + o),    Lanes::Load(k.inv_inertia_a + o), Lanes::Load(k.inv_inertia_b + o),
+              Moving(k.inv_mass_a + o),         Moving(k.inv_mass_b + o),         Lanes::Load(k.two_points + o) != Lanes(0.0)};
+  return p;
+}
+
+// Dot(RelativeVelocity(p, a, b), d): (b.v + Cross(b.w, r_b)) − (a.v + Cross(a.w, r_a)) along d.
+[[gnu::always_inline]] inline Lanes RelativeAlong(const PointLanes& p, const Motion& a, const Motion& b, Lanes dx,
+                                                  Lanes dy) {
+  const Lanes rx = (b.vx + -b.w * p.rby) - (a.vx + -a.w * p.ray);
+  const Lanes ry = (b.vy + b.w * p.rbx) - (a.vy + a.w * p.rax);
+  return rx * dx + ry * dy;
+}
+
+// ApplyImpulse(sc, p, impulse, a, b).
+[[gnu::always_inline]] inline void ApplyAt(const PairLanes& c, const PointLanes& p, Lanes ix, Lanes iy, Motion* a,
+                                           Motion* b) {
+  a->vx = a->vx - c.ima * ix;
+  a->vy = a->vy - c.ima * iy;
+  a->w = a->w - c.iia * (p.rax * iy - p.ray * ix);
+  b->vx = b->vx + c.imb * ix;
+  b->vy = b->vy + c.imb * iy;
+  b->w = b->w + c.iib * (p.rbx * iy - p.rby * ix);
+}
+
+// The bodies' centres and turns, for the separations now (CurrentSeparation, angular).
+struct PlaceLanes {
+  Lanes mx, my;          ///< how far b's centre has moved from a's since the step's start
+  Lanes tac, tas, tbc, tbs;  ///< each body's turn since then
+};
+
+[[gnu::always_inline]] inline PlaceLanes GatherPlaces(const TurningBlock& k, int o, const BodyState* states,
+                                                      const Vec2* start, const Rot* turned) {
+  const double* positions = &states[0].position.x;
+  const double* starts = &start[0].x;
+  const double* turns = &turned[0].c;
+  Lanes pax, pay, pbx, pby, sax, say, sbx, sby;
+  PlaceLanes q;
+  Gather(positions, kStateStride, k.a + o, &pax, &pay);
+  Gather(positions, kStateStride, k.b + o, &pbx, &pby);
+  Gather(starts, kVec2Stride, k.a + o, &sax, &say);
+  Gather(starts, kVec2Stride, k.b + o, &sbx, &sby);
+  Gather(turns, kVec2Stride, k.a + o, &q.tac, &q.tas);
+  Gather(turns, kVec2Stride, k.b + o, &q.tbc, &q.tbs);
+  q.mx = (pbx - sbx) - (pax - sax);
+  q.my = (pby - sby) - (pay - say);
+  return q;
+}
+
+// base + Dot((moved + Rotate(turn_b, r_b)) − Rotate(turn_a, r_a), n).
+[[gnu::always_inline]] inline Lanes SeparationAt(const PlaceLanes& q, const PointLanes& p, const PairLanes& c) {
+  const Lanes x = (q.mx + (q.tbc * p.rbx - q.tbs * p.rby)) - (q.tac * p.rax - q.tas * p.ray);
+  const Lanes y = (q.my + (q.tbs * p.rbx + q.tbc * p.rby)) - (q.tas * p.rax + q.tac * p.ray);
+  return p.base_separation + (x * c.nx + y * c.ny);
+}
+
+void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* states) {
+  constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
+  for (std::size_t i = 0; i < count; ++i) {
+    TurningBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      const PairLanes c = LoadPair(k, o);
+      const Lanes tx = -c.ny, ty = c.nx;
+      const Lanes edge_scale = Lanes(kSliding) * Lanes::Load(k.friction + o);
+      Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
+      for (int point = 0; point < 2; ++point) {
+        const PointLanes p = LoadPoint(k.points[point], o);
+        const Lanes slide = p.tangent_impulse * RelativeAlong(p, a, b, tx, ty);
+        const Lanes ti = Select((slide > Lanes(0.0)) & (Abs(p.tangent_impulse) >= edge_scale * p.normal_impulse),
+                                Lanes(0.0), p.tangent_impulse);
+        const Lanes ix = p.normal_impulse * c.nx + ti * tx, iy = p.normal_impulse * c.ny + ti * ty;
+        Motion a2 = a, b2 = b;
+        ApplyAt(c, p, ix, iy, &a2, &b2);
+        if (point == 0) {
+          ti.Store(k.points[0].tangent_impulse + o);
+          a = a2, b = b2;
+        } else {
+          Select(c.two, ti, p.tangent_impulse).Store(k.points[1].tangent_impulse + o);
+          a = Select(c.two, a2, a), b = Select(c.two, b2, b);
+        }
+      }
+      ScatterMotion(states, k.a + o, a, c.moving_a);
+      ScatterMotion(states, k.b + o, b, c.moving_b);
+    }
+  }
+}
+
+// SolveTwoPoints for the lanes: the new impulses (x1, x2) and the lanes where a case fit.
+[[gnu::always_inline]] inline Mask SolveTwoPointsLanes(Lanes k11, Lanes k12, Lanes k22, Lanes a1, Lanes a2, Lanes vn1,
+                                                       Lanes vn2, Lanes t1, Lanes t2, Lanes* x1, Lanes* x2) {
+  const Lanes zero(0.0);
+  const Lanes det = k11 * k22 - k12 * k12;
+  const Mask conditioned = k11 * k11 < Lanes(1000.0) * det;
+  const Lanes b1 = (vn1 - t1) - (k11 * a1 + k12 * a2);
+  const Lanes b2 = (vn2 - t2) - (k12 * a1 + k22 * a2);
+  const Lanes y1 = (-k22 * b1 + k12 * b2) / det;
+  const Lanes y2 = (k12 * b1 - k11 * b2) / det;
+  const Mask both = (y1 >= zero) & (y2 >= zero);
+  const Lanes z1 = -b1 / k11;
+  const Mask first = (z1 >= zero) & (k12 * z1 + b2 >= zero);
+  const Lanes z2 = -b2 / k22;
+  const Mask second = (z2 >= zero) & (k12 * z2 + b1 >= zero);
+  const Mask neither = (b1 >= zero) & (b2 >= zero);
+  *x1 = Select(both, y1, Select(first, z1, zero));
+  *x2 = Select(both, y2, Select(first, zero, Select(second, z2, zero)));
+  return conditioned & (both | first | second | neither);
+}
+
+void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* states, const Vec2* start,
+                        const Rot* turned, double inv_h_scalar, bool block_solve) {
+  const Lanes inv_h(inv_h_scalar);
+  for (std::size_t i = 0; i < count; ++i) {
+    TurningBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      const PairLanes c = LoadPair(k, o);
+      const Lanes tx = -c.ny, ty = c.nx;
+      const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+      const PointLanes p0 = LoadPoint(k.points[0], o), p1 = LoadPoint(k.points[1], o);
+      const Lanes min_vn0 = -Max0(SeparationAt(q, p0, c)) * inv_h;
+      const Lanes min_vn1 = -Max0(SeparationAt(q, p1, c)) * inv_h;
+      const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
+
+      // Both normals together, where two points allow (the block solver).
+      Mask blocked = MaskOf(0);  // none yet
+      Motion ab = a0, bb = b0;
+      Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
+      if (block_solve && Bits(c.two) != 0) {
+        const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
+        // NormalMass.
+        const Lanes r1a = p0.rax * c.ny - p0.ray * c.nx, r1b = p0.rbx * c.ny - p0.rby * c.nx;
+        const Lanes r2a = p1.rax * c.ny - p1.ray * c.nx, r2b = p1.rbx * c.ny - p1.rby * c.nx;
+        const Lanes m = c.ima + c.imb;
+        const Lanes k11 = (m + c.iia * r1a * r1a) + c.iib * r1b * r1b;
+        const Lanes k12 = (m + c.iia * r1a * r2a) + c.iib * r1b * r2b;
+        const Lanes k22 = (m + c.iia * r2a * r2a) + c.iib * r2b * r2b;
+        blocked = c.two & SolveTwoPointsLanes(k11, k12, k22, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
+                                              min_vn1, &xb0, &xb1);
+        const Lanes d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
+        ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
+        ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &ab, &bb);
+      }
+      // One point after the other, elsewhere.
+      Motion as = a0, bs = b0;
+      Lanes xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
+      if (Bits(blocked) != (1u << Lanes::kCount) - 1) {
+        const Lanes v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
+        xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
+        const Lanes d0 = xs0 - p0.normal_impulse;
+        ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &as, &bs);
+        Motion a1 = as, b1 = bs;
+        const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
+        const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
+        const Lanes d1 = new1 - p1.normal_impulse;
+        ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
+        xs1 = Select(c.two, new1, p1.normal_impulse);
+        as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
+      }
+      Motion a = Select(blocked, ab, as), b = Select(blocked, bb, bs);
+      const Lanes n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
+      n0.Store(k.points[0].normal_impulse + o);
+      n1.Store(k.points[1].normal_impulse + o);
+
+      // Coulomb friction at each point, within the cone of its normal impulse.
+      const Lanes friction = Lanes::Load(k.friction + o);
+      for (int point = 0; point < 2; ++point) {
+        const PointLanes& p = point == 0 ? p0 : p1;
+        const Lanes vt = RelativeAlong(p, a, b, tx, ty);
+        const Lanes max_friction = friction * (point == 0 ? n0 : n1);
+        const Lanes free = p.tangent_impulse - p.tangent_mass * vt;
+        const Lanes new_tangent =
+            Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
+        const Lanes d = new_tangent - p.tangent_impulse;
+        Motion a2 = a, b2 = b;
+        ApplyAt(c, p, d * tx, d * ty, &a2, &b2);
+        if (point == 0) {
+          new_tangent.Store(k.points[0].tangent_impulse + o);
+          a = a2, b = b2;
+        } else {
+          Select(c.two, new_tangent, p.tangent_impulse).Store(k.points[1].tangent_impulse + o);
+          a = Select(c.two, a2, a), b = Select(c.two, b2, b);
+        }
+      }
+      ScatterMotion(states, k.a + o, a, c.moving_a);
+      ScatterMotion(states, k.b + o, b, c.moving_b);
+    }
+  }
+}
+
+void TurningPushOutBlocks(TurningBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
+                          const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
+                          double max_push_out_speed, double linear_slop) {
+  double* push_linear = &push[0].x;
+  const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
+  const unsigned all = (1u << Lanes::kCount) - 1;
+  for (std::size_t i = 0; i < count; ++i) {
+    TurningBlock& k = blocks[i];
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      const PairLanes c = LoadPair(k, o);
+      const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+      // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
+      Lanes vax, vay, vbx, vby;
+      Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
+      Gather(push_linear, kVec2Stride, k.b + o, &vbx, &vby);
+      Lanes wa = GatherOne(push_angular, 1, k.a + o), wb = GatherOne(push_angular, 1, k.b + o);
+      unsigned written_a = 0, written_b = 0;
+      for (int point = 0; point < 2; ++point) {
+        const PointLanes p = LoadPoint(k.points[point], o);
+        const Lanes s = SeparationAt(q, p, c);
+        // Overlap within the slop is left alone.
+        unsigned active = ~Bits(s >= -slop) & all;
+        if (point == 1) active &= Bits(c.two);
+        if (active == 0) continue;
+        const Lanes wanted = rate * -(s + slop);
+        const Lanes target = Select(max_speed < wanted, max_speed, wanted);
+        Lanes vn = (vbx - vax) * c.nx + (vby - vay) * c.ny;
+        const Lanes cx = -wb * p.rby - -wa * p.ray, cy = wb * p.rbx - wa * p.rax;
+        vn = vn + (cx * c.nx + cy * c.ny);
+        const Lanes dp = Max0(p.normal_mass * (target - vn));
+        const Lanes sa = c.ima * dp, sb = c.imb * dp;
+        const Lanes ix = dp * c.nx, iy = dp * c.ny;
+        const unsigned write_a = active & c.moving_a, write_b = active & c.moving_b;
+        const Mask wa_mask = MaskOf(write_a), wb_mask = MaskOf(write_b);
+        vax = Select(wa_mask, vax - sa * c.nx, vax);
+        vay = Select(wa_mask, vay - sa * c.ny, vay);
+        vbx = Select(wb_mask, vbx + sb * c.nx, vbx);
+        vby = Select(wb_mask, vby + sb * c.ny, vby);
+        wa = Select(wa_mask, wa - c.iia * (p.rax * iy - p.ray * ix), wa);
+        wb = Select(wb_mask, wb + c.iib * (p.rbx * iy - p.rby * ix), wb);
+        written_a |= write_a;
+        written_b |= write_b;
+      }
+      Scatter(push_linear, kVec2Stride, k.a + o, vax, vay, written_a);
+      Scatter(push_linear, kVec2Stride, k.b + o, vbx, vby, written_b);
+      ScatterOne(push_angular, 1, k.a + o, wa, written_a);
+      ScatterOne(push_angular, 1, k.b + o, wb, written_b);
+    }
+  }
+}
