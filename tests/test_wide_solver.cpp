@@ -10,6 +10,7 @@
 #include "engine/world.h"
 #include "solver/contact_order.h"
 #include "solver/substep_passes.h"
+#include "solver/substep_solver.h"
 #include "solver/wide_passes.h"
 #include "world_builders.h"
 
@@ -20,6 +21,8 @@ using engine::BodyState;
 using engine::Contact;
 using engine::Vec2;
 using engine::LinearConstraint;
+using engine::SubstepConstraint;
+using engine::SubstepPoint;
 
 // Bodies and contacts with what the passes must get right: static bodies shared by many
 // contacts of a colour (never written), a hub with more contacts than there are colours (the
@@ -29,6 +32,7 @@ struct Scene {
   std::vector<BodyInfo> infos;
   std::vector<BodyState> states;
   std::vector<Vec2> start_positions;
+  std::vector<engine::Rot> turned;  ///< each body's turn since the step's start (turning scenes)
   std::vector<Contact> contacts;
 };
 
@@ -84,6 +88,8 @@ struct Outcome {
   std::vector<BodyState> states;
   std::vector<Vec2> push;
   std::vector<LinearConstraint> constraints;
+  std::vector<engine::SubstepConstraint> turning;
+  std::vector<double> push_angular;
 };
 
 template <typename T>
@@ -95,7 +101,7 @@ bool SameBits(const std::vector<T>& x, const std::vector<T>& y) {
 // `lanes` 0: one at a time (substep_passes.cpp), else the wide passes of that width.
 Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order, int lanes) {
   using namespace engine::detail;
-  Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}};
+  Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, {}};
   PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
                                               &out.constraints);
   const StepStart start{scene.start_positions, {}};
@@ -127,19 +133,134 @@ Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order,
   return out;
 }
 
-std::uint64_t PourHash(int lanes, int threads, bool boxes) {
+// Turning bodies in a row across eight strips, touching their neighbours (most contacts inside a
+// strip, some across an edge, a few far apart), with one and two points, and pairs whose two
+// points coincide (the block solver gives up and they go one at a time), on static bodies too.
+Scene MakeTurningScene(unsigned seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Scene scene;
+  const int bodies = 400;
+  for (int i = 0; i < bodies; ++i) {
+    BodyInfo info;
+    const bool fixed = i % 50 == 0;
+    info.mass = fixed ? 0.0 : 1.0 + 0.5 * (unit(random) + 1.0);
+    info.inv_mass = fixed ? 0.0 : 1.0 / info.mass;
+    info.inertia = fixed ? 0.0 : 0.2 + 0.1 * unit(random);
+    info.inv_inertia = fixed ? 0.0 : 1.0 / info.inertia;
+    scene.infos.push_back(info);
+    BodyState state;
+    state.position = {-20.0 + 0.1 * i + 0.02 * unit(random), 2.0 * unit(random)};
+    state.velocity = {3.0 * unit(random), 3.0 * unit(random)};
+    state.angular_velocity = 4.0 * unit(random);
+    scene.states.push_back(state);
+    scene.start_positions.push_back(state.position + Vec2{0.01 * unit(random), 0.01 * unit(random)});
+    scene.turned.push_back(engine::MakeRot(0.05 * unit(random)));
+  }
+  int k = 0;
+  const auto add = [&](int a, int b) {
+    Contact c;
+    c.a = static_cast<engine::BodyIndex>(a);
+    c.b = static_cast<engine::BodyIndex>(b);
+    const double turn = 3.2 * unit(random);
+    c.manifold.normal = {std::cos(turn), std::sin(turn)};
+    c.manifold.point_count = 1 + (k % 3 != 0);
+    const Vec2 middle = 0.5 * (scene.states[a].position + scene.states[b].position);
+    const Vec2 along = engine::LeftPerp(c.manifold.normal);
+    const double half = k % 7 == 0 ? 0.0 : 0.05 + 0.1 * (unit(random) + 1.0);  // 0: the points coincide
+    c.manifold.points[0] = {middle - half * along, k % 11 == 0 ? 0.0 : 0.02 * unit(random), 0};
+    c.manifold.points[1] = {middle + half * along, 0.02 * unit(random), 1};
+    c.restitution = 0.2;
+    c.friction = k % 5 == 0 ? 0.0 : 0.6;
+    for (int p = 0; p < 2; ++p) {
+      c.normal_impulse[p] = k % 4 == 1 ? 0.0 : 0.5 * (unit(random) + 1.0);
+      const double edge = c.friction * c.normal_impulse[p] * (k % 12 == 4 ? 1.0 - 5e-10 : 1.0);
+      c.tangent_impulse[p] = k % 4 == 0 ? edge * (k % 8 == 0 ? 1.0 : -1.0) : 0.1 * unit(random);
+    }
+    scene.contacts.push_back(c);
+    ++k;
+  };
+  for (int a = 0; a + 1 < bodies; ++a) {
+    add(a, a + 1);
+    if (a + 3 < bodies && a % 2 == 0) add(a, a + 3);
+  }
+  for (int i = 0; i < 12; ++i) add(i, bodies - 1 - i);  // far apart
+  return scene;
+}
+
+// RunPasses for turning contacts in strip order, block-solved.
+Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order, int lanes) {
+  using namespace engine::detail;
+  Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, std::vector<double>(scene.states.size())};
+  PrepareSubstepConstraints<SubstepConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
+                                               &out.turning);
+  const StepStart start{scene.start_positions, scene.turned};
+  const double inv_h = 480.0, rate = 9.0, max_speed = 3.0, slop = 0.005;
+  const auto move = [&] {
+    for (BodyState& s : out.states) s.position += (1.0 / inv_h) * s.velocity;
+  };
+  if (lanes == 0) {
+    const std::span<SubstepConstraint> all = out.turning;
+    WarmStartAll(all, std::span<BodyState>(out.states));
+    for (int pass = 0; pass < 2; ++pass) SolveContacts(all, std::span<BodyState>(out.states), start, inv_h, true);
+    move();
+    PushOut(all, std::span<const BodyState>(out.states), start, PushVelocities{out.push, out.push_angular}, rate,
+            max_speed, slop);
+    for (SubstepConstraint& c : out.turning) {  // the wide passes keep no push impulses (the direct solve's)
+      for (SubstepPoint& p : c.points) p.push_impulse = 0.0;
+    }
+    return out;
+  }
+  const WidePasses& passes = WidePassesFor(lanes);
+  REQUIRE(passes.lanes == lanes);
+  REQUIRE(WideTurningConstraints::Fits(out.turning, order));
+  WideTurningConstraints wide;
+  wide.Pack(out.turning, order);
+  const std::size_t blocks = wide.blocks.size();
+  passes.turning_warm_start(wide.blocks.data(), blocks, out.states.data());
+  for (int pass = 0; pass < 2; ++pass) {
+    passes.turning_solve(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(),
+                         scene.turned.data(), inv_h, true);
+  }
+  move();
+  passes.turning_push_out(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(),
+                          scene.turned.data(), out.push.data(), out.push_angular.data(), rate, max_speed, slop);
+  wide.UnpackImpulses(out.turning);
+  for (SubstepConstraint& c : out.turning) {
+    for (SubstepPoint& p : c.points) p.push_impulse = 0.0;
+  }
+  return out;
+}
+
+// The impulses of each point a contact has (a point past point_count holds nothing).
+std::vector<double> Impulses(const std::vector<engine::SubstepConstraint>& constraints) {
+  std::vector<double> impulses;
+  for (const engine::SubstepConstraint& c : constraints) {
+    for (int k = 0; k < c.point_count; ++k) {
+      impulses.push_back(c.points[k].normal_impulse);
+      impulses.push_back(c.points[k].tangent_impulse);
+    }
+  }
+  return impulses;
+}
+
+// A pour of `count` circles (and 200 boxes) stepped 240 times; `contacts` gets how many touch then.
+std::uint64_t PourHash(int lanes, int threads, bool boxes, bool rotation = false, int count = 1500,
+                       std::size_t* contacts = nullptr) {
   engine::WorldDef def;
+  def.rotation = rotation;
   def.sleeping = false;
   def.threads = threads;
   def.substep_features.lanes = lanes;
   engine::World world(def);
-  stress::AddBoxedPour(world, 1500);
+  stress::AddBoxedPour(world, count);
   if (boxes) {
     for (int i = 0; i < 200; ++i) {
       world.CreateBody(testing::Box({-4.0 + 0.5 * (i % 16), 30.0 + 0.5 * (i / 16)}, {0.4, 0.3}));
     }
   }
   for (int s = 0; s < 240; ++s) world.Step();
+  if (contacts) *contacts = world.Contacts().size();
   return world.StateHash();
 }
 
@@ -178,4 +299,37 @@ TEST_CASE("wide solver: a pour steps to the same hash at every width and thread 
     }
     CHECK(PourHash(0, 2, boxes) == one_at_a_time);
   }
+}
+
+TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-a-time passes") {
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const Scene scene = MakeTurningScene(seed);
+    engine::detail::ContactOrder order;
+    order.InStrips(scene.contacts, scene.infos, scene.states, {0.0, -9.8});
+    const Outcome reference = RunTurningPasses(scene, order, 0);
+    CHECK_FALSE(SameBits(reference.states, scene.states));
+    bool pushed = false;
+    for (const double w : reference.push_angular) pushed = pushed || w != 0.0;
+    CHECK(pushed);
+    for (int lanes = 1; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
+      INFO("seed " << seed << ", " << lanes << " lanes");
+      const Outcome wide = RunTurningPasses(scene, order, lanes);
+      CHECK(SameBits(wide.states, reference.states));
+      CHECK(SameBits(wide.push, reference.push));
+      CHECK(SameBits(wide.push_angular, reference.push_angular));
+      CHECK(SameBits(Impulses(wide.turning), Impulses(reference.turning)));
+    }
+  }
+}
+
+TEST_CASE("wide solver: a turning pour in strips steps to the same hash at every width and thread count") {
+  std::size_t contacts = 0;
+  const std::uint64_t one_at_a_time = PourHash(1, 1, true, true, 2200, &contacts);
+  // Enough contacts for the strip order, which the turning lanes take.
+  REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
+  for (int lanes = 2; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
+    INFO(lanes << " lanes");
+    CHECK(PourHash(lanes, 1, true, true, 2200) == one_at_a_time);
+  }
+  CHECK(PourHash(0, 2, true, true, 2200) == one_at_a_time);
 }
