@@ -114,7 +114,8 @@ void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* 
       const Lanes tx = -c.ny, ty = c.nx;
       const Lanes edge_scale = Lanes(kSliding) * Lanes::Load(k.friction + o);
       Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
-      for (int point = 0; point < 2; ++point) {
+      const int points = Bits(c.two) != 0 ? 2 : 1;  // circles have one: their second is skipped whole
+      for (int point = 0; point < points; ++point) {
         const PointLanes p = LoadPoint(k.points[point], o);
         const Lanes slide = p.tangent_impulse * RelativeAlong(p, a, b, tx, ty);
         const Lanes ti = Select((slide > Lanes(0.0)) & (Abs(p.tangent_impulse) >= edge_scale * p.normal_impulse),
@@ -166,16 +167,17 @@ void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* stat
       const PairLanes c = LoadPair(k, o);
       const Lanes tx = -c.ny, ty = c.nx;
       const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+      const bool any_two = Bits(c.two) != 0;  // circles have one point: their second is skipped whole
       const PointLanes p0 = LoadPoint(k.points[0], o), p1 = LoadPoint(k.points[1], o);
       const Lanes min_vn0 = -Max0(SeparationAt(q, p0, c)) * inv_h;
-      const Lanes min_vn1 = -Max0(SeparationAt(q, p1, c)) * inv_h;
+      const Lanes min_vn1 = any_two ? -Max0(SeparationAt(q, p1, c)) * inv_h : Lanes(0.0);
       const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
 
       // Both normals together, where two points allow (the block solver).
       Mask blocked = MaskOf(0);  // none yet
       Motion ab = a0, bb = b0;
       Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
-      if (block_solve && Bits(c.two) != 0) {
+      if (block_solve && any_two) {
         const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
         // NormalMass.
         const Lanes r1a = p0.rax * c.ny - p0.ray * c.nx, r1b = p0.rbx * c.ny - p0.rby * c.nx;
@@ -198,22 +200,24 @@ void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* stat
         xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
         const Lanes d0 = xs0 - p0.normal_impulse;
         ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &as, &bs);
-        Motion a1 = as, b1 = bs;
-        const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
-        const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
-        const Lanes d1 = new1 - p1.normal_impulse;
-        ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
-        xs1 = Select(c.two, new1, p1.normal_impulse);
-        as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
+        if (any_two) {
+          Motion a1 = as, b1 = bs;
+          const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
+          const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
+          const Lanes d1 = new1 - p1.normal_impulse;
+          ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
+          xs1 = Select(c.two, new1, p1.normal_impulse);
+          as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
+        }
       }
       Motion a = Select(blocked, ab, as), b = Select(blocked, bb, bs);
       const Lanes n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
       n0.Store(k.points[0].normal_impulse + o);
-      n1.Store(k.points[1].normal_impulse + o);
+      if (any_two) n1.Store(k.points[1].normal_impulse + o);
 
       // Coulomb friction at each point, within the cone of its normal impulse.
       const Lanes friction = Lanes::Load(k.friction + o);
-      for (int point = 0; point < 2; ++point) {
+      for (int point = 0; point < (any_two ? 2 : 1); ++point) {
         const PointLanes& p = point == 0 ? p0 : p1;
         const Lanes vt = RelativeAlong(p, a, b, tx, ty);
         const Lanes max_friction = friction * (point == 0 ? n0 : n1);
@@ -254,7 +258,8 @@ void TurningPushOutBlocks(TurningBlock* blocks, std::size_t count, const BodySta
       Gather(push_linear, kVec2Stride, k.b + o, &vbx, &vby);
       Lanes wa = GatherOne(push_angular, 1, k.a + o), wb = GatherOne(push_angular, 1, k.b + o);
       unsigned written_a = 0, written_b = 0;
-      for (int point = 0; point < 2; ++point) {
+      const int points = Bits(c.two) != 0 ? 2 : 1;
+      for (int point = 0; point < points; ++point) {
         const PointLanes p = LoadPoint(k.points[point], o);
         const Lanes s = SeparationAt(q, p, c);
         // Overlap within the slop is left alone.
