@@ -22,10 +22,9 @@ void SubstepSolver::Step(StepContext& context) {
   // the solve indifferent to order there, and the colour order runs faster. Turning stacks need
   // their passes to converge, which contact order does better where a scene is built bottom-up:
   // a turning pyramid of base 40 drifts 6.7 mm in 10 s in contact order against 2.2 cm by colour.
-  // Contact order is one chain, which no thread can share; large piles keep it within upright
-  // strips, which threads can (StripContacts).
+  // Contact order is one chain, which neither lanes nor threads can share; piles keep it within
+  // upright strips, which they can (StripContacts).
   if (context.can_turn) {
-    // A pile this large keeps contact order within upright strips, which threads can share.
     if (context.contacts.size() >= kMinStripContacts) {
       order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity);
     } else {
