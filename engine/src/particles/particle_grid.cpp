@@ -43,7 +43,9 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 
 void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                                   std::vector<std::uint32_t>* offsets,
-                                  std::vector<std::uint32_t>* neighbours) const {
+                                  std::vector<std::uint32_t>* neighbours,
+                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
+                                  std::vector<std::uint32_t>* entry_pairs) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
@@ -81,12 +83,18 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
   neighbours->resize(2 * total);
+  entry_pairs->resize(2 * total);
+  pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
+  std::uint32_t p = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (const auto& [i, j] : pairs_[t]) {
+      (*entry_pairs)[fill[i]] = p;
       (*neighbours)[fill[i]++] = j;
+      (*entry_pairs)[fill[j]] = p;
       (*neighbours)[fill[j]++] = i;
+      (*pairs)[p++] = {i, j};
     }
   }
 }

@@ -21,9 +21,13 @@ class ParticleGrid {
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
   /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
-  /// cell order: the same lists with any thread count.
+  /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
+  /// `pairs`, and `entry_pairs` gives each list entry its pair's index there, so a quantity of a
+  /// pair can be worked out once for both its particles.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours) const;
+                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
+                      std::vector<std::uint32_t>* entry_pairs) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>

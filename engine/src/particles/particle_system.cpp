@@ -12,6 +12,7 @@
 
 #include "candidate_pairs.h"
 #include "geometry/transform.h"
+#include "particles/lanes.h"
 #include "particles/sph_kernels.h"
 
 namespace engine::detail {
@@ -35,6 +36,11 @@ constexpr double kWallFactor = 2.0;
 /// Fewer fluid particles than this are looped over on one thread: handing the others their
 /// chunks costs a few microseconds, more than a few hundred particles' work.
 constexpr std::uint32_t kMinParallel = 1024;
+
+/// A pair's gradient is at x_i − x_j for its lower index i: its sign as seen from the particle
+/// of the higher index (kSide[0]) and the lower (kSide[1]). Looked up rather than chosen by a
+/// branch, which the neighbours' order made a coin toss.
+constexpr double kSide[2] = {-1.0, 1.0};
 
 double KernelRadius(double spacing) { return kKernelSpacings * spacing; }
 
@@ -292,7 +298,7 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   const double skin = kernel > 0.0 ? std::min(2.0 * travel, 0.25 * kernel) : 2.0 * travel;
   const double reach = std::max(kernel, 2.0 * largest_radius_) + skin;
   grid_.Build(x_, reach);
-  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_);
+  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_, &entry_pairs_);
   planes_.clear();
   std::vector<BodyPlane> found;
   for (const BodyId id : bodies.live_ids) {
@@ -324,6 +330,55 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   }
 }
 
+void ParticleSystem::FindPairTerms(const SphKernels& k) {
+  // Each pair's kernel and gradient once for both its particles (the two sides differ only in
+  // the gradient's sign), two pairs at a time: the square root and the division were most of
+  // the density pass when worked out per list entry, one at a time.
+  const auto count = static_cast<std::uint32_t>(pairs_.size());
+  pair_terms_.resize(count);
+  pair_near_.resize(count);
+  constexpr std::uint32_t kBlock = 512;
+  const std::uint32_t blocks = (count + kBlock - 1) / kBlock;
+  pool_->ParallelFor(blocks, kMinParallel / kBlock * 4, [&](std::uint32_t b) {
+    // In locals: the flags' byte stores could alias anything reached through a reference.
+    const Vec2* const x = x_.data();
+    const std::pair<std::uint32_t, std::uint32_t>* const pairs = pairs_.data();
+    PairTerms* const terms = pair_terms_.data();
+    std::uint8_t* const near = pair_near_.data();
+    const double h = k.h, h2 = k.h2, scale = k.scale, minus_three_scale = -3.0 * k.scale;
+    const std::uint32_t first = fluid_first_;
+    const std::uint32_t begin = b * kBlock, end = std::min(count, begin + kBlock);
+    // The block's pairs of fluid particles within the kernel (two thirds of them mid-splash),
+    // gathered first so that only they pay for the square root and the division.
+    alignas(16) double dxs[kBlock + 1], dys[kBlock + 1], r2s[kBlock + 1];
+    std::uint32_t at[kBlock + 1];
+    std::uint32_t m = 0;
+    for (std::uint32_t p = begin; p < end; ++p) {
+      const auto [i, j] = pairs[p];
+      const Vec2 d = x[i] - x[j];
+      const double r2 = LengthSquared(d);
+      const std::uint8_t inside = (i >= first) & (r2 < h2);
+      near[p] = inside;
+      dxs[m] = d.x, dys[m] = d.y, r2s[m] = r2, at[m] = p;
+      m += inside;
+    }
+    // An odd one out is paired with a copy of itself.
+    dxs[m] = dxs[m - (m > 0)], dys[m] = dys[m - (m > 0)], r2s[m] = r2s[m - (m > 0)];
+    // The scalar SphKernels::W(r2, r) and Gradient(d, r), operation for operation, lane by lane.
+    for (std::uint32_t q = 0; q < m; q += 2) {
+      const Double2 dx{dxs[q], dxs[q + 1]}, dy{dys[q], dys[q + 1]}, r2{r2s[q], r2s[q + 1]};
+      const Double2 r = Sqrt2(r2);
+      const Double2 f = Splat2(h) - r;
+      const Double2 w = KeepWhere(reinterpret_cast<Mask2>(r2 < Splat2(h2)), Splat2(scale) * f * f * f);
+      const Mask2 slope = reinterpret_cast<Mask2>(r < Splat2(h)) & reinterpret_cast<Mask2>(r != Splat2(0.0));
+      const Double2 c = Splat2(minus_three_scale) * f * f / r;
+      const Double2 gx = KeepWhere(slope, c * dx), gy = KeepWhere(slope, c * dy);
+      terms[at[q]] = {w[0], {gx[0], gy[0]}};
+      if (q + 1 < m) terms[at[q + 1]] = {w[1], {gx[1], gy[1]}};
+    }
+  });
+}
+
 void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const SphKernels k(KernelRadius(fluid_.spacing));
   const std::uint32_t first = fluid_first_, n = FluidCount();
@@ -332,48 +387,53 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
   FindWalls(pushes);
+  FindPairTerms(k);
   // Each particle's fluid neighbours within the kernel this substep, packed at the start of
-  // its run of the step's neighbour list with their kernel and gradient: the two passes below
-  // then read a dense run with no test per entry (the entries beyond the kernel, a third of
-  // them mid-splash, cost a mispredicted branch each when skipped in place).
+  // its run of the step's neighbour list with their pairs: the two passes below then read a
+  // dense run with no test per entry (the entries beyond the kernel, a third of them
+  // mid-splash, cost a mispredicted branch each when skipped in place).
   near_particles_.resize(neighbours_.size());
-  near_weights_.resize(neighbours_.size());
-  near_gradients_.resize(neighbours_.size());
+  near_pairs_.resize(neighbours_.size());
   near_counts_.resize(n);
-  const Vec2* const x = x_.data();
   const double* const inv_mass = inv_mass_.data();
   const double* const mass = fluid_.mass.data();
   const std::uint32_t* const offsets = neighbour_offsets_.data();
   const std::uint32_t* const neighbours = neighbours_.data();
+  const std::uint32_t* const entry_pairs = entry_pairs_.data();
+  const std::uint8_t* const pair_near = pair_near_.data();
+  const PairTerms* const terms = pair_terms_.data();
   std::uint32_t* const near = near_particles_.data();
-  double* const weights = near_weights_.data();
-  Vec2* const gradients = near_gradients_.data();
+  std::uint32_t* const near_pairs = near_pairs_.data();
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
-    const Vec2 xi = x[i];
     // Soft particles meet the fluid by contact, not pressure: they are left out.
+    // (Read into locals first: the stores below could otherwise alias them.)
+    const std::uint32_t begin = offsets[i], end = offsets[i + 1];
+    const std::uint32_t* const list = neighbours;
+    const std::uint32_t* const list_pairs = entry_pairs;
+    const std::uint8_t* const inside = pair_near;
+    std::uint32_t* const packed = near + begin;
+    std::uint32_t* const packed_pairs = near_pairs + begin;
     std::uint32_t count = 0;
-    for (std::uint32_t a = offsets[i]; a < offsets[i + 1]; ++a) {
-      const std::uint32_t j = neighbours[a];
-      near[offsets[i] + count] = j;
-      count += (j >= first) & (LengthSquared(xi - x[j]) < k.h2);
+    for (std::uint32_t a = begin; a < end; ++a) {
+      const std::uint32_t p = list_pairs[a];
+      packed[count] = list[a];
+      packed_pairs[count] = p;
+      count += inside[p];
     }
     near_counts_[f] = count;
     const double rest = fluid_.rest_density[f], inv_rest = 1.0 / rest;
     double density = fluid_.mass[f] * k.W(0.0, 0.0) + rest * wall_share_[f];
     Vec2 gradient_i = wall_slope_[f];
     double denominator = 0.0;
-    for (std::uint32_t a = offsets[i]; a < offsets[i] + count; ++a) {
+    for (std::uint32_t a = begin; a < begin + count; ++a) {
       const std::uint32_t j = near[a];
-      const Vec2 d = xi - x[j];
-      const double r2 = LengthSquared(d);
-      const double r = std::sqrt(r2);
-      weights[a] = k.W(r2, r);
-      gradients[a] = k.Gradient(d, r);
+      const PairTerms& t = terms[near_pairs[a]];
+      const double side = kSide[j > i];
       const double mj = mass[j - first];
-      density += mj * weights[a];
-      const Vec2 g = (mj * inv_rest) * gradients[a];
+      density += mj * t.weight;
+      const Vec2 g = (mj * inv_rest) * (side * t.gradient);
       gradient_i += g;
       denominator += inv_mass[j] * LengthSquared(g);
     }
@@ -394,16 +454,19 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
     const double inv_rest_i = 1.0 / fluid_.rest_density[f], mass_i = fluid_.mass[f];
+    const double lambda_i = lambda[f];
+    const std::uint32_t begin = offsets[i], end = begin + near_counts_[f];
     Vec2 step;
-    for (std::uint32_t a = offsets[i]; a < offsets[i] + near_counts_[f]; ++a) {
-      const std::uint32_t g = near[a] - first;
-      const double ratio = weights[a] * inv_clumping_w;
+    for (std::uint32_t a = begin; a < end; ++a) {
+      const std::uint32_t j = near[a], g = j - first;
+      const PairTerms& t = terms[near_pairs[a]];
+      const double ratio = t.weight * inv_clumping_w;
       const double ratio2 = ratio * ratio;
       const double clumping = clumping_scale * (ratio2 * ratio2);
-      const double weight = (lambda[f] + clumping) * (mass[g] * inv_rest_i) + mass_i * lambda_over_rest[g];
-      step += weight * gradients[a];
+      const double weight = (lambda_i + clumping) * (mass[g] * inv_rest_i) + mass_i * lambda_over_rest[g];
+      step += weight * (kSide[j > i] * t.gradient);
     }
-    delta_[f] = inv_mass[i] * (step + kWallFactor * lambda[f] * wall_slope_[f]);
+    delta_[f] = inv_mass[i] * (step + kWallFactor * lambda_i * wall_slope_[f]);
   });
   PushWalls(h, pushes);
   // Jacobi: a pair pushes each of its particles from both their constraints, which in a
