@@ -330,13 +330,17 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   }
 }
 
-void ParticleSystem::FindPairTerms(const SphKernels& k) {
+void ParticleSystem::FindPairTerms(const SphKernels& k, bool with_gradients) {
   // Each pair's kernel and gradient once for both its particles (the two sides differ only in
   // the gradient's sign), two pairs at a time: the square root and the division were most of
   // the density pass when worked out per list entry, one at a time.
   const auto count = static_cast<std::uint32_t>(pairs_.size());
   pair_terms_.resize(count);
   pair_near_.resize(count);
+  near_particles_.resize(neighbours_.size());
+  near_pairs_.resize(neighbours_.size());
+  const double clumping_over_w = 1.0 / k.W(std::pow(kClumpingDistance * k.h, 2));
+  const double clumping_strength = -kClumpingStrength / density_denominator_;
   constexpr std::uint32_t kBlock = 512;
   const std::uint32_t blocks = (count + kBlock - 1) / kBlock;
   pool_->ParallelFor(blocks, kMinParallel / kBlock * 4, [&](std::uint32_t b) {
@@ -347,6 +351,7 @@ void ParticleSystem::FindPairTerms(const SphKernels& k) {
     std::uint8_t* const near = pair_near_.data();
     const double h = k.h, h2 = k.h2, scale = k.scale, minus_three_scale = -3.0 * k.scale;
     const std::uint32_t first = fluid_first_;
+    const double inv_clumping_w = clumping_over_w, clumping_scale = clumping_strength;
     const std::uint32_t begin = b * kBlock, end = std::min(count, begin + kBlock);
     // The block's pairs of fluid particles within the kernel (two thirds of them mid-splash),
     // gathered first so that only they pay for the square root and the division.
@@ -370,58 +375,65 @@ void ParticleSystem::FindPairTerms(const SphKernels& k) {
       const Double2 r = Sqrt2(r2);
       const Double2 f = Splat2(h) - r;
       const Double2 w = KeepWhere(reinterpret_cast<Mask2>(r2 < Splat2(h2)), Splat2(scale) * f * f * f);
+      if (!with_gradients) {
+        terms[at[q]].weight = w[0];
+        if (q + 1 < m) terms[at[q + 1]].weight = w[1];
+        continue;
+      }
       const Mask2 slope = reinterpret_cast<Mask2>(r < Splat2(h)) & reinterpret_cast<Mask2>(r != Splat2(0.0));
       const Double2 c = Splat2(minus_three_scale) * f * f / r;
       const Double2 gx = KeepWhere(slope, c * dx), gy = KeepWhere(slope, c * dy);
-      terms[at[q]] = {w[0], {gx[0], gy[0]}};
-      if (q + 1 < m) terms[at[q + 1]] = {w[1], {gx[1], gy[1]}};
+      const Double2 ratio = w * Splat2(inv_clumping_w);
+      const Double2 ratio2 = ratio * ratio;
+      const Double2 clumping = Splat2(clumping_scale) * (ratio2 * ratio2);
+      terms[at[q]] = {w[0], {gx[0], gy[0]}, clumping[0]};
+      if (q + 1 < m) terms[at[q + 1]] = {w[1], {gx[1], gy[1]}, clumping[1]};
     }
   });
+}
+
+std::uint32_t ParticleSystem::PackNear(std::uint32_t i) {
+  // Into locals first: the packing stores could otherwise alias what they read.
+  const std::uint32_t begin = neighbour_offsets_[i], end = neighbour_offsets_[i + 1];
+  const std::uint32_t* const list = neighbours_.data();
+  const std::uint32_t* const list_pairs = entry_pairs_.data();
+  const std::uint8_t* const inside = pair_near_.data();
+  std::uint32_t* const packed = near_particles_.data() + begin;
+  std::uint32_t* const packed_pairs = near_pairs_.data() + begin;
+  std::uint32_t count = 0;
+  for (std::uint32_t a = begin; a < end; ++a) {
+    const std::uint32_t p = list_pairs[a];
+    packed[count] = list[a];
+    packed_pairs[count] = p;
+    count += inside[p];
+  }
+  return count;
 }
 
 void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const SphKernels k(KernelRadius(fluid_.spacing));
   const std::uint32_t first = fluid_first_, n = FluidCount();
   const double epsilon = kRelaxation * density_denominator_;
-  const double clumping_w = k.W(std::pow(kClumpingDistance * k.h, 2));
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
   FindWalls(pushes);
-  FindPairTerms(k);
+  FindPairTerms(k, true);
   // Each particle's fluid neighbours within the kernel this substep, packed at the start of
   // its run of the step's neighbour list with their pairs: the two passes below then read a
   // dense run with no test per entry (the entries beyond the kernel, a third of them
   // mid-splash, cost a mispredicted branch each when skipped in place).
-  near_particles_.resize(neighbours_.size());
-  near_pairs_.resize(neighbours_.size());
   near_counts_.resize(n);
   const double* const inv_mass = inv_mass_.data();
   const double* const mass = fluid_.mass.data();
   const std::uint32_t* const offsets = neighbour_offsets_.data();
-  const std::uint32_t* const neighbours = neighbours_.data();
-  const std::uint32_t* const entry_pairs = entry_pairs_.data();
-  const std::uint8_t* const pair_near = pair_near_.data();
   const PairTerms* const terms = pair_terms_.data();
-  std::uint32_t* const near = near_particles_.data();
-  std::uint32_t* const near_pairs = near_pairs_.data();
+  const std::uint32_t* const near = near_particles_.data();
+  const std::uint32_t* const near_pairs = near_pairs_.data();
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const std::uint32_t i = first + f;
     // Soft particles meet the fluid by contact, not pressure: they are left out.
-    // (Read into locals first: the stores below could otherwise alias them.)
-    const std::uint32_t begin = offsets[i], end = offsets[i + 1];
-    const std::uint32_t* const list = neighbours;
-    const std::uint32_t* const list_pairs = entry_pairs;
-    const std::uint8_t* const inside = pair_near;
-    std::uint32_t* const packed = near + begin;
-    std::uint32_t* const packed_pairs = near_pairs + begin;
-    std::uint32_t count = 0;
-    for (std::uint32_t a = begin; a < end; ++a) {
-      const std::uint32_t p = list_pairs[a];
-      packed[count] = list[a];
-      packed_pairs[count] = p;
-      count += inside[p];
-    }
+    const std::uint32_t begin = offsets[i], count = PackNear(i);
     near_counts_[f] = count;
     const double rest = fluid_.rest_density[f], inv_rest = 1.0 / rest;
     double density = fluid_.mass[f] * k.W(0.0, 0.0) + rest * wall_share_[f];
@@ -445,9 +457,8 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
     lambda_[f] = -c / (denominator + epsilon);
     lambda_over_rest_[f] = lambda_[f] * inv_rest;
   });
-  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
-  const double clumping_scale = -kClumpingStrength / density_denominator_;
-  const double inv_clumping_w = 1.0 / clumping_w;
+  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping
+  // (its pair's term from FindPairTerms).
   delta_.resize(n);
   const double* const lambda = lambda_.data();
   const double* const lambda_over_rest = lambda_over_rest_.data();
@@ -460,10 +471,7 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
     for (std::uint32_t a = begin; a < end; ++a) {
       const std::uint32_t j = near[a], g = j - first;
       const PairTerms& t = terms[near_pairs[a]];
-      const double ratio = t.weight * inv_clumping_w;
-      const double ratio2 = ratio * ratio;
-      const double clumping = clumping_scale * (ratio2 * ratio2);
-      const double weight = (lambda_i + clumping) * (mass[g] * inv_rest_i) + mass_i * lambda_over_rest[g];
+      const double weight = (lambda_i + t.clumping) * (mass[g] * inv_rest_i) + mass_i * lambda_over_rest[g];
       step += weight * (kSide[j > i] * t.gradient);
     }
     delta_[f] = inv_mass[i] * (step + kWallFactor * lambda_i * wall_slope_[f]);
@@ -715,17 +723,17 @@ void ParticleSystem::ApplyViscosity(double dt) {
                      ? shares_[f - 1]
                      : 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
   }
+  // The kernel of each pair within it, once for both its particles (see FindPairTerms).
+  FindPairTerms(k, false);
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     if (fluid_.viscosity[f] == 0.0) return;
     const std::uint32_t i = first + f;
+    const std::uint32_t begin = neighbour_offsets_[i], end = begin + PackNear(i);
+    const Vec2 vi = v_[i];
     Vec2 pull;
-    for (std::uint32_t a = neighbour_offsets_[i]; a < neighbour_offsets_[i + 1]; ++a) {
-      const std::uint32_t j = neighbours_[a];
-      if (j < first) continue;
-      const double r2 = LengthSquared(x_[i] - x_[j]);
-      if (r2 >= k.h2) continue;
-      const std::uint32_t g = j - first;
-      pull += (fluid_.mass[g] / fluid_.density[g] * k.W(r2)) * (v_[j] - v_[i]);
+    for (std::uint32_t a = begin; a < end; ++a) {
+      const std::uint32_t j = near_particles_[a], g = j - first;
+      pull += (fluid_.mass[g] / fluid_.density[g] * pair_terms_[near_pairs_[a]].weight) * (v_[j] - vi);
     }
     delta_[f] = shares_[f] * pull;
   });

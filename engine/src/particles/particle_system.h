@@ -105,8 +105,12 @@ class ParticleSystem {
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
-  /// pair_terms_ and pair_near_ for the particles where they are now.
-  void FindPairTerms(const SphKernels& k);
+  /// pair_terms_ (their gradients only if `with_gradients`) and pair_near_ for the particles
+  /// where they are now.
+  void FindPairTerms(const SphKernels& k, bool with_gradients);
+  /// Packs fluid particle i's entries with pair_near_ set at the start of its run of
+  /// near_particles_ and near_pairs_, in list order; returns how many.
+  std::uint32_t PackNear(std::uint32_t i);
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
@@ -161,10 +165,12 @@ class ParticleSystem {
   /// Each pair of neighbours once (i < j), and each neighbour-list entry's index into it.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
   std::vector<std::uint32_t> entry_pairs_;
-  /// A pair's kernel and its gradient at x_i − x_j this substep (the j side's is minus it).
+  /// A pair's kernel and its gradient at x_i − x_j this substep (the j side's is minus it),
+  /// and PBF's artificial pressure between them.
   struct PairTerms {
     double weight;
     Vec2 gradient;
+    double clumping;
   };
   std::vector<PairTerms> pair_terms_;
   std::vector<std::uint8_t> pair_near_;  ///< 1 for two fluid particles within the kernel
