@@ -12,7 +12,6 @@
 
 #include "candidate_pairs.h"
 #include "geometry/transform.h"
-#include "particles/lanes.h"
 #include "particles/sph_kernels.h"
 
 namespace engine::detail {
@@ -332,8 +331,8 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
 
 void ParticleSystem::FindPairTerms(const SphKernels& k, bool with_gradients) {
   // Each pair's kernel and gradient once for both its particles (the two sides differ only in
-  // the gradient's sign), two pairs at a time: the square root and the division were most of
-  // the density pass when worked out per list entry, one at a time.
+  // the gradient's sign), several pairs at a time: the square root and the division were most
+  // of the density pass when worked out per list entry, one at a time.
   const auto count = static_cast<std::uint32_t>(pairs_.size());
   pair_terms_.resize(count);
   pair_near_.resize(count);
@@ -347,16 +346,14 @@ void ParticleSystem::FindPairTerms(const SphKernels& k, bool with_gradients) {
     // In locals: the flags' byte stores could alias anything reached through a reference.
     const Vec2* const x = x_.data();
     const std::pair<std::uint32_t, std::uint32_t>* const pairs = pairs_.data();
-    PairTerms* const terms = pair_terms_.data();
     std::uint8_t* const near = pair_near_.data();
-    const double h = k.h, h2 = k.h2, scale = k.scale, minus_three_scale = -3.0 * k.scale;
+    const double h2 = k.h2;
     const std::uint32_t first = fluid_first_;
-    const double inv_clumping_w = clumping_over_w, clumping_scale = clumping_strength;
     const std::uint32_t begin = b * kBlock, end = std::min(count, begin + kBlock);
     // The block's pairs of fluid particles within the kernel (two thirds of them mid-splash),
     // gathered first so that only they pay for the square root and the division.
-    alignas(16) double dxs[kBlock + 1], dys[kBlock + 1], r2s[kBlock + 1];
-    std::uint32_t at[kBlock + 1];
+    alignas(32) double dxs[kBlock + 4], dys[kBlock + 4], r2s[kBlock + 4];
+    std::uint32_t at[kBlock + 4];
     std::uint32_t m = 0;
     for (std::uint32_t p = begin; p < end; ++p) {
       const auto [i, j] = pairs[p];
@@ -367,28 +364,10 @@ void ParticleSystem::FindPairTerms(const SphKernels& k, bool with_gradients) {
       dxs[m] = d.x, dys[m] = d.y, r2s[m] = r2, at[m] = p;
       m += inside;
     }
-    // An odd one out is paired with a copy of itself.
-    dxs[m] = dxs[m - (m > 0)], dys[m] = dys[m - (m > 0)], r2s[m] = r2s[m - (m > 0)];
-    // The scalar SphKernels::W(r2, r) and Gradient(d, r), operation for operation, lane by lane.
-    for (std::uint32_t q = 0; q < m; q += 2) {
-      const Double2 dx{dxs[q], dxs[q + 1]}, dy{dys[q], dys[q + 1]}, r2{r2s[q], r2s[q + 1]};
-      const Double2 r = Sqrt2(r2);
-      const Double2 f = Splat2(h) - r;
-      const Double2 w = KeepWhere(reinterpret_cast<Mask2>(r2 < Splat2(h2)), Splat2(scale) * f * f * f);
-      if (!with_gradients) {
-        terms[at[q]].weight = w[0];
-        if (q + 1 < m) terms[at[q + 1]].weight = w[1];
-        continue;
-      }
-      const Mask2 slope = reinterpret_cast<Mask2>(r < Splat2(h)) & reinterpret_cast<Mask2>(r != Splat2(0.0));
-      const Double2 c = Splat2(minus_three_scale) * f * f / r;
-      const Double2 gx = KeepWhere(slope, c * dx), gy = KeepWhere(slope, c * dy);
-      const Double2 ratio = w * Splat2(inv_clumping_w);
-      const Double2 ratio2 = ratio * ratio;
-      const Double2 clumping = Splat2(clumping_scale) * (ratio2 * ratio2);
-      terms[at[q]] = {w[0], {gx[0], gy[0]}, clumping[0]};
-      if (q + 1 < m) terms[at[q + 1]] = {w[1], {gx[1], gy[1]}, clumping[1]};
-    }
+    // The lanes past the last pair work on a harmless stand-in and are not stored.
+    for (std::uint32_t q = m; q < m + 4; ++q) dxs[q] = 0.0, dys[q] = 0.0, r2s[q] = h2;
+    KernelTermsOfPairs(k, clumping_over_w, clumping_strength, with_gradients, {dxs, dys, r2s, at, m},
+                       pair_terms_.data());
   });
 }
 

@@ -165,14 +165,7 @@ class ParticleSystem {
   /// Each pair of neighbours once (i < j), and each neighbour-list entry's index into it.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
   std::vector<std::uint32_t> entry_pairs_;
-  /// A pair's kernel and its gradient at x_i − x_j this substep (the j side's is minus it),
-  /// and PBF's artificial pressure between them.
-  struct PairTerms {
-    double weight;
-    Vec2 gradient;
-    double clumping;
-  };
-  std::vector<PairTerms> pair_terms_;
+  std::vector<PairTerms> pair_terms_;  ///< this substep's
   std::vector<std::uint8_t> pair_near_;  ///< 1 for two fluid particles within the kernel
   /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
   /// them from its offset in the neighbour list, with their pairs' indices.
