@@ -220,3 +220,34 @@ TEST_CASE("the fluid kernel's terms for pairs, worked out lanes at a time, are t
     }
   }
 }
+
+TEST_CASE("a light fluid poured under a heavy one rises above it", "[fluid]") {
+  // Two blocks of different rest densities (so the particles' masses differ and the density
+  // pass looks each neighbour's mass up): oil of 600 kg/m² under water of 1000 in a 1 m tank.
+  // Buoyancy (Archimedes, as for the crate above) must carry the oil up through the water.
+  World world(WorldDef{});
+  Tank(world, 0.5);
+  FluidDef oil;
+  oil.region = {{-0.5, 0.0}, {0.5, 0.3}};
+  oil.spacing = 0.05;
+  oil.density = 600.0;
+  oil.viscosity = 0.1;
+  const std::size_t oil_count = world.AddFluid(oil);
+  FluidDef water = oil;
+  water.region = {{-0.5, 0.3}, {0.5, 0.6}};
+  water.density = 1000.0;
+  world.AddFluid(water);
+  const auto mean_heights = [&] {
+    double oil_y = 0.0, water_y = 0.0;
+    const auto positions = world.FluidPositions();
+    for (std::size_t k = 0; k < positions.size(); ++k) (k < oil_count ? oil_y : water_y) += positions[k].y;
+    return std::pair{oil_y / static_cast<double>(oil_count),
+                     water_y / static_cast<double>(positions.size() - oil_count)};
+  };
+  const auto [oil_before, water_before] = mean_heights();
+  REQUIRE(oil_before < water_before);
+  for (int s = 0; s < 600; ++s) world.Step();
+  const auto [oil_after, water_after] = mean_heights();
+  INFO("mean heights after 10 s: oil " << oil_after << " m, water " << water_after << " m");
+  REQUIRE(oil_after > water_after);
+}

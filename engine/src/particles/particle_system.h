@@ -105,6 +105,10 @@ class ParticleSystem {
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
+  /// SolveFluid's density and move passes (delta_); `kOneMass`: every fluid particle has the
+  /// first's mass.
+  template <bool kOneMass>
+  void DensityAndMoves(const SphKernels& k);
   /// pair_terms_ (their gradients only if `with_gradients`) and pair_near_ for the particles
   /// where they are now.
   void FindPairTerms(const SphKernels& k, bool with_gradients);
