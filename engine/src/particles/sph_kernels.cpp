@@ -6,7 +6,7 @@
 
 #include "particles/lanes.h"
 
-#if defined(__x86_64__) && !defined(__AVX__)
+#if defined(__x86_64__)
 #include <immintrin.h>
 #define BALLBOX_AVX_AT_RUN_TIME 1
 #endif
