@@ -43,50 +43,72 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 
 void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                                   std::vector<std::uint32_t>* offsets,
-                                  std::vector<std::uint32_t>* neighbours) const {
+                                  std::vector<std::uint32_t>* neighbours,
+                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
+                                  std::vector<std::uint32_t>* entry_pairs) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
   // entered in both particles' lists in that order: deterministic, and half the distance tests.
   const auto threads = static_cast<std::uint32_t>(cell_keys_.size() < 64 ? 1 : pool.Threads());
   pairs_.resize(threads);
+  pair_counts_.assign(threads, 0);
   pool.ParallelFor(threads, 2, [&](std::uint32_t t) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_[t];
-    pairs.clear();
+    std::size_t count = 0;
     const std::size_t first_cell = cell_keys_.size() * t / threads;
     const std::size_t last_cell = cell_keys_.size() * (t + 1) / threads;
+    const std::uint32_t* const order = order_.data();
+    const Vec2* const x = positions.data();
     for (std::size_t c = first_cell; c < last_cell; ++c) {
       const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
       const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
       for (std::int32_t dr = -1; dr <= 1; ++dr) {
         const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
-        for (std::uint32_t a = cell_starts_[c]; a < cell_starts_[c + 1]; ++a) {
-          const std::uint32_t i = order_[a];
-          const Vec2 xi = positions[i];
-          for (std::uint32_t b = cell_starts_[first]; b < cell_starts_[last]; ++b) {
-            const std::uint32_t j = order_[b];
-            if (j > i && LengthSquared(positions[j] - xi) <= r2) pairs.emplace_back(i, j);
+        const std::uint32_t a0 = cell_starts_[c], a1 = cell_starts_[c + 1];
+        const std::uint32_t b0 = cell_starts_[first], b1 = cell_starts_[last];
+        // Every candidate is written and kept or overwritten by the next: whether j > i and
+        // whether it is near are coin tosses a branch would mispredict.
+        if (pairs.size() < count + std::size_t{a1 - a0} * (b1 - b0)) {
+          pairs.resize(2 * (count + std::size_t{a1 - a0} * (b1 - b0)));
+        }
+        std::pair<std::uint32_t, std::uint32_t>* const out = pairs.data();
+        for (std::uint32_t a = a0; a < a1; ++a) {
+          const std::uint32_t i = order[a];
+          const Vec2 xi = x[i];
+          for (std::uint32_t b = b0; b < b1; ++b) {
+            const std::uint32_t j = order[b];
+            out[count] = {i, j};
+            count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
           }
         }
       }
     }
+    pair_counts_[t] = count;
   });
   std::vector<std::uint32_t>& counts = counts_;
   counts.assign(n + 1, 0);
   std::size_t total = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
-    for (const auto& [i, j] : pairs_[t]) ++counts[i], ++counts[j];
-    total += pairs_[t].size();
+    for (std::size_t q = 0; q < pair_counts_[t]; ++q) ++counts[pairs_[t][q].first], ++counts[pairs_[t][q].second];
+    total += pair_counts_[t];
   }
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
   neighbours->resize(2 * total);
+  entry_pairs->resize(2 * total);
+  pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
+  std::uint32_t p = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
-    for (const auto& [i, j] : pairs_[t]) {
+    for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
+      const auto [i, j] = pairs_[t][q];
+      (*entry_pairs)[fill[i]] = p;
       (*neighbours)[fill[i]++] = j;
+      (*entry_pairs)[fill[j]] = p;
       (*neighbours)[fill[j]++] = i;
+      (*pairs)[p++] = {i, j};
     }
   }
 }

@@ -21,9 +21,13 @@ class ParticleGrid {
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
   /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
-  /// cell order: the same lists with any thread count.
+  /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
+  /// `pairs`, and `entry_pairs` gives each list entry its pair's index there, so a quantity of a
+  /// pair can be worked out once for both its particles.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours) const;
+                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
+                      std::vector<std::uint32_t>* entry_pairs) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>
@@ -43,8 +47,9 @@ class ParticleGrid {
   std::vector<std::uint32_t> cell_starts_;  ///< into order_, one more than cell_keys_
   std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
   std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
-  /// FindNeighbours' scratch: each thread's pairs
+  /// FindNeighbours' scratch: each thread's pairs, the first pair_counts_[t] of pairs_[t]
   mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_;
+  mutable std::vector<std::size_t> pair_counts_;
   mutable std::vector<std::uint32_t> counts_;
 };
 

@@ -105,6 +105,16 @@ class ParticleSystem {
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
+  /// SolveFluid's density and move passes (delta_); `kOneMass`: every fluid particle has the
+  /// first's mass.
+  template <bool kOneMass>
+  void DensityAndMoves(const SphKernels& k);
+  /// pair_terms_ (their gradients only if `with_gradients`) and pair_near_ for the particles
+  /// where they are now.
+  void FindPairTerms(const SphKernels& k, bool with_gradients);
+  /// Packs fluid particle i's entries with pair_near_ set at the start of its run of
+  /// near_particles_ and near_pairs_, in list order; returns how many.
+  std::uint32_t PackNear(std::uint32_t i);
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
@@ -156,11 +166,14 @@ class ParticleSystem {
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
+  /// Each pair of neighbours once (i < j), and each neighbour-list entry's index into it.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+  std::vector<std::uint32_t> entry_pairs_;
+  std::vector<PairTerms> pair_terms_;  ///< this substep's
+  std::vector<std::uint8_t> pair_near_;  ///< 1 for two fluid particles within the kernel
   /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
-  /// them from its offset in the neighbour list, with their kernel and its gradient.
-  std::vector<std::uint32_t> near_particles_, near_counts_;
-  std::vector<double> near_weights_;
-  std::vector<Vec2> near_gradients_;
+  /// them from its offset in the neighbour list, with their pairs' indices.
+  std::vector<std::uint32_t> near_particles_, near_pairs_, near_counts_;
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
   std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -35,6 +36,32 @@ struct SphKernels {
 
   double h, h2, scale;
 };
+
+/// A pair's kernel, its gradient at x_i − x_j (the j side's is minus it), and PBF's artificial
+/// pressure between them (Macklin and Müller 2013, §4: clumping_scale·(W/W(Δq))⁴).
+struct PairTerms {
+  double weight;
+  Vec2 gradient;
+  double clumping;
+};
+
+/// A batch of pairs within the kernel: offsets dx, dy (x_i − x_j) and r2 = dx² + dy², each
+/// array holding `count` rounded up to 4 entries (the extra ones finite), and where each
+/// pair's terms go.
+struct PairBatch {
+  const double* dx;
+  const double* dy;
+  const double* r2;
+  const std::uint32_t* at;
+  std::uint32_t count;
+};
+
+/// terms[at[q]] for each pair q of the batch: SphKernels::W(r2, √r2) and Gradient(d, √r2)
+/// operation for operation (only the weight unless `with_gradients`), lane by lane: four
+/// lanes where the processor has AVX, else two. The bits are the scalar functions' on every
+/// machine: each lane's IEEE operations are the scalar ones, in their order.
+void KernelTermsOfPairs(const SphKernels& k, double inv_clumping_w, double clumping_scale, bool with_gradients,
+                        const PairBatch& batch, PairTerms* terms);
 
 /// The share of the kernel's weight lying beyond a straight wall `d` from the particle (the
 /// part of its neighbourhood a wall fills), and the weight along the wall's line at `d`, which
