@@ -192,10 +192,10 @@ void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* stat
         ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
         ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &ab, &bb);
       }
-      // One point after the other, elsewhere.
+      // One point after the other, elsewhere (padding lanes, with no moving body, need neither).
       Motion as = a0, bs = b0;
       Lanes xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
-      if (Bits(blocked) != (1u << Lanes::kCount) - 1) {
+      if (((c.moving_a | c.moving_b) & ~Bits(blocked)) != 0) {
         const Lanes v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
         xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
         const Lanes d0 = xs0 - p0.normal_impulse;
