@@ -38,6 +38,7 @@ constexpr std::size_t kVelocityOffset = 2;  // BodyState::velocity after positio
 }
 
 void WarmStartBlocks(LinearBlock* blocks, std::size_t count, BodyState* states) {
+  if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
   double* velocities = &states[0].position.x + kVelocityOffset;
   for (std::size_t i = 0; i < count; ++i) {
@@ -68,6 +69,7 @@ void WarmStartBlocks(LinearBlock* blocks, std::size_t count, BodyState* states) 
 
 void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* start,
                  double inv_h_scalar) {
+  if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* velocities = &states[0].position.x + kVelocityOffset;
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
@@ -115,6 +117,7 @@ void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, cons
 
 void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
                    Vec2* push, double push_out_rate, double max_push_out_speed, double linear_slop) {
+  if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_velocities = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
   for (std::size_t i = 0; i < count; ++i) {

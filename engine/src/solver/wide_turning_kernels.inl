@@ -244,6 +244,7 @@ void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* stat
 void TurningPushOutBlocks(TurningBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
                           const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                           double max_push_out_speed, double linear_slop) {
+  if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_linear = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
   const unsigned all = (1u << Lanes::kCount) - 1;
