@@ -36,22 +36,32 @@ struct Scene {
   std::vector<Contact> contacts;
 };
 
+// A body near `position` with a random mass (none where `fixed`), velocity, start a little
+// away, and where it `turns` a moment of inertia, spin and turn since the start.
+void AddBody(Scene* scene, std::mt19937_64& random, bool fixed, bool turns, Vec2 position) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  BodyInfo info;
+  info.mass = fixed ? 0.0 : 1.0 + 0.5 * (unit(random) + 1.0);
+  info.inv_mass = fixed ? 0.0 : 1.0 / info.mass;
+  info.inertia = fixed || !turns ? 0.0 : 0.2 + 0.1 * unit(random);
+  info.inv_inertia = fixed || !turns ? 0.0 : 1.0 / info.inertia;
+  scene->infos.push_back(info);
+  BodyState state;
+  state.position = position + Vec2{0.02 * unit(random), 0.02 * unit(random)};
+  state.velocity = {3.0 * unit(random), 3.0 * unit(random)};
+  state.angular_velocity = turns ? 4.0 * unit(random) : 0.0;
+  scene->states.push_back(state);
+  scene->start_positions.push_back(state.position + Vec2{0.01 * unit(random), 0.01 * unit(random)});
+  scene->turned.push_back(engine::MakeRot(turns ? 0.05 * unit(random) : 0.0));
+}
+
 Scene MakeScene(unsigned seed) {
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Scene scene;
   const int bodies = 150;
   for (int i = 0; i < bodies; ++i) {
-    BodyInfo info;
-    const bool fixed = i < 3;  // three static bodies
-    info.mass = fixed ? 0.0 : 1.0 + 0.5 * (unit(random) + 1.0);
-    info.inv_mass = fixed ? 0.0 : 1.0 / info.mass;
-    scene.infos.push_back(info);
-    BodyState state;
-    state.position = {10.0 * unit(random), 10.0 * unit(random)};
-    state.velocity = {3.0 * unit(random), 3.0 * unit(random)};
-    scene.states.push_back(state);
-    scene.start_positions.push_back(state.position + Vec2{0.01 * unit(random), 0.01 * unit(random)});
+    AddBody(&scene, random, i < 3, false, {10.0 * unit(random), 10.0 * unit(random)});  // three static
   }
   const auto add = [&](int a, int b, int k) {
     Contact c;
@@ -141,22 +151,7 @@ Scene MakeTurningScene(unsigned seed) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Scene scene;
   const int bodies = 400;
-  for (int i = 0; i < bodies; ++i) {
-    BodyInfo info;
-    const bool fixed = i % 50 == 0;
-    info.mass = fixed ? 0.0 : 1.0 + 0.5 * (unit(random) + 1.0);
-    info.inv_mass = fixed ? 0.0 : 1.0 / info.mass;
-    info.inertia = fixed ? 0.0 : 0.2 + 0.1 * unit(random);
-    info.inv_inertia = fixed ? 0.0 : 1.0 / info.inertia;
-    scene.infos.push_back(info);
-    BodyState state;
-    state.position = {-20.0 + 0.1 * i + 0.02 * unit(random), 2.0 * unit(random)};
-    state.velocity = {3.0 * unit(random), 3.0 * unit(random)};
-    state.angular_velocity = 4.0 * unit(random);
-    scene.states.push_back(state);
-    scene.start_positions.push_back(state.position + Vec2{0.01 * unit(random), 0.01 * unit(random)});
-    scene.turned.push_back(engine::MakeRot(0.05 * unit(random)));
-  }
+  for (int i = 0; i < bodies; ++i) AddBody(&scene, random, i % 50 == 0, true, {-20.0 + 0.1 * i, 2.0 * unit(random)});
   int k = 0;
   const auto add = [&](int a, int b) {
     Contact c;

@@ -220,20 +220,32 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
 
 // The passes over all contacts go group by group, each large group shared among the threads:
 // `pass` takes a part of the constraints, or of their blocks in the wide solver.
+template <typename C, typename Pass>
+void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass) {
+  const auto runs = [&](auto& wide) {
+    ForEachGroup(pool, wide.order, [&](std::uint32_t begin, std::uint32_t end) {
+      pass(wide.blocks.data() + begin, std::size_t{end - begin});
+    }, kBlockLanes);
+  };
+  if constexpr (kCanTurn<C>) {
+    runs(wide_turning_);
+  } else {
+    runs(wide_);
+  }
+}
+
 template <typename C>
 void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                                   const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    if constexpr (kCanTurn<C>) {
-      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->turning_warm_start(wide_turning_.blocks.data() + begin, end - begin, states.data());
-      }, kBlockLanes);
-    } else {
-      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->warm_start(wide_.blocks.data() + begin, end - begin, states.data());
-      }, kBlockLanes);
-    }
+    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+      if constexpr (kCanTurn<C>) {
+        plan.wide->turning_warm_start(blocks, count, states.data());
+      } else {
+        plan.wide->warm_start(blocks, count, states.data());
+      }
+    });
   } else if (loaded_.empty()) {
     ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
       WarmStartAll(constraints.subspan(begin, end - begin), states);
@@ -249,17 +261,14 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
                               const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    if constexpr (kCanTurn<C>) {
-      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->turning_solve(wide_turning_.blocks.data() + begin, end - begin, states.data(),
-                                 start.positions.data(), start.turned.data(), plan.inv_h, plan.block_solver);
-      }, kBlockLanes);
-    } else {
-      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->solve(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
-                         plan.inv_h);
-      }, kBlockLanes);
-    }
+    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+      if constexpr (kCanTurn<C>) {
+        plan.wide->turning_solve(blocks, count, states.data(), start.positions.data(), start.turned.data(),
+                                 plan.inv_h, plan.block_solver);
+      } else {
+        plan.wide->solve(blocks, count, states.data(), start.positions.data(), plan.inv_h);
+      }
+    });
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
@@ -273,19 +282,16 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    if constexpr (kCanTurn<C>) {
-      ForEachGroup(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->turning_push_out(wide_turning_.blocks.data() + begin, end - begin, states.data(),
-                                    start.positions.data(), start.turned.data(), push.linear.data(),
-                                    push.angular.data(), plan.push_out_rate, def.max_push_out_speed,
-                                    def.linear_slop);
-      }, kBlockLanes);
-    } else {
-      ForEachGroup(context.pool, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        plan.wide->push_out(wide_.blocks.data() + begin, end - begin, states.data(), start.positions.data(),
-                            push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
-      }, kBlockLanes);
-    }
+    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+      if constexpr (kCanTurn<C>) {
+        plan.wide->turning_push_out(blocks, count, states.data(), start.positions.data(), start.turned.data(),
+                                    push.linear.data(), push.angular.data(), plan.push_out_rate,
+                                    def.max_push_out_speed, def.linear_slop);
+      } else {
+        plan.wide->push_out(blocks, count, states.data(), start.positions.data(), push.linear.data(),
+                            plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+      }
+    });
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

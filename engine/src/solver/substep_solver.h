@@ -93,6 +93,9 @@ class SubstepSolver {
   template <typename C>
   void PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                    const StepStart& start, PushVelocities push);
+  /// Calls pass(blocks, count) on runs of the wide solver's blocks for C, group by group.
+  template <typename C, typename Pass>
+  void ForEachBlockRun(WorkerPool& pool, Pass&& pass);
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;
