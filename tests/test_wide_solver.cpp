@@ -322,9 +322,7 @@ TEST_CASE("wide solver: a turning pour in strips steps to the same hash at every
   const std::uint64_t one_at_a_time = PourHash(1, 1, true, true, 2200, &contacts);
   // Enough contacts for the strip order, which the turning lanes take.
   REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
-  for (int lanes = 2; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
-    INFO(lanes << " lanes");
-    CHECK(PourHash(lanes, 1, true, true, 2200) == one_at_a_time);
-  }
+  // The widest lanes here (each width is checked pass by pass above), on one thread and on two.
+  CHECK(PourHash(0, 1, true, true, 2200) == one_at_a_time);
   CHECK(PourHash(0, 2, true, true, 2200) == one_at_a_time);
 }
