@@ -317,7 +317,7 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
   }
 }
 
-TEST_CASE("wide solver: a turning pour in strips steps to the same hash at every width and thread count") {
+TEST_CASE("wide solver: a turning pour in strips steps to the same hash in lanes and on two threads") {
   std::size_t contacts = 0;
   const std::uint64_t one_at_a_time = PourHash(1, 1, true, true, 2200, &contacts);
   // Enough contacts for the strip order, which the turning lanes take.
