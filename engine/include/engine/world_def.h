@@ -47,8 +47,9 @@ struct SubstepFeatures {
   bool energy_limit = true;
   bool block_solver = true;       ///< both points of a turning pair's contact solved together
   bool colour_order = true;       ///< where nothing can turn, contacts visited by colour
-  /// Where nothing can turn, contacts are visited by colour and gravity loads every body: how
-  /// many of a colour's contacts are solved at once, side by side in SIMD lanes. 0: the widest
+  /// Where gravity loads every body: how many contacts are solved at once, side by side in SIMD
+  /// lanes (a colour's where nothing can turn, four strips' where every contact turns and there
+  /// are at least 256, docs/solver.md "The wide solver: SIMD lanes"). 0: the widest
   /// the processor has (4 with AVX2, 2 on other x86-64, 1 elsewhere); 1: one at a time, without
   /// the lanes' layout; 2 or 4 (SSE2, AVX2; a width the processor lacks falls back to the widest
   /// it has). The bits are the same at every width.
