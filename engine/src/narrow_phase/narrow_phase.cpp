@@ -89,7 +89,6 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
                          bool parts, WorkerPool& pool) {
   previous_contacts_.swap(contacts_);
-  contacts_.clear();
   const auto collide = [&](std::span<const BodyPair> part, std::vector<Contact>* out) {
     // A part starts its walk through last step's contacts at its first pair: the walk from the
     // start would have reached no further, as every contact before it is of an earlier pair.
@@ -107,6 +106,7 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
   };
   const int threads = pool.Threads();
   if (threads == 1 || pairs.size() < kMinSharedPairs) {
+    contacts_.clear();
     collide(pairs, &contacts_);
     return;
   }
@@ -115,14 +115,15 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
   thread_contacts_.resize(threads);
   pool.RunOnAll([&](int t) {
     const std::size_t begin = pairs.size() * t / threads, end = pairs.size() * (t + 1) / threads;
-    thread_contacts_[t].clear();
-    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t]);
+    thread_contacts_[t].value.clear();
+    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t].value);
   });
   std::vector<std::size_t> offsets(threads + 1, 0);
-  for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].size();
+  for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].value.size();
+  // Only what the list grows by is zeroed first: every contact is written by the copies.
   contacts_.resize(offsets[threads]);
   pool.RunOnAll([&](int t) {
-    std::copy(thread_contacts_[t].begin(), thread_contacts_[t].end(), contacts_.begin() + offsets[t]);
+    std::copy(thread_contacts_[t].value.begin(), thread_contacts_[t].value.end(), contacts_.begin() + offsets[t]);
   });
 }
 

@@ -10,6 +10,7 @@
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/ids.h"
+#include "parallel/per_thread.h"
 #include "parallel/worker_pool.h"
 
 namespace engine::detail {
@@ -61,7 +62,7 @@ class NarrowPhase {
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
-  std::vector<std::vector<Contact>> thread_contacts_;  ///< each thread's part, when shared
+  std::vector<PerThread<std::vector<Contact>>> thread_contacts_;  ///< each thread's part, when shared
 };
 
 }  // namespace engine::detail

@@ -43,10 +43,12 @@ std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo
     const std::uint32_t next = level[body] + 1;
     for (std::uint32_t k = s->start[body]; k < s->start[body + 1]; ++k) {
       const std::uint32_t other = s->neighbours[k];
-      const bool unreached = level[other] == kUnreached;
-      level[other] = unreached ? next : level[other];
+      // A reached neighbour's level is at most `next`, so the minimum leaves it alone; written
+      // as a minimum, the compiler keeps it branch-free (a select became a branch).
+      const std::uint32_t was = level[other];
+      level[other] = std::min(was, next);
       queue[tail] = other;
-      tail += unreached;
+      tail += was == kUnreached;
     }
   }
   return tail;
@@ -101,24 +103,7 @@ template void BuildShockRows(std::span<const LinearConstraint>, std::span<const 
 
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop) {
-  for (const ShockRow& row : rows) {
-    BodyState& a = states[row.a];
-    BodyState& b = states[row.b];
-    const Vec2 n = row.normal;
-    // Overlap still being pushed out is the solver's (its push-out speed, carried up a stack
-    // here, could not be taken back later); a gap may close this far.
-    const Vec2 moved = (b.position - start_positions[row.b]) - (a.position - start_positions[row.a]);
-    const double s = row.base_separation + Dot(moved, n);
-    if (s < -linear_slop) continue;
-    const double min_vn = -std::max(s, 0.0) * inv_h;
-    // Sinking is a motion of the centres, and the solve's residue here is pure sinking: it is
-    // caught whole.
-    const double vn = Dot(b.velocity - a.velocity, n);
-    if (vn >= min_vn) continue;
-    const double impulse = (min_vn - vn) / (row.inv_mass_a + row.inv_mass_b);
-    a.velocity -= (impulse * row.inv_mass_a) * n;
-    b.velocity += (impulse * row.inv_mass_b) * n;
-  }
+  for (const ShockRow& row : rows) PropagateRow(row, states, start_positions, inv_h, linear_slop);
 }
 
 }  // namespace engine::detail

@@ -3,6 +3,7 @@
 // stack cannot sink whatever its mass ratios. Internal to the engine.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -54,5 +55,27 @@ void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> in
 /// `start_positions` are the centres at the step's start.
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop);
+
+/// One row of PropagateShock. A body the row holds fixed (inverse mass 0) is not written to, so
+/// that threads may share the bodies a pile stands on.
+inline void PropagateRow(const ShockRow& row, std::span<BodyState> states, std::span<const Vec2> start_positions,
+                         double inv_h, double linear_slop) {
+  BodyState& a = states[row.a];
+  BodyState& b = states[row.b];
+  const Vec2 n = row.normal;
+  // Overlap still being pushed out is the solver's (its push-out speed, carried up a stack
+  // here, could not be taken back later); a gap may close this far.
+  const Vec2 moved = (b.position - start_positions[row.b]) - (a.position - start_positions[row.a]);
+  const double s = row.base_separation + Dot(moved, n);
+  if (s < -linear_slop) return;
+  const double min_vn = -std::max(s, 0.0) * inv_h;
+  // Sinking is a motion of the centres, and the solve's residue here is pure sinking: it is
+  // caught whole.
+  const double vn = Dot(b.velocity - a.velocity, n);
+  if (vn >= min_vn) return;
+  const double impulse = (min_vn - vn) / (row.inv_mass_a + row.inv_mass_b);
+  if (row.inv_mass_a != 0.0) a.velocity -= (impulse * row.inv_mass_a) * n;
+  if (row.inv_mass_b != 0.0) b.velocity += (impulse * row.inv_mass_b) * n;
+}
 
 }  // namespace engine::detail

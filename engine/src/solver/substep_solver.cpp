@@ -108,6 +108,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
     BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
                       &shock_rows_);
+    shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
   }
   if constexpr (kCanTurn<C>) {
     plan.direct_solve = def.substep_features.direct_solve &&
@@ -191,7 +192,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->SolveDirect(states, inv_h);
   if (plan.energy_limit) LimitContactEnergy(constraints, states, context.infos, energy_before, warm);
   if (plan.shock_propagation) {
-    PropagateShock(shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
+    shock_schedule_.Run(context.pool, shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
   }
   if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
     if constexpr (kCanTurn<C>) {

@@ -10,6 +10,7 @@
 #include "solver/contact_order.h"
 #include "solver/direct_solver.h"
 #include "solver/shock_propagation.h"
+#include "solver/shock_schedule.h"
 #include "solver/substep_constraint.h"
 #include "solver/substep_passes.h"
 #include "solver/wide_constraints.h"
@@ -116,6 +117,7 @@ class SubstepSolver {
   DirectSolver direct_solver_;                          ///< islands with a large mass ratio
   ShockScratch shock_scratch_;
   std::vector<ShockRow> shock_rows_;
+  ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
 };
 
 }  // namespace engine::detail

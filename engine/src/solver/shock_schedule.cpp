@@ -1,0 +1,173 @@
+// The bands, the waits between them, and the pass that honours them.
+#include "solver/shock_schedule.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "parallel/spin_wait.h"
+
+namespace engine::detail {
+
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// The body a row moves: the upper one, or b of two on one level (both move).
+BodyIndex MovedBody(const ShockRow& row) { return row.inv_mass_b != 0.0 ? row.b : row.a; }
+
+}  // namespace
+
+void ShockSchedule::Plan(std::span<const ShockRow> rows, std::span<const Vec2> start_positions,
+                         std::size_t body_count, int threads) {
+  bands_ = rows.size() < kMinSharedShockRows ? 1 : std::min(threads, kMaxShockBands);
+  if (bands_ == 1) return;
+  const auto bands = static_cast<std::size_t>(bands_);
+  if (progress_count_ < bands) {
+    progress_ = std::make_unique<Progress[]>(bands);
+    progress_count_ = bands;
+  }
+  AssignBands(rows, start_positions);
+  FindWaits(rows, body_count);
+}
+
+// Bands of about equal numbers of rows, side by side, so that a pile's rows meet across a
+// border only near it: the cuts from a histogram of the moved bodies' x (a pass, where sorting
+// for exact quantiles cost as much as a propagation pass).
+void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::span<const Vec2> start_positions) {
+  const std::size_t n = rows.size();
+  const auto bands = static_cast<std::size_t>(bands_);
+  xs_.resize(n);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = start_positions[MovedBody(rows[i])].x;
+    xs_[i] = x;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  constexpr std::size_t kBins = 256;
+  const double scale = hi > lo ? static_cast<double>(kBins) / (hi - lo) : 0.0;
+  const auto bin_of = [&](double x) { return std::min(kBins - 1, static_cast<std::size_t>((x - lo) * scale)); };
+  std::uint32_t in_bin[kBins] = {};
+  for (std::size_t i = 0; i < n; ++i) ++in_bin[bin_of(xs_[i])];
+  std::uint32_t band_of_bin[kBins];
+  std::size_t below = 0, band = 0;
+  for (std::size_t bin = 0; bin < kBins; ++bin) {
+    // A bin goes to the band its first row would fall in, counting rows in x order.
+    while (band + 1 < bands && below >= (band + 1) * n / bands) ++band;
+    band_of_bin[bin] = static_cast<std::uint32_t>(band);
+    below += in_bin[bin];
+  }
+  band_of_.resize(n);
+  band_start_.assign(bands + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    band_of_[i] = band_of_bin[bin_of(xs_[i])];
+    ++band_start_[band_of_[i] + 1];
+  }
+  for (std::size_t b = 0; b < bands; ++b) band_start_[b + 1] += band_start_[b];
+  band_rows_.resize(n);
+  fill_.assign(band_start_.begin(), band_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) band_rows_[fill_[band_of_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+// The waits: before a row reads a body another band's earlier row wrote, or writes a body
+// another band's earlier row touched. Only bodies that some row moves and rows of two bands
+// touch can need one; the rest are passed over. A wait that an earlier wait of the same band on
+// the same band covers is left out.
+void ShockSchedule::FindWaits(std::span<const ShockRow> rows, std::size_t body_count) {
+  const std::size_t n = rows.size();
+  const auto bands = static_cast<std::size_t>(bands_);
+  touched_by_.assign(body_count, 0);
+  written_by_.assign(body_count, 0);
+  for (std::size_t r = 0; r < n; ++r) {
+    const ShockRow& row = rows[r];
+    const std::uint64_t bit = std::uint64_t{1} << band_of_[r];
+    touched_by_[row.a] |= bit;
+    touched_by_[row.b] |= bit;
+    if (row.inv_mass_a != 0.0) written_by_[row.a] |= bit;
+    if (row.inv_mass_b != 0.0) written_by_[row.b] |= bit;
+  }
+  const auto shared = [&](BodyIndex body) {
+    const std::uint64_t t = touched_by_[body];
+    return written_by_[body] != 0 && (t & (t - 1)) != 0;
+  };
+  last_write_.assign(body_count, kNone);
+  last_touch_.assign(body_count * bands, kNone);
+  awaited_.assign(n, 0);
+  waits_by_band_.resize(bands);
+  for (auto& waits : waits_by_band_) waits.clear();
+  waited_.assign(bands * bands, kNone);
+  need_.resize(bands);
+  position_.assign(bands, 0);
+  for (std::uint32_t r = 0; r < n; ++r) {
+    const ShockRow& row = rows[r];
+    const std::uint32_t band = band_of_[r];
+    const std::uint32_t position = position_[band]++;
+    const bool share[2] = {shared(row.a), shared(row.b)};
+    if (!share[0] && !share[1]) continue;
+    std::fill(need_.begin(), need_.end(), kNone);
+    const auto need_row = [&](std::uint32_t other_row) {
+      if (other_row == kNone) return;
+      const std::uint32_t other = band_of_[other_row];
+      if (other != band && (need_[other] == kNone || other_row > need_[other])) need_[other] = other_row;
+    };
+    const BodyIndex bodies[2] = {row.a, row.b};
+    const bool writes[2] = {row.inv_mass_a != 0.0, row.inv_mass_b != 0.0};
+    for (int k = 0; k < 2; ++k) {
+      if (!share[k]) continue;
+      need_row(last_write_[bodies[k]]);
+      if (writes[k]) {
+        for (std::size_t other = 0; other < bands; ++other) need_row(last_touch_[bodies[k] * bands + other]);
+      }
+    }
+    for (std::size_t other = 0; other < bands; ++other) {
+      std::uint32_t& covered = waited_[band * bands + other];
+      if (need_[other] == kNone || (covered != kNone && need_[other] <= covered)) continue;
+      covered = need_[other];
+      awaited_[need_[other]] = 1;
+      waits_by_band_[band].push_back({position, static_cast<std::uint32_t>(other), need_[other]});
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (!share[k]) continue;
+      last_touch_[bodies[k] * bands + band] = r;
+      if (writes[k]) last_write_[bodies[k]] = r;
+    }
+  }
+}
+
+std::size_t ShockSchedule::WaitCount() const {
+  if (bands_ == 1) return 0;
+  std::size_t count = 0;
+  for (const std::vector<Wait>& waits : waits_by_band_) count += waits.size();
+  return count;
+}
+
+void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
+                        std::span<const Vec2> start_positions, double inv_h, double linear_slop) {
+  if (bands_ == 1 || pool.Threads() < bands_) {
+    PropagateShock(rows, states, start_positions, inv_h, linear_slop);
+    return;
+  }
+  for (int band = 0; band < bands_; ++band) progress_[band].next.store(0, std::memory_order_relaxed);
+  pool.RunOnAll([&](int band) {
+    if (band >= bands_) return;
+    const std::vector<Wait>& waits = waits_by_band_[static_cast<std::size_t>(band)];
+    auto wait = waits.begin();
+    std::atomic<std::uint32_t>& mine = progress_[band].next;
+    std::uint32_t position = 0;
+    for (std::uint32_t k = band_start_[band]; k < band_start_[band + 1]; ++k, ++position) {
+      for (; wait != waits.end() && wait->position == position; ++wait) {
+        const std::atomic<std::uint32_t>& theirs = progress_[wait->thread].next;
+        const std::uint32_t row = wait->row;
+        SpinThenWait(theirs, [&] { return theirs.load(std::memory_order_acquire) > row; });
+      }
+      const std::uint32_t r = band_rows_[k];
+      PropagateRow(rows[r], states, start_positions, inv_h, linear_slop);
+      if (awaited_[r]) {
+        mine.store(r + 1, std::memory_order_release);
+        mine.notify_all();
+      }
+    }
+  });
+}
+
+}  // namespace engine::detail

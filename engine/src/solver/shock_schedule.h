@@ -1,0 +1,67 @@
+// Shock propagation shared among threads with the bits of one: each thread takes the rows in
+// its band of the scene, in row order, and before a row that touches a body another thread's
+// earlier row touched, waits until that thread is past it. Every body then meets its rows in
+// row order, with the same values, whatever the number of threads. Internal to the engine.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/body.h"
+#include "parallel/worker_pool.h"
+#include "solver/shock_propagation.h"
+
+namespace engine::detail {
+
+/// Fewer rows than this go on one thread: a pass over them takes a few microseconds, about what
+/// handing it out and waiting at the bands' borders costs.
+inline constexpr std::size_t kMinSharedShockRows = 2048;
+/// At most this many bands (a bit each in a mask); further threads sit the pass out.
+inline constexpr int kMaxShockBands = 64;
+
+class ShockSchedule {
+ public:
+  /// Once a step, after BuildShockRows: the rows split into `threads` bands (at most
+  /// kMaxShockBands) of the x of the body each row moves (the upper one) at the step's start, and
+  /// the waits between them. With one thread or fewer than kMinSharedShockRows rows, the pass
+  /// stays on the calling thread.
+  void Plan(std::span<const ShockRow> rows, std::span<const Vec2> start_positions, std::size_t body_count,
+            int threads);
+  /// How many waits Plan found (0 when the pass stays on one thread).
+  std::size_t WaitCount() const;
+  /// PropagateShock over the rows Plan saw, on the pool's threads.
+  void Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
+           std::span<const Vec2> start_positions, double inv_h, double linear_slop);
+
+ private:
+  /// Before the thread's row at `position` in its list, thread `thread` must be past row `row`.
+  struct Wait {
+    std::uint32_t position;
+    std::uint32_t thread;
+    std::uint32_t row;
+  };
+  /// A thread's progress (the row after the last one others wait on), a cache line to itself.
+  struct alignas(64) Progress {
+    std::atomic<std::uint32_t> next{0};
+  };
+
+  void AssignBands(std::span<const ShockRow> rows, std::span<const Vec2> start_positions);
+  void FindWaits(std::span<const ShockRow> rows, std::size_t body_count);
+
+  int bands_ = 1;
+  std::vector<std::uint32_t> band_rows_;   ///< each band's rows in row order, band after band
+  std::vector<std::uint32_t> band_start_;  ///< per band: where its rows begin (one past: the end)
+  std::vector<std::vector<Wait>> waits_by_band_;  ///< each band's, in position order
+  std::vector<std::uint8_t> awaited_;      ///< per row: another thread waits on it
+  std::unique_ptr<Progress[]> progress_;
+  std::size_t progress_count_ = 0;
+  // Plan's scratch, kept between steps.
+  std::vector<double> xs_;
+  std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_, position_;
+  std::vector<std::uint64_t> touched_by_, written_by_;  ///< per body: a bit per band
+};
+
+}  // namespace engine::detail
