@@ -15,6 +15,7 @@
 #include "bench/stress_scenes.h"
 #include "broad_phase/broad_phase.h"
 #include "engine/world.h"
+#include "parallel/worker_pool.h"
 #include "game/scene.h"
 
 namespace {
@@ -322,6 +323,41 @@ TEMPLATE_TEST_CASE("pair budget: every broad phase keeps what the rule keeps, pi
     REQUIRE(pairs == expected);
     CHECK(crowded > (step == 0 ? 250u : 0u));  // the pile, and more, while the moves scatter it
     Move(rng, boxes);
+  }
+}
+
+TEST_CASE("uniform grid shared among threads: all pairs, and the budget's, as on one", "[broadphase][parallel]") {
+  // Enough boxes that the grid shares its buckets out (past its 4 096 entries), moving, and a
+  // pile with small quotas so the budget crowds bodies: the pairs found by two and three threads
+  // must be the rule's, which the budget applies in the order the buckets are scanned.
+  std::mt19937_64 rng(5);
+  auto boxes = RandomBoxes(rng, 9000, 160);
+  std::uniform_real_distribution<double> near(-0.5, 0.5);
+  for (int i = 0; i < 600; ++i) {
+    const Vec2 at{80 + near(rng), 80 + near(rng)};
+    boxes.push_back({at, at + Vec2{1.0 + i % 3, 1.0 + i % 2}});
+  }
+  std::vector<engine::PairQuota> quotas(boxes.size(), engine::PairQuota{1.0, 12, 1.0});
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    quotas[i].area = (boxes[i].upper.x - boxes[i].lower.x) * (boxes[i].upper.y - boxes[i].lower.y);
+  }
+  for (const int threads : {2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    engine::UniformGrid grid;
+    std::vector<BodyPair> all, pairs;
+    for (int step = 0; step < 6; ++step) {
+      INFO("threads " << threads << ", step " << step);
+      engine::FindPairsAllPairs(boxes, &all);
+      grid.FindPairs(boxes, &pairs, {}, &pool);
+      REQUIRE(pairs == all);
+      std::size_t crowded = 0;
+      const std::vector<BodyPair> expected = BudgetedPairs(boxes, quotas, &crowded);
+      grid.FindPairs(boxes, &pairs, quotas, &pool);
+      REQUIRE(pairs == expected);
+      CHECK(grid.Collector().CrowdedCount() == crowded);
+      CHECK(crowded > 100);  // the pile
+      Move(rng, boxes);
+    }
   }
 }
 

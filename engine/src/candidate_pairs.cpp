@@ -26,6 +26,9 @@ constexpr double kFastFraction = 0.5;
 constexpr double kPairQuota = 16;
 constexpr double kPairQuotaPerAspect = 4;
 
+// Fewer bodies than this have their bounds found on one thread.
+constexpr std::uint32_t kMinSharedBounds = 4096;
+
 // How far a body may reach within a step, m: contacts within it are speculative.
 double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info,
                          const BodyGeometry* geometry, bool awake) {
@@ -92,26 +95,26 @@ Shape QuotaShape(const Bodies& bodies, BodyIndex index) {
 }
 
 void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& bodies,
-                          std::span<const std::uint8_t> awake) {
+                          std::span<const std::uint8_t> awake, WorkerPool& pool) {
   const std::size_t n = bodies.states.size();
   bounds_.resize(n);
   margins_.resize(n);
   const bool parts = bodies.with_parts > 0;
-  for (BodyIndex id = 0; id < n; ++id) {
+  pool.ParallelFor(static_cast<std::uint32_t>(n), kMinSharedBounds, [&](BodyIndex id) {
     const BodyGeometry* geometry = parts ? bodies.geometries[id].get() : nullptr;
     margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id], geometry, awake[id] != 0)
                                : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
     const AABB b = parts ? BoundsOf(bodies, id) : BodyBounds(bodies.infos[id].shape, bodies.states[id]);
     bounds_[id] = {b.lower - grow, b.upper + grow};
-  }
+  });
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.
   const auto quotas = def.pair_budget ? std::span<const PairQuota>(quotas_) : std::span<const PairQuota>();
   packed_ = bodies.inactive != 0;
   if (!packed_) {
-    broad_phase_.FindPairs(def.broad_phase, bounds_, &pairs_, quotas);
+    broad_phase_.FindPairs(def.broad_phase, bounds_, &pairs_, quotas, &pool);
   } else {
-    FindAmongEnabled(def, bodies.enabled, quotas);
+    FindAmongEnabled(def, bodies.enabled, quotas, pool);
   }
   if (bodies.filtered > 0) {
     std::erase_if(pairs_, [&](BodyPair p) { return !ShouldCollide(bodies.filters[p.a], bodies.filters[p.b]); });
@@ -129,7 +132,7 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
 }
 
 void CandidatePairs::FindAmongEnabled(const WorldDef& def, std::span<const std::uint8_t> enabled,
-                                      std::span<const PairQuota> quotas) {
+                                      std::span<const PairQuota> quotas, WorkerPool& pool) {
   packed_slots_.clear();
   packed_bounds_.clear();
   packed_quotas_.clear();
@@ -139,7 +142,7 @@ void CandidatePairs::FindAmongEnabled(const WorldDef& def, std::span<const std::
     packed_bounds_.push_back(bounds_[id]);
     if (!quotas.empty()) packed_quotas_.push_back(quotas[id]);
   }
-  broad_phase_.FindPairs(def.broad_phase, packed_bounds_, &pairs_, packed_quotas_);
+  broad_phase_.FindPairs(def.broad_phase, packed_bounds_, &pairs_, packed_quotas_, &pool);
   // Slots grow with the packed index, so the pairs stay sorted.
   for (BodyPair& p : pairs_) p = {packed_slots_[p.a], packed_slots_[p.b]};
 }

@@ -46,7 +46,8 @@ class CandidatePairs {
   /// Finds the pairs of enabled bodies whose grown bounds overlap and whose filters let them
   /// collide, sorted by (a, b). `speculative`: the solver takes contacts up to a margin apart
   /// (else only real overlap).
-  void Find(const WorldDef& def, bool speculative, const Bodies& bodies, std::span<const std::uint8_t> awake);
+  void Find(const WorldDef& def, bool speculative, const Bodies& bodies, std::span<const std::uint8_t> awake,
+            WorkerPool& pool);
 
   std::vector<BodyPair>& Pairs() { return pairs_; }
   /// Per body, how far it may reach within this step, m: two bodies closer than the sum of
@@ -59,7 +60,7 @@ class CandidatePairs {
 
  private:
   void FindAmongEnabled(const WorldDef& def, std::span<const std::uint8_t> enabled,
-                        std::span<const PairQuota> quotas);
+                        std::span<const PairQuota> quotas, WorkerPool& pool);
 
   std::vector<PairQuota> quotas_;
   std::vector<double> margins_;

@@ -89,7 +89,7 @@ void World::Step() {
   if (!w.particles.Empty()) w.particles.MarkStepStart(bodies);  // particles see bodies move through the step
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
-  w.candidates.Find(w.def, w.SpeculativeContacts(), bodies, w.sleep.awake);
+  w.candidates.Find(w.def, w.SpeculativeContacts(), bodies, w.sleep.awake, *w.pool);
   if (w.joints.stale) w.joints.Rebuild(bodies.enabled);
   // Bodies a joint holds together do not collide, unless the joint says they do.
   detail::DropJoinedPairs(w.joints.no_collide, &w.candidates.Pairs());

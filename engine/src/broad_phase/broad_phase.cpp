@@ -41,24 +41,24 @@ const PairCollector& BroadPhase::LastCollector() const {
 }
 
 void BroadPhase::FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                           std::span<const PairQuota> quotas) {
+                           std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   if (type != BroadPhaseType::kAuto) {
     auto_on_grid_ = false;
     auto_previous_.clear();
   }
   last_used_ = type;
   switch (type) {
-    case BroadPhaseType::kAuto: FindPairsAuto(boxes, pairs, quotas); break;
+    case BroadPhaseType::kAuto: FindPairsAuto(boxes, pairs, quotas, pool); break;
     case BroadPhaseType::kAllPairs: all_pairs_.FindPairs(boxes, pairs, quotas); break;
     case BroadPhaseType::kSweepAndPrune: sweep_and_prune_.FindPairs(boxes, pairs, quotas); break;
-    case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(boxes, pairs, quotas); break;
+    case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(boxes, pairs, quotas, pool); break;
     case BroadPhaseType::kQuadtree: quadtree_.FindPairs(boxes, pairs, quotas); break;
     case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(boxes, pairs, quotas); break;
   }
 }
 
 void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                               std::span<const PairQuota> quotas) {
+                               std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   const std::size_t n = boxes.size();
   if (n <= kAllPairsMaxBodies) {
     last_used_ = BroadPhaseType::kAllPairs;
@@ -77,7 +77,7 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
   }
   if (auto_on_grid_) {
     last_used_ = BroadPhaseType::kUniformGrid;
-    uniform_grid_.FindPairs(boxes, pairs, quotas);
+    uniform_grid_.FindPairs(boxes, pairs, quotas, pool);
     auto_previous_.assign(boxes.begin(), boxes.end());
     return;
   }

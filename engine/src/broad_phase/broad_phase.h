@@ -31,8 +31,9 @@ namespace engine {
 class BroadPhase {
  public:
   /// `quotas`: empty (every pair), or one per box (the pair budget, see PairCollector).
+  /// `pool`: threads the uniform grid may share its search among (the others run on the caller).
   void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                 std::span<const PairQuota> quotas = {});
+                 std::span<const PairQuota> quotas = {}, detail::WorkerPool* pool = nullptr);
 
   /// The structure the last call used (never kAuto).
   BroadPhaseType LastUsed() const { return last_used_; }
@@ -43,7 +44,7 @@ class BroadPhase {
 
  private:
   void FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                     std::span<const PairQuota> quotas);
+                     std::span<const PairQuota> quotas, detail::WorkerPool* pool);
   void FindPairsAutoTree(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                          std::span<const PairQuota> quotas);
 

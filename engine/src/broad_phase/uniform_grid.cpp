@@ -17,6 +17,8 @@ constexpr double kCellLimit = 1 << 29;
 // A box touching more cells than this is "large": binning it would cost more than testing it
 // alone. With cells twice the median extent, a typical box touches one to four.
 constexpr std::int64_t kMaxCellsPerBox = 16;
+// Fewer entries than this are scanned on one thread: the hand-off would cost more.
+constexpr std::size_t kMinSharedEntries = 4096;
 
 double Extent(const AABB& box) { return std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y); }
 
@@ -78,7 +80,7 @@ std::uint32_t UniformGrid::Bucket(std::int32_t x, std::int32_t y) const {
 }
 
 void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                            std::span<const PairQuota> quotas) {
+                            std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   collector_.Begin(boxes, quotas, pairs);
   large_.clear();
   small_.clear();
@@ -92,7 +94,7 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
   if (!small_.empty()) {
     const std::size_t bucket_count = ChooseBuckets(entry_count);
     FillBuckets(boxes, entry_count, bucket_count);
-    FindBinnedPairs(bucket_count);
+    FindBinnedPairs(bucket_count, pool);
   }
   FindLargePairs(boxes);
   collector_.Finish();
@@ -158,20 +160,49 @@ void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_co
 // Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower
 // corner: the corner's column is the larger of the two first columns, so one of the boxes must
 // start in this column, and likewise for the row.
-void UniformGrid::FindBinnedPairs(std::size_t bucket_count) {
-  std::uint32_t begin = 0;
-  for (std::size_t b = 0; b < bucket_count; ++b) {
+template <typename Report>
+void UniformGrid::ScanBuckets(std::size_t first, std::size_t last, Report&& report) const {
+  std::uint32_t begin = first == 0 ? 0 : bucket_start_[first - 1];
+  for (std::size_t b = first; b < last; ++b) {
     const std::uint32_t end = bucket_start_[b];
     for (std::uint32_t i = begin; i + 1 < end; ++i) {
       const Entry& p = entries_[i];
       for (std::uint32_t j = i + 1; j < end; ++j) {
         const Entry& q = entries_[j];
-        if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) {
-          collector_.Add(p.body, q.body);
-        }
+        if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) report(p.body, q.body);
       }
     }
     begin = end;
+  }
+}
+
+// Shared, each thread scans a run of buckets holding about as many entries as the others' and
+// keeps its pairs; the runs' pairs then go to the collector in bucket order, as one thread's
+// would, so the budget sees them in the same order.
+void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool) {
+  const int threads = pool ? pool->Threads() : 1;
+  if (threads == 1 || entries_.size() < kMinSharedEntries) {
+    ScanBuckets(0, bucket_count, [this](std::uint32_t a, std::uint32_t b) { collector_.Add(a, b); });
+    return;
+  }
+  // The first bucket beginning at or past entry e: bucket b begins where b − 1 ends.
+  const auto bucket_at = [&](std::size_t e) {
+    const auto ends = std::span<const std::uint32_t>(bucket_start_).first(bucket_count);
+    const auto k = static_cast<std::size_t>(std::lower_bound(ends.begin(), ends.end(), e) - ends.begin());
+    return e == 0 ? std::size_t{0} : std::min(k + 1, bucket_count);
+  };
+  found_.resize(static_cast<std::size_t>(threads));
+  const std::size_t total = entries_.size();
+  pool->RunOnAll([&](int t) {
+    const auto part = static_cast<std::size_t>(t);
+    const std::size_t first = bucket_at(total * part / threads);
+    const std::size_t last = t + 1 == threads ? bucket_count : bucket_at(total * (part + 1) / threads);
+    std::vector<BodyPair>& found = found_[part].value;
+    found.clear();
+    ScanBuckets(first, last, [&found](std::uint32_t a, std::uint32_t b) { found.push_back({a, b}); });
+  });
+  for (const auto& part : found_) {
+    for (const BodyPair& p : part.value) collector_.Add(p.a, p.b);
   }
 }
 

@@ -8,6 +8,8 @@
 
 #include "body_pair.h"
 #include "broad_phase/pair_collector.h"
+#include "parallel/per_thread.h"
+#include "parallel/worker_pool.h"
 #include "engine/math.h"
 
 namespace engine {
@@ -20,8 +22,10 @@ namespace engine {
 /// similar-sized boxes. Pairs come out sorted by (a, b).
 class UniformGrid {
  public:
+  /// `pool`: the threads to share the search among (none: the calling thread alone). The pairs
+  /// and the budget's choices are the same whatever the pool.
   void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                 std::span<const PairQuota> quotas = {});
+                 std::span<const PairQuota> quotas = {}, detail::WorkerPool* pool = nullptr);
   const PairCollector& Collector() const { return collector_; }
 
   /// m; 0 before the first call.
@@ -50,7 +54,10 @@ class UniformGrid {
   /// Dense or hashed buckets for the entries; returns how many.
   std::size_t ChooseBuckets(std::int64_t entry_count);
   void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count);
-  void FindBinnedPairs(std::size_t bucket_count);
+  void FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool);
+  /// Calls report(i, j) for the pairs of the buckets [first, last), in bucket order.
+  template <typename Report>
+  void ScanBuckets(std::size_t first, std::size_t last, Report&& report) const;
   void FindLargePairs(std::span<const AABB> boxes);
   void FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes);
 
@@ -68,6 +75,7 @@ class UniformGrid {
   std::vector<std::uint32_t> bucket_start_;
   std::vector<Entry> entries_;
   std::vector<double> extent_scratch_;
+  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's pairs, when shared
   PairCollector collector_;
 };
 
