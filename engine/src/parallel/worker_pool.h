@@ -31,6 +31,21 @@ class WorkerPool {
     }
   }
 
+  /// Runs `first` on the calling thread and `second` on a worker, side by side (with one thread,
+  /// first then second): for two tasks that write nothing the other reads or writes.
+  template <typename First, typename Second>
+  void RunSideBySide(First&& first, Second&& second) {
+    if (workers_.empty()) {
+      first();
+      second();
+      return;
+    }
+    Run([&](int thread) {
+      if (thread == 0) first();
+      if (thread == 1) second();
+    });
+  }
+
   /// Calls body(i) for every i in [0, count): on the calling thread alone when there is one
   /// thread or fewer than `min_count` indices (a few microseconds of hand-off would cost more),
   /// else split into Threads() chunks, the caller taking the first. Returns when all are done.

@@ -105,31 +105,42 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector);
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
-  if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
-    BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
-                      &shock_rows_);
-    shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
-  }
   if constexpr (kCanTurn<C>) {
     plan.direct_solve = def.substep_features.direct_solve &&
                         PrepareDirectSolve(constraints, context.infos, &direct_solver_);
   }
-  impact_lags_.clear();
-  if (plan.impact_pass) {  // bounces first
-    ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
-  }
-  // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
-  // the direct solve takes its islands whole: one at a time).
-  if (def.substep_features.lanes != 1 && loaded_.empty()) {
-    if constexpr (kCanTurn<C>) {
-      if (!plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
-        plan.wide = &WidePassesFor(def.substep_features.lanes);
-        wide_turning_.Pack(constraints, order_);
-      }
-    } else if (def.substep_features.colour_order) {
-      plan.wide = &WidePassesFor(def.substep_features.lanes);
-      wide_.Pack(constraints, order_);
+  // Two tasks side by side: the shock rows only read the constraints, the impacts only write
+  // velocities and the lanes only their blocks.
+  const auto shock_rows = [&] {
+    if (!plan.shock_propagation) return;  // stacks are supported against gravity: its direction is up
+    BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
+                      &shock_rows_);
+    shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
+  };
+  const auto impacts_and_lanes = [&] {
+    impact_lags_.clear();
+    if (plan.impact_pass) {  // bounces first
+      ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
     }
+    // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
+    // the direct solve takes its islands whole: one at a time).
+    if (def.substep_features.lanes != 1 && loaded_.empty()) {
+      if constexpr (kCanTurn<C>) {
+        if (!plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
+          plan.wide = &WidePassesFor(def.substep_features.lanes);
+          wide_turning_.Pack(constraints, order_);
+        }
+      } else if (def.substep_features.colour_order) {
+        plan.wide = &WidePassesFor(def.substep_features.lanes);
+        wide_.Pack(constraints, order_);
+      }
+    }
+  };
+  if (plan.shock_propagation && constraints.size() >= kMinSideBySideConstraints) {
+    context.pool.RunSideBySide(impacts_and_lanes, shock_rows);
+  } else {
+    shock_rows();
+    impacts_and_lanes();
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);

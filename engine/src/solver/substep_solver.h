@@ -61,6 +61,9 @@ class SubstepSolver {
   /// four times as tall as wide, about 140 bodies deep) kept creeping at 0.2 m/s and ended with
   /// 2.7 cm of overlap; one 72 deep (10 000 in a square box) ended with 6.8 mm.
   static constexpr double kDeepPile = 64.0;
+  /// From this many constraints on, the shock rows are built on a second thread while the first
+  /// resolves impacts and packs the lanes: below, the hand-off costs more than it saves.
+  static constexpr std::size_t kMinSideBySideConstraints = 2048;
   /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
   /// with rotation (turning stacks couple their contacts, docs/solver.md).
   static void FillAutomaticSettings(WorldDef* def);
