@@ -8,6 +8,9 @@ namespace engine::detail {
 
 namespace {
 
+// Fewer contacts than this are looked at on one thread.
+constexpr std::uint32_t kMinSharedContacts = 4096;
+
 // How fast the bodies close along the normal at the contact's points (the fastest), m/s.
 double ApproachSpeed(const Contact& c, const BodyState& a, const BodyState& b) {
   double fastest = -std::numeric_limits<double>::infinity();
@@ -56,7 +59,8 @@ void ContactEvents::RecordStartVelocities(std::span<const BodyState> states) {
 }
 
 void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodies,
-                           std::span<const std::uint8_t> awake, const WorldDef& def, StepEvents* events) {
+                           std::span<const std::uint8_t> awake, const WorldDef& def, WorkerPool& pool,
+                           StepEvents* events) {
   previous_.swap(touching_);
   touching_.clear();
   events->contact_end.insert(events->contact_end.end(), removed_.begin(), removed_.end());
@@ -82,8 +86,13 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
     return ApproachSpeed(c, start(c.a), start(c.b));
   };
   const bool parts = bodies.with_parts > 0;
-  for (const Contact& c : contacts) {
-    if (!Touching(c, [&] { return approach(c); }, bodies.states, def)) continue;
+  touches_.resize(contacts.size());
+  pool.ParallelFor(static_cast<std::uint32_t>(contacts.size()), kMinSharedContacts, [&](std::uint32_t i) {
+    touches_[i] = Touching(contacts[i], [&] { return approach(contacts[i]); }, bodies.states, def);
+  });
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (!touches_[i]) continue;
+    const Contact& c = contacts[i];
     const BodyPair pair{c.a, c.b};
     // Bodies made of parts can touch at several pieces: one pair, one begin.
     if (parts && !touching_.empty() && touching_.back() == pair) continue;

@@ -11,6 +11,7 @@
 #include "engine/contact.h"
 #include "engine/events.h"
 #include "engine/world_def.h"
+#include "parallel/worker_pool.h"
 #include "snapshot/byte_stream.h"
 
 namespace engine::detail {
@@ -25,8 +26,9 @@ class ContactEvents {
   /// the linear slop; the touching pairs that are new begin, the ones gone end (`awake`: per
   /// body, whether it moved this step; a pair of bodies at rest stays touching). The approach
   /// speed is measured at the step's start (`bodies.start_positions`, the recorded velocities).
+  /// Whether each contact touches is found on the pool's threads, the merge on the caller's.
   void Update(std::span<const Contact> contacts, const Bodies& bodies, std::span<const std::uint8_t> awake,
-              const WorldDef& def, StepEvents* events);
+              const WorldDef& def, WorkerPool& pool, StepEvents* events);
   /// The body was destroyed or disabled: its touching contacts end, reported after the next step.
   void RemoveBody(BodyIndex index, const Bodies& bodies);
   /// What carries over from step to step, for snapshots (snapshot/world_snapshot.cpp).
@@ -39,6 +41,7 @@ class ContactEvents {
   std::vector<BodyPair> touching_;       ///< after the last step, sorted
   std::vector<BodyPair> previous_;
   std::vector<ContactEndEvent> removed_;
+  std::vector<std::uint8_t> touches_;    ///< per contact this step
 };
 
 }  // namespace engine::detail

@@ -135,7 +135,7 @@ void World::Step() {
   if (w.def.sleeping) w.UpdateSleep();  // islands at rest long enough go to sleep
   // Events: contacts that began or ended touching, sensors that began or ended overlapping.
   if (w.def.contact_events) {
-    w.contact_events.Update(w.narrow_phase.Contacts(), bodies, w.sleep.awake, w.def, &w.events);
+    w.contact_events.Update(w.narrow_phase.Contacts(), bodies, w.sleep.awake, w.def, *w.pool, &w.events);
   }
   if (bodies.sensors > 0 || w.sensors.HasQueuedEnds()) w.sensors.Update(bodies, &w.events);
   // A non-finite number stops here, named, not in a frame.

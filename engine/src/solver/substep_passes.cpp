@@ -78,27 +78,45 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 
 }  // namespace
 
+namespace {
+
+// Fewer contacts than this are prepared or stored on one thread.
+constexpr std::uint32_t kMinSharedContacts = 4096;
+
+// Calls body(i) for each contact, on the pool's threads when there is one.
+template <typename Body>
+void ForEachContact(WorkerPool* pool, std::size_t count, Body&& body) {
+  const auto n = static_cast<std::uint32_t>(count);
+  if (pool) {
+    pool->ParallelFor(n, kMinSharedContacts, body);
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) body(i);
+  }
+}
+
+}  // namespace
+
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState>,
-                               std::vector<LinearConstraint>* constraints) {
+                               std::vector<LinearConstraint>* constraints, WorkerPool* pool) {
   constraints->resize(contacts.size());
-  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
     const Contact& c = contacts[i];
     LinearConstraint& lc = (*constraints)[slot[i]];
     FillPair(c, infos, &lc);
     FillCentreRow(c, lc.inv_mass_a, lc.inv_mass_b, &lc);
-  }
+  });
 }
 
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<SubstepConstraint>* constraints) {
+                               std::vector<SubstepConstraint>* constraints, WorkerPool* pool) {
   // Filled in place, every field a constraint reads set (a point past point_count is never read):
   // copying each one in would cost a call to memcpy apiece.
   constraints->resize(contacts.size());
-  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
     const Contact& c = contacts[i];
     SubstepConstraint& sc = (*constraints)[slot[i]];
     FillPair(c, infos, &sc);
@@ -129,7 +147,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
         p.push_impulse = 0.0;
       }
     }
-  }
+  });
 }
 
 namespace {
@@ -558,15 +576,15 @@ void ApplyImpactLags(std::span<const C> constraints, std::span<const std::uint32
 
 template <typename C>
 void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t> slot,
-                   std::span<Contact> contacts) {
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
+                   std::span<Contact> contacts, WorkerPool* pool) {
+  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
     const C& sc = constraints[slot[i]];
     Contact& c = contacts[i];
     for (int k = 0; k < 2; ++k) {
       c.normal_impulse[k] = k < PointCount(sc) ? Point(sc, k).normal_impulse : 0.0;
       c.tangent_impulse[k] = k < PointCount(sc) ? Point(sc, k).tangent_impulse : 0.0;
     }
-  }
+  });
 }
 
 // The passes for either kind of constraint.
@@ -582,7 +600,7 @@ void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t
                         double, double, double);                                                  \
   template void ApplyImpactLags(std::span<const C>, std::span<const std::uint32_t>,              \
                                 std::span<const double>, std::span<BodyState>);                   \
-  template void StoreImpulses(std::span<const C>, std::span<const std::uint32_t>, std::span<Contact>);
+  template void StoreImpulses(std::span<const C>, std::span<const std::uint32_t>, std::span<Contact>, WorkerPool*);
 ENGINE_SUBSTEP_PASSES(SubstepConstraint)
 ENGINE_SUBSTEP_PASSES(LinearConstraint)
 #undef ENGINE_SUBSTEP_PASSES

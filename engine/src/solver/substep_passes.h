@@ -10,6 +10,7 @@
 #include "solver/block_solver.h"
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "parallel/worker_pool.h"
 #include "solver/substep_constraint.h"
 
 namespace engine::detail {
@@ -37,11 +38,12 @@ inline const LinearConstraint& Point(const LinearConstraint& c, int) { return c;
 
 /// One constraint per contact, with the impulses carried over from the last step; contact i's
 /// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
-/// turn contact points into anchors.
+/// turn contact points into anchors. `pool`: threads to share the contacts among (each
+/// constraint is written by its contact alone).
 template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<C>* constraints);
+                               std::vector<C>* constraints, WorkerPool* pool = nullptr);
 
 /// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.
 TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,
@@ -140,6 +142,6 @@ void ApplyImpactLags(std::span<const C> constraints, std::span<const std::uint32
 /// Stores the accumulated impulses back on the contacts for the next step's warm start.
 template <typename C>
 void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t> slot,
-                   std::span<Contact> contacts);
+                   std::span<Contact> contacts, WorkerPool* pool = nullptr);
 
 }  // namespace engine::detail

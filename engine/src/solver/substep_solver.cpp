@@ -64,15 +64,20 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   // that times the overlap / h.
   plan.push_out_rate = (1.0 - NthRoot(1.0 - def.position_correction, def.substeps)) * plan.inv_h;
   plan.wide = nullptr;  // known once the constraints are built (Step)
-  plan.passes = def.velocity_iterations;
-  // One Gauss-Seidel pass carries a deep pile's weight down only over many substeps; turning
-  // worlds take 4 passes already.
-  if (!def.rotation && plan.passes < 2 && Length(def.gravity) > 0.0 &&
+  plan.passes = def.velocity_iterations;  // at least 2 in a deep pile: PassesForPile
+  return plan;
+}
+
+// One Gauss-Seidel pass carries a deep pile's weight down only over many substeps; turning
+// worlds take 4 passes already.
+int SubstepSolver::PassesForPile(const StepContext& context, int passes) {
+  const WorldDef& def = context.def;
+  if (!def.rotation && passes < 2 && Length(def.gravity) > 0.0 &&
       PileHeightInBodies(context.contacts, context.infos, context.states, -def.gravity / Length(def.gravity)) >
           kDeepPile) {
-    plan.passes = 2;
+    return 2;
   }
-  return plan;
+  return passes;
 }
 
 double PileHeightInBodies(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
@@ -102,15 +107,16 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   angular_accelerations_.resize(n);
   context.forces.Evaluate(context.states, accelerations_, angular_accelerations_);
 
-  PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector);
+  PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
+                            &context.pool);
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
   if constexpr (kCanTurn<C>) {
     plan.direct_solve = def.substep_features.direct_solve &&
                         PrepareDirectSolve(constraints, context.infos, &direct_solver_);
   }
-  // Two tasks side by side: the shock rows only read the constraints, the impacts only write
-  // velocities and the lanes only their blocks.
+  // Two tasks side by side: the shock rows only read the constraints, the pile's height only
+  // positions, the impacts only write velocities and the lanes only their blocks.
   const auto shock_rows = [&] {
     if (!plan.shock_propagation) return;  // stacks are supported against gravity: its direction is up
     BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
@@ -118,6 +124,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
   };
   const auto impacts_and_lanes = [&] {
+    plan.passes = PassesForPile(context, plan.passes);  // reads positions; the impacts write velocities
     impact_lags_.clear();
     if (plan.impact_pass) {  // bounces first
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
@@ -173,7 +180,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
   }
   ApplyImpactLags<C>(constraints, order_.slot, impact_lags_, context.states);
-  StoreImpulses<C>(constraints, order_.slot, context.contacts);
+  StoreImpulses<C>(constraints, order_.slot, context.contacts, &context.pool);
 }
 
 template <typename C>

@@ -78,6 +78,8 @@ class SubstepSolver {
   template <typename C>
   void Step(StepContext& context, std::vector<C>* constraints);
   SubstepPlan Plan(const StepContext& context);
+  /// `passes`, or 2 where nothing turns and the pile stands taller than kDeepPile.
+  static int PassesForPile(const StepContext& context, int passes);
   /// Which bodies an applied force pushes (their contacts may carry a load); empty when every
   /// moving body is loaded (gravity, uniform or mutual).
   void FindLoadedBodies(const StepContext& context);
