@@ -10,6 +10,7 @@
 #include "engine/spring.h"
 #include "engine/world_def.h"
 #include "forces/force_model.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -32,8 +33,10 @@ struct FreeMotion {
 
 /// Computes the free step of length h from `states` and sets each moving body's velocity to its
 /// end-of-step value (positions stay, for the contact solver to see).
+/// `pool`: threads to share the bodies among where gravity alone acts under an Euler step (each
+/// body's step is then its own); the bits are the same either way.
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* motion);
+              double h, FreeMotion* motion, WorkerPool* pool = nullptr);
 
 /// Moves every moving body: by h·drift, plus h times whatever the contacts changed its velocity
 /// by since FreeStep. Semi-implicit Euler moves by h·v exactly, and so does a body a contact

@@ -192,7 +192,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   const WarmStartImpulses warm{warm_free_, warm_free_angular_};
   const PushVelocities push{push_velocities_, push_angular_velocities_};
 
-  FreeStep(def.integrator, context.forces, states, h, &context.free_motion);
+  FreeStep(def.integrator, context.forces, states, h, &context.free_motion, &context.pool);
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
