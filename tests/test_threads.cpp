@@ -2,7 +2,10 @@
 // same bits on one, two and three threads, in the axis-aligned game, with rotation, and with
 // bodies made of parts; and a group's constraints never share a moving body.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <string>
 #include <set>
 #include <vector>
 
@@ -68,6 +71,43 @@ TEST_CASE("a pour steps to the same bits on one, two and three threads", "[paral
     const std::uint64_t one = PourHash(2500, rotation, 1, 90);
     CHECK(PourHash(2500, rotation, 2, 90) == one);
     CHECK(PourHash(2500, rotation, 3, 90) == one);
+  }
+}
+
+// The contact events of a pour, step by step, as text: who began and ended touching, where, and
+// how fast (every bit of the numbers).
+std::string PourEvents(int threads, std::size_t* most_contacts) {
+  engine::WorldDef def;
+  def.sleeping = false;
+  def.threads = threads;
+  engine::World world(def);
+  stress::AddBoxedPour(world, 2500);
+  std::string log;
+  *most_contacts = 0;
+  const auto id = [](engine::BodyId b) { return std::to_string(b.index) + "." + std::to_string(b.generation); };
+  const auto bits = [](double x) { return std::to_string(std::bit_cast<std::uint64_t>(x)); };
+  for (int s = 0; s < 90; ++s) {
+    world.Step();
+    *most_contacts = std::max(*most_contacts, world.Contacts().size());
+    const engine::StepEvents& events = world.Events();
+    for (const engine::ContactBeginEvent& e : events.contact_begin) {
+      log += "begin " + id(e.a) + " " + id(e.b) + " " + bits(e.point.x) + " " + bits(e.point.y) + " " +
+             bits(e.approach_speed) + "\n";
+    }
+    for (const engine::ContactEndEvent& e : events.contact_end) log += "end " + id(e.a) + " " + id(e.b) + "\n";
+    log += "hits " + std::to_string(events.hits.size()) + "\n";
+  }
+  return log;
+}
+
+TEST_CASE("a pour's contact events are the same on one, two and three threads", "[parallel][events]") {
+  std::size_t contacts = 0;
+  const std::string one = PourEvents(1, &contacts);
+  CHECK(contacts > 4096);  // the touch test is shared out past 4 096 contacts
+  CHECK(std::count(one.begin(), one.end(), '\n') > 5000);  // thousands of circles landed
+  for (const int threads : {2, 3}) {
+    CAPTURE(threads);
+    CHECK(PourEvents(threads, &contacts) == one);
   }
 }
 

@@ -27,7 +27,7 @@ constexpr double kPairQuota = 16;
 constexpr double kPairQuotaPerAspect = 4;
 
 // Fewer bodies than this have their bounds found on one thread.
-constexpr std::uint32_t kMinSharedBounds = 4096;
+constexpr std::uint32_t kMinSharedBounds = 2048;
 
 // How far a body may reach within a step, m: contacts within it are speculative.
 double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info,

@@ -145,7 +145,7 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
     states[i].velocity = m->velocity[i];
     if (forces.rotation) states[i].angular_velocity = m->angular_velocity[i];
   };
-  constexpr std::uint32_t kMinSharedBodies = 4096;
+  constexpr std::uint32_t kMinSharedBodies = 2048;
   const auto count = static_cast<std::uint32_t>(n);
   if (pool) {
     pool->ParallelFor(count, kMinSharedBodies, step);
