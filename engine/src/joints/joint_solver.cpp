@@ -155,6 +155,7 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     if (!a_moves && !moving[j.b]) continue;
     JointWork w{};
     w.slot = slot;
+    w.type = j.def.type;
     w.a = j.a;
     w.b = j.b;
     if (j.a != kNoBody) {
@@ -163,6 +164,10 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     }
     w.mb = infos[j.b].inv_mass;
     w.ib = infos[j.b].inv_inertia;
+    w.local_a = j.local_a;
+    w.local_b = j.local_b;
+    w.local_axis = j.local_axis;
+    w.reference_angle = j.reference_angle;
     work_.push_back(w);
   }
   joined_.assign(states.size(), 0);
@@ -170,6 +175,11 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     if (w.a != kNoBody) joined_[w.a] = 1;
     joined_[w.b] = 1;
   }
+  joined_bodies_.clear();
+  for (std::size_t i = 0; i < joined_.size(); ++i) {
+    if (joined_[i]) joined_bodies_.push_back(static_cast<BodyIndex>(i));
+  }
+  rotations_.resize(states.size());
   PrepareDirect(infos);
   return !work_.empty();
 }
@@ -182,25 +192,26 @@ BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) 
 }
 
 void JointSolver::UpdateFrames(std::span<const BodyState> states) {
+  // Each body's rotation once: a body of a grid holds four joints.
+  for (const BodyIndex i : joined_bodies_) rotations_[i] = MakeRot(states[i].angle);
   for (JointWork& w : work_) {
-    const Joint& j = table_->joints[w.slot];
     const BodyState& b = states[w.b];
-    const Rot qb = MakeRot(b.angle);
-    w.rb = Rotate(qb, j.local_b);
-    Vec2 anchor_a = j.def.target;
+    w.rb = Rotate(rotations_[w.b], w.local_b);
+    Vec2 anchor_a;
     double angle_a = 0.0;
     if (w.a != kNoBody) {
       const BodyState& a = states[w.a];
-      const Rot qa = MakeRot(a.angle);
-      w.ra = Rotate(qa, j.local_a);
+      const Rot qa = rotations_[w.a];
+      w.ra = Rotate(qa, w.local_a);
       anchor_a = a.position + w.ra;
       angle_a = a.angle;
-      if (j.def.type == JointType::kPrismatic) w.axis = Rotate(qa, j.local_axis);
+      if (w.type == JointType::kPrismatic) w.axis = Rotate(qa, w.local_axis);
     } else {
       w.ra = {};
+      anchor_a = table_->joints[w.slot].def.target;
     }
     w.separation = (b.position + w.rb) - anchor_a;
-    w.angle = b.angle - angle_a - j.reference_angle;
+    w.angle = b.angle - angle_a - w.reference_angle;
   }
 }
 

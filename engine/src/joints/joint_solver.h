@@ -27,8 +27,12 @@ inline constexpr double kExplicitSpringLimit = 0.5;
 /// One acting joint in the current substep: its bodies' inverse masses and where its frames are.
 struct JointWork {
   std::uint32_t slot;
+  JointType type;
   BodyIndex a, b;           ///< a: kNoBody for a target joint
   double ma, mb, ia, ib;    ///< inverse masses and inertias (0 for static, kinematic, no turning)
+  // The joint's frames on its bodies (Joint's), here so the per-substep passes read one array.
+  Vec2 local_a, local_b, local_axis;
+  double reference_angle;
   Vec2 ra, rb;              ///< from each centre of mass to the anchor, world axes
   Vec2 separation;          ///< anchor_b − anchor_a
   double angle;             ///< angle_b − angle_a − reference
@@ -79,6 +83,8 @@ class JointSolver {
   double h_ = 0.0;
   JointDirect direct_;
   std::vector<std::uint8_t> joined_;
+  std::vector<BodyIndex> joined_bodies_;  ///< the bodies joined_ marks, in index order
+  std::vector<Rot> rotations_;            ///< per joined body: its rotation (UpdateFrames)
   BodyState ground_;  ///< what a target joint's missing body A reads and (with zero mass) writes
 };
 
