@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "solver/constraint_groups.h"
+
 namespace engine::detail {
 
 namespace {
@@ -146,8 +148,10 @@ bool HasSpring(const Joint& j) { return j.def.spring.has_value(); }
 }  // namespace
 
 bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
-                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> moving) {
+                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> moving,
+                          const WorldDef& def, WorkerPool& pool) {
   table_ = table;
+  pool_ = &pool;
   work_.clear();
   for (const std::uint32_t slot : table->acting) {
     const Joint& j = table->joints[slot];
@@ -181,7 +185,37 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
   }
   rotations_.resize(states.size());
   PrepareDirect(infos);
+  // The lanes need the bodies' angular velocities (and push velocities) to be there.
+  wide_passes_ = nullptr;
+  if (def.rotation && wide_.Pack(work_, *table, states.size()) > 0) {
+    wide_passes_ = &WidePassesFor(def.substep_features.lanes);
+  }
+  scalar_works_.clear();
+  for (std::uint32_t i = 0; i < work_.size(); ++i) {
+    if (!wide_passes_ || wide_.lane_of[i] == WideJoints::kNotWide) scalar_works_.push_back(i);
+  }
   return !work_.empty();
+}
+
+template <typename Pass>
+void JointSolver::ForEachJointBlock(Pass&& pass) {
+  ForEachGroup(*pool_, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+    pass(wide_.blocks.data() + begin, std::size_t{end - begin});
+  }, kBlockLanes);
+}
+
+std::pair<double*, double*> JointSolver::PointImpulse(std::uint32_t i) {
+  if (wide_passes_ && wide_.lane_of[i] != WideJoints::kNotWide) {
+    JointBlock& k = wide_.blocks[wide_.lane_of[i] / kBlockLanes];
+    const std::uint32_t lane = wide_.lane_of[i] % kBlockLanes;
+    return {&k.impulse_x[lane], &k.impulse_y[lane]};
+  }
+  Vec2& point = table_->joints[work_[i].slot].impulses.point;
+  return {&point.x, &point.y};
+}
+
+void JointSolver::End() {
+  if (wide_passes_) wide_.UnpackImpulses(work_, table_);
 }
 
 BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) {
@@ -218,7 +252,14 @@ void JointSolver::UpdateFrames(std::span<const BodyState> states) {
 void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift) {
   h_ = h;
   UpdateFrames(states);
-  for (JointWork& w : work_) {
+  if (wide_passes_) {  // the lanes' warm start first, as their passes go first
+    wide_.LoadFrames(work_);
+    ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+      wide_passes_->joint_warm_start(blocks, count, states.data());
+    });
+  }
+  for (const std::uint32_t i : scalar_works_) {
+    JointWork& w = work_[i];
     Joint& j = table_->joints[w.slot];
     BodyState& a = StateA(w, states);
     BodyState& b = states[w.b];
@@ -288,6 +329,7 @@ void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift
   } else {
     for (JointWork& w : work_) w.drift_point = {}, w.drift_axis = 0.0;
   }
+  if (wide_passes_) wide_.LoadDrift(work_);
 }
 
 void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
@@ -335,7 +377,13 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
 }
 
 void JointSolver::Solve(std::span<BodyState> states, double inv_h) {
-  for (JointWork& w : work_) {
+  if (wide_passes_) {
+    ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+      wide_passes_->joint_solve(blocks, count, states.data(), inv_h);
+    });
+  }
+  for (const std::uint32_t i : scalar_works_) {
+    JointWork& w = work_[i];
     Joint& j = table_->joints[w.slot];
     JointImpulses& p = j.impulses;
     BodyState& a = StateA(w, states);
@@ -450,8 +498,15 @@ void JointSolver::PushOut(std::span<const BodyState> states, PushVelocities push
     if (turning) push.angular[i] = s.angular_velocity;
   };
   for (JointWork& w : work_) w.push_lower = w.push_upper = 0.0;
+  if (wide_passes_) wide_.LoadFrames(work_);
   for (int pass = 0; pass < passes; ++pass) {
-    for (JointWork& w : work_) {
+    if (wide_passes_) {
+      ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+        wide_passes_->joint_push_out(blocks, count, push.linear.data(), push.angular.data(), rate);
+      });
+    }
+    for (const std::uint32_t i : scalar_works_) {
+      JointWork& w = work_[i];
       const Joint& j = table_->joints[w.slot];
       if (j.def.type == JointType::kTarget) continue;
       if (HasSpring(j) && j.def.type == JointType::kWeld) continue;

@@ -152,6 +152,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
   }
   if (context.joints) {
+    context.joints->End();
     // A bounce's lag moves the pair after the substeps, where no joint would pull it back: a
     // link of a whipping chain came off its joint by 14 cm for a step. Jointed bodies bounce
     // without it.
