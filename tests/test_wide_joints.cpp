@@ -141,8 +141,9 @@ Outcome RunPasses(const Scene& scene, int lanes) {
   using namespace engine::detail;
   WideJoints wide;
   REQUIRE(wide.Pack(scene.work, scene.table, scene.states.size()) == scene.work.size());
-  wide.LoadFrames(scene.work);
-  wide.LoadDrift(scene.work);
+  WorkerPool pool(1);
+  wide.LoadFrames(scene.work, pool);
+  wide.LoadDrift(scene.work, pool);
   Outcome out{scene.states, scene.push, scene.push_angular, {}};
   if (lanes == 0) {
     std::vector<Vec2> impulses(scene.work.size());

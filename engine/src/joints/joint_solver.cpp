@@ -226,9 +226,14 @@ BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) 
 }
 
 void JointSolver::UpdateFrames(std::span<const BodyState> states) {
-  // Each body's rotation once: a body of a grid holds four joints.
-  for (const BodyIndex i : joined_bodies_) rotations_[i] = MakeRot(states[i].angle);
-  for (JointWork& w : work_) {
+  // Each body's rotation once: a body of a grid holds four joints. Each joint's frames are its
+  // own, so the threads share them out with the same bits.
+  pool_->ParallelFor(static_cast<std::uint32_t>(joined_bodies_.size()), kMinParallelJoints, [&](std::uint32_t k) {
+    const BodyIndex i = joined_bodies_[k];
+    rotations_[i] = MakeRot(states[i].angle);
+  });
+  pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
+    JointWork& w = work_[i];
     const BodyState& b = states[w.b];
     w.rb = Rotate(rotations_[w.b], w.local_b);
     Vec2 anchor_a;
@@ -246,14 +251,14 @@ void JointSolver::UpdateFrames(std::span<const BodyState> states) {
     }
     w.separation = (b.position + w.rb) - anchor_a;
     w.angle = b.angle - angle_a - w.reference_angle;
-  }
+  });
+  if (wide_passes_) wide_.LoadFrames(work_, *pool_);
 }
 
 void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift) {
   h_ = h;
   UpdateFrames(states);
   if (wide_passes_) {  // the lanes' warm start first, as their passes go first
-    wide_.LoadFrames(work_);
     ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
       wide_passes_->joint_warm_start(blocks, count, states.data());
     });
@@ -329,7 +334,7 @@ void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift
   } else {
     for (JointWork& w : work_) w.drift_point = {}, w.drift_axis = 0.0;
   }
-  if (wide_passes_) wide_.LoadDrift(work_);
+  if (wide_passes_) wide_.LoadDrift(work_, *pool_);
 }
 
 void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
@@ -340,11 +345,14 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
     if (std::abs(turn) > 0.05) return Rotate(MakeRot(turn), r);
     return r + turn * LeftPerp(r) - (0.5 * turn * turn) * r;
   };
-  for (JointWork& w : work_) {
+  // Each joint's drift is its own: the threads share them out with the same bits.
+  pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
+    JointWork& w = work_[i];
     const Joint& j = table_->joints[w.slot];
     w.drift_point = {};
     w.drift_axis = 0.0;
-    if (j.def.type == JointType::kTarget || (j.def.type == JointType::kWeld && HasSpring(j))) continue;
+    // Target joints, the only ones without a body A, have none: StateA's shared ground stays unused.
+    if (j.def.type == JointType::kTarget || (j.def.type == JointType::kWeld && HasSpring(j))) return;
     const BodyState& a = StateA(w, states);
     const BodyState& b = states[w.b];
     const double turn_a = a.angular_velocity * h, turn_b = b.angular_velocity * h;
@@ -373,7 +381,7 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
       }
       default: break;
     }
-  }
+  });
 }
 
 void JointSolver::Solve(std::span<BodyState> states, double inv_h) {
@@ -498,7 +506,6 @@ void JointSolver::PushOut(std::span<const BodyState> states, PushVelocities push
     if (turning) push.angular[i] = s.angular_velocity;
   };
   for (JointWork& w : work_) w.push_lower = w.push_upper = 0.0;
-  if (wide_passes_) wide_.LoadFrames(work_);
   for (int pass = 0; pass < passes; ++pass) {
     if (wide_passes_) {
       ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {

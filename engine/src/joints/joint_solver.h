@@ -29,6 +29,10 @@ inline constexpr double kJointPushFraction = 0.5;
 /// implicitly (stable at any stiffness, with some numerical damping). docs/joints.md.
 inline constexpr double kExplicitSpringLimit = 0.5;
 
+/// Fewer joints than this have their frames and drifts worked out on one thread: handing the
+/// work out and back costs microseconds.
+inline constexpr std::uint32_t kMinParallelJoints = 2048;
+
 /// One acting joint in the current substep: its bodies' inverse masses and where its frames are.
 struct JointWork {
   std::uint32_t slot;

@@ -91,40 +91,44 @@ std::size_t WideJoints::Pack(std::span<const JointWork> work, const JointTable& 
   return fit;
 }
 
-void WideJoints::LoadFrames(std::span<const JointWork> work) {
-  for (std::size_t l = 0; l < work_of.size(); ++l) {
-    if (work_of[l] == kNotWide) continue;
-    const JointWork& w = work[work_of[l]];
-    JointBlock& k = blocks[l / kBlockLanes];
-    const std::size_t lane = l % kBlockLanes;
-    k.arm_a_x[lane] = w.ra.x;
-    k.arm_a_y[lane] = w.ra.y;
-    k.arm_b_x[lane] = w.rb.x;
-    k.arm_b_y[lane] = w.rb.y;
-    k.separation_x[lane] = w.separation.x;
-    k.separation_y[lane] = w.separation.y;
-    // PointMass and Solve22's determinant, in their order. A joint in lanes has a moving body,
-    // so K ≥ its inverse mass · I and the determinant is positive.
-    const double m = w.ma + w.mb;
-    const double k11 = m + w.ia * w.ra.y * w.ra.y + w.ib * w.rb.y * w.rb.y;
-    const double k12 = -w.ia * w.ra.x * w.ra.y - w.ib * w.rb.x * w.rb.y;
-    const double k22 = m + w.ia * w.ra.x * w.ra.x + w.ib * w.rb.x * w.rb.x;
-    const double det = k11 * k22 - k12 * k12;
-    k.k11[lane] = k11;
-    k.k12[lane] = k12;
-    k.k22[lane] = k22;
-    k.inv_det[lane] = det > 0.0 ? 1.0 / det : 0.0;
-  }
+void WideJoints::LoadFrames(std::span<const JointWork> work, WorkerPool& pool) {
+  pool.ParallelFor(static_cast<std::uint32_t>(blocks.size()), kMinParallelJoints / kBlockLanes, [&](std::uint32_t i) {
+    JointBlock& k = blocks[i];
+    for (std::size_t lane = 0; lane < kBlockLanes; ++lane) {
+      const std::uint32_t index = work_of[i * kBlockLanes + lane];
+      if (index == kNotWide) continue;
+      const JointWork& w = work[index];
+      k.arm_a_x[lane] = w.ra.x;
+      k.arm_a_y[lane] = w.ra.y;
+      k.arm_b_x[lane] = w.rb.x;
+      k.arm_b_y[lane] = w.rb.y;
+      k.separation_x[lane] = w.separation.x;
+      k.separation_y[lane] = w.separation.y;
+      // PointMass and Solve22's determinant, in their order. A joint in lanes has a moving
+      // body, so K ≥ its inverse mass · I and the determinant is positive.
+      const double m = w.ma + w.mb;
+      const double k11 = m + w.ia * w.ra.y * w.ra.y + w.ib * w.rb.y * w.rb.y;
+      const double k12 = -w.ia * w.ra.x * w.ra.y - w.ib * w.rb.x * w.rb.y;
+      const double k22 = m + w.ia * w.ra.x * w.ra.x + w.ib * w.rb.x * w.rb.x;
+      const double det = k11 * k22 - k12 * k12;
+      k.k11[lane] = k11;
+      k.k12[lane] = k12;
+      k.k22[lane] = k22;
+      k.inv_det[lane] = det > 0.0 ? 1.0 / det : 0.0;
+    }
+  });
 }
 
-void WideJoints::LoadDrift(std::span<const JointWork> work) {
-  for (std::size_t l = 0; l < work_of.size(); ++l) {
-    if (work_of[l] == kNotWide) continue;
-    const JointWork& w = work[work_of[l]];
-    JointBlock& k = blocks[l / kBlockLanes];
-    k.drift_x[l % kBlockLanes] = w.drift_point.x;
-    k.drift_y[l % kBlockLanes] = w.drift_point.y;
-  }
+void WideJoints::LoadDrift(std::span<const JointWork> work, WorkerPool& pool) {
+  pool.ParallelFor(static_cast<std::uint32_t>(blocks.size()), kMinParallelJoints / kBlockLanes, [&](std::uint32_t i) {
+    JointBlock& k = blocks[i];
+    for (std::size_t lane = 0; lane < kBlockLanes; ++lane) {
+      const std::uint32_t index = work_of[i * kBlockLanes + lane];
+      if (index == kNotWide) continue;
+      k.drift_x[lane] = work[index].drift_point.x;
+      k.drift_y[lane] = work[index].drift_point.y;
+    }
+  });
 }
 
 void WideJoints::UnpackImpulses(std::span<const JointWork> work, JointTable* table) const {

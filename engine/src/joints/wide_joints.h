@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "joints/joint_table.h"
+#include "parallel/worker_pool.h"
 #include "solver/contact_order.h"
 #include "solver/wide_constraints.h"
 
@@ -68,10 +69,11 @@ struct WideJoints {
   /// Colours the works that fit and lays them out, with their impulses from `table`. Returns
   /// how many went into lanes (none when fewer than kMinWideJoints fit).
   std::size_t Pack(std::span<const JointWork> work, const JointTable& table, std::size_t body_count);
-  /// Copies each lane's arms and separation from its JointWork and works out its K.
-  void LoadFrames(std::span<const JointWork> work);
+  /// Copies each lane's arms and separation from its JointWork and works out its K (shared
+  /// among `pool`'s threads block by block).
+  void LoadFrames(std::span<const JointWork> work, WorkerPool& pool);
   /// Copies each lane's drift from its JointWork.
-  void LoadDrift(std::span<const JointWork> work);
+  void LoadDrift(std::span<const JointWork> work, WorkerPool& pool);
   /// The accumulated impulses back to the joints (the warm start of the next step, snapshots).
   void UnpackImpulses(std::span<const JointWork> work, JointTable* table) const;
   void Clear();
