@@ -240,8 +240,9 @@ Net AddNet(engine::World& world, int n, bool mixed) {
   return net;
 }
 
-std::uint64_t NetHash(int lanes, int threads) {
+std::uint64_t NetHash(int lanes, int threads, engine::ContactSolver solver = engine::ContactSolver::kSubstep) {
   engine::WorldDef def;
+  def.solver = solver;
   def.rotation = true;
   def.sleeping = false;
   def.threads = threads;
@@ -315,6 +316,9 @@ TEST_CASE("wide joints: a joint net steps to the same hash at every width and th
     CHECK(NetHash(lanes, 1) == one_lane);
   }
   CHECK(NetHash(0, 2) == one_lane);
+  // The sequential-impulse baseline solves the same lanes once a step.
+  const auto baseline = engine::ContactSolver::kSequentialImpulse;
+  CHECK(NetHash(0, 2, baseline) == NetHash(1, 1, baseline));
 }
 
 TEST_CASE("wide joints: a 30 x 30 net hanging from seven points holds its joints within 1 cm and gains no energy") {
