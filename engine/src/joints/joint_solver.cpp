@@ -348,17 +348,17 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
   // Each joint's drift is its own: the threads share them out with the same bits.
   pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
     JointWork& w = work_[i];
-    const Joint& j = table_->joints[w.slot];
     w.drift_point = {};
     w.drift_axis = 0.0;
-    // Target joints, the only ones without a body A, have none: StateA's shared ground stays unused.
-    if (j.def.type == JointType::kTarget || (j.def.type == JointType::kWeld && HasSpring(j))) return;
+    // Target joints, the only ones without a body A, have none: StateA's shared ground stays
+    // unused. (The type from JointWork: most joints need nothing else from the table here.)
+    if (w.type == JointType::kTarget || (w.type == JointType::kWeld && HasSpring(table_->joints[w.slot]))) return;
     const BodyState& a = StateA(w, states);
     const BodyState& b = states[w.b];
     const double turn_a = a.angular_velocity * h, turn_b = b.angular_velocity * h;
     const Vec2 ra = turned(w.ra, turn_a), rb = turned(w.rb, turn_b);
     const Vec2 separation = (b.position + h * b.velocity + rb) - (a.position + h * a.velocity + ra);
-    switch (j.def.type) {
+    switch (w.type) {
       case JointType::kRevolute:
       case JointType::kWeld:
         w.drift_point = separation - w.separation - h * PointVelocity(w, a, b);
