@@ -115,7 +115,7 @@ void World::Step() {
                               .free_motion = w.free_motion,
                               .joints = w.joints.acting.empty() ||
                                                 !w.joint_solver.Prepare(&w.joints, bodies.states, bodies.infos,
-                                                                        w.sleep.awake)
+                                                                        w.sleep.awake, w.def, *w.pool)
                                             ? nullptr
                                             : &w.joint_solver,
                               .step = w.step_count,

@@ -52,7 +52,9 @@ struct SubstepFeatures {
   /// are at least 256, docs/solver.md "The wide solver: SIMD lanes"). 0: the widest
   /// the processor has (4 with AVX2, 2 on other x86-64, 1 elsewhere); 1: one at a time, without
   /// the lanes' layout; 2 or 4 (SSE2, AVX2; a width the processor lacks falls back to the widest
-  /// it has). The bits are the same at every width.
+  /// it has). The bits are the same at every width. Joints too, with or without gravity, where
+  /// bodies turn and at least 256 revolute joints without motor or limits act: those are always
+  /// solved in colour order, and 1 takes them one lane at a time in that order.
   int lanes = 0;
 };
 

@@ -4,6 +4,7 @@
 #include "joints/joint_direct.h"
 
 #include <cmath>
+#include <utility>
 
 #include "joints/joint_solver.h"
 #include "solver/cholesky.h"
@@ -13,15 +14,17 @@ namespace engine::detail {
 namespace {
 
 // The equality rows of a joint (at most three), from where its frames stand now.
-int EqualityRows(Joint& j, const JointWork& w, std::uint32_t work, JointRow* out) {
+// `point`: where the point's accumulated impulse lives (the joint's, or its lane's).
+int EqualityRows(Joint& j, const JointWork& w, std::uint32_t work, std::pair<double*, double*> point,
+                 JointRow* out) {
   const bool turns = w.ia + w.ib > 0.0;
   JointImpulses& p = j.impulses;
   int n = 0;
   auto point_rows = [&] {
     out[n++] = {work, {1.0, 0.0}, Cross(w.ra, {1.0, 0.0}), Cross(w.rb, {1.0, 0.0}), w.separation.x,
-                w.drift_point.x, &p.point.x};
+                w.drift_point.x, point.first};
     out[n++] = {work, {0.0, 1.0}, Cross(w.ra, {0.0, 1.0}), Cross(w.rb, {0.0, 1.0}), w.separation.y,
-                w.drift_point.y, &p.point.y};
+                w.drift_point.y, point.second};
   };
   auto angle_row = [&] {
     if (turns) out[n++] = {work, {}, 1.0, 1.0, w.angle, 0.0, &p.angle};
@@ -124,7 +127,7 @@ void JointSolver::SolveDirect(std::span<BodyState> states, PushVelocities* push,
     for (std::uint32_t k = first; k < last; ++k) {
       const std::uint32_t wi = d.island_works[k];
       JointRow rows[3];
-      const int n = EqualityRows(table_->joints[work_[wi].slot], work_[wi], wi, rows);
+      const int n = EqualityRows(table_->joints[work_[wi].slot], work_[wi], wi, PointImpulse(wi), rows);
       for (int r = 0; r < n; ++r) d.rows.push_back(rows[r]);
       if (d.rows.size() > static_cast<std::size_t>(kJointDirectMaxRows)) break;
     }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "solver/constraint_groups.h"
+
 namespace engine::detail {
 
 namespace {
@@ -146,8 +148,10 @@ bool HasSpring(const Joint& j) { return j.def.spring.has_value(); }
 }  // namespace
 
 bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
-                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> moving) {
+                          std::span<const BodyInfo> infos, std::span<const std::uint8_t> moving,
+                          const WorldDef& def, WorkerPool& pool) {
   table_ = table;
+  pool_ = &pool;
   work_.clear();
   for (const std::uint32_t slot : table->acting) {
     const Joint& j = table->joints[slot];
@@ -155,6 +159,7 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     if (!a_moves && !moving[j.b]) continue;
     JointWork w{};
     w.slot = slot;
+    w.type = j.def.type;
     w.a = j.a;
     w.b = j.b;
     if (j.a != kNoBody) {
@@ -163,6 +168,10 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     }
     w.mb = infos[j.b].inv_mass;
     w.ib = infos[j.b].inv_inertia;
+    w.local_a = j.local_a;
+    w.local_b = j.local_b;
+    w.local_axis = j.local_axis;
+    w.reference_angle = j.reference_angle;
     work_.push_back(w);
   }
   joined_.assign(states.size(), 0);
@@ -170,8 +179,43 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     if (w.a != kNoBody) joined_[w.a] = 1;
     joined_[w.b] = 1;
   }
+  joined_bodies_.clear();
+  for (std::size_t i = 0; i < joined_.size(); ++i) {
+    if (joined_[i]) joined_bodies_.push_back(static_cast<BodyIndex>(i));
+  }
+  rotations_.resize(states.size());
   PrepareDirect(infos);
+  // The lanes need the bodies' angular velocities (and push velocities) to be there.
+  wide_passes_ = nullptr;
+  if (def.rotation && wide_.Pack(work_, *table, states.size()) > 0) {
+    wide_passes_ = &WidePassesFor(def.substep_features.lanes);
+  }
+  scalar_works_.clear();
+  for (std::uint32_t i = 0; i < work_.size(); ++i) {
+    if (!wide_passes_ || wide_.lane_of[i] == WideJoints::kNotWide) scalar_works_.push_back(i);
+  }
   return !work_.empty();
+}
+
+template <typename Pass>
+void JointSolver::ForEachJointBlock(Pass&& pass) {
+  ForEachGroup(*pool_, wide_.order, [&](std::uint32_t begin, std::uint32_t end) {
+    pass(wide_.blocks.data() + begin, std::size_t{end - begin});
+  }, kBlockLanes);
+}
+
+std::pair<double*, double*> JointSolver::PointImpulse(std::uint32_t i) {
+  if (wide_passes_ && wide_.lane_of[i] != WideJoints::kNotWide) {
+    JointBlock& k = wide_.blocks[wide_.lane_of[i] / kBlockLanes];
+    const std::uint32_t lane = wide_.lane_of[i] % kBlockLanes;
+    return {&k.impulse_x[lane], &k.impulse_y[lane]};
+  }
+  Vec2& point = table_->joints[work_[i].slot].impulses.point;
+  return {&point.x, &point.y};
+}
+
+void JointSolver::End() {
+  if (wide_passes_) wide_.UnpackImpulses(work_, table_);
 }
 
 BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) {
@@ -182,32 +226,45 @@ BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) 
 }
 
 void JointSolver::UpdateFrames(std::span<const BodyState> states) {
-  for (JointWork& w : work_) {
-    const Joint& j = table_->joints[w.slot];
+  // Each body's rotation once: a body of a grid holds four joints. Each joint's frames are its
+  // own, so the threads share them out with the same bits.
+  pool_->ParallelFor(static_cast<std::uint32_t>(joined_bodies_.size()), kMinParallelJoints, [&](std::uint32_t k) {
+    const BodyIndex i = joined_bodies_[k];
+    rotations_[i] = MakeRot(states[i].angle);
+  });
+  pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
+    JointWork& w = work_[i];
     const BodyState& b = states[w.b];
-    const Rot qb = MakeRot(b.angle);
-    w.rb = Rotate(qb, j.local_b);
-    Vec2 anchor_a = j.def.target;
+    w.rb = Rotate(rotations_[w.b], w.local_b);
+    Vec2 anchor_a;
     double angle_a = 0.0;
     if (w.a != kNoBody) {
       const BodyState& a = states[w.a];
-      const Rot qa = MakeRot(a.angle);
-      w.ra = Rotate(qa, j.local_a);
+      const Rot qa = rotations_[w.a];
+      w.ra = Rotate(qa, w.local_a);
       anchor_a = a.position + w.ra;
       angle_a = a.angle;
-      if (j.def.type == JointType::kPrismatic) w.axis = Rotate(qa, j.local_axis);
+      if (w.type == JointType::kPrismatic) w.axis = Rotate(qa, w.local_axis);
     } else {
       w.ra = {};
+      anchor_a = table_->joints[w.slot].def.target;
     }
     w.separation = (b.position + w.rb) - anchor_a;
-    w.angle = b.angle - angle_a - j.reference_angle;
-  }
+    w.angle = b.angle - angle_a - w.reference_angle;
+  });
+  if (wide_passes_) wide_.LoadFrames(work_, *pool_);
 }
 
 void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift) {
   h_ = h;
   UpdateFrames(states);
-  for (JointWork& w : work_) {
+  if (wide_passes_) {  // the lanes' warm start first, as their passes go first
+    ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+      wide_passes_->joint_warm_start(blocks, count, states.data());
+    });
+  }
+  for (const std::uint32_t i : scalar_works_) {
+    JointWork& w = work_[i];
     Joint& j = table_->joints[w.slot];
     BodyState& a = StateA(w, states);
     BodyState& b = states[w.b];
@@ -277,6 +334,7 @@ void JointSolver::Begin(std::span<BodyState> states, double h, bool aim_at_drift
   } else {
     for (JointWork& w : work_) w.drift_point = {}, w.drift_axis = 0.0;
   }
+  if (wide_passes_) wide_.LoadDrift(work_, *pool_);
 }
 
 void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
@@ -287,17 +345,20 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
     if (std::abs(turn) > 0.05) return Rotate(MakeRot(turn), r);
     return r + turn * LeftPerp(r) - (0.5 * turn * turn) * r;
   };
-  for (JointWork& w : work_) {
-    const Joint& j = table_->joints[w.slot];
+  // Each joint's drift is its own: the threads share them out with the same bits.
+  pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
+    JointWork& w = work_[i];
     w.drift_point = {};
     w.drift_axis = 0.0;
-    if (j.def.type == JointType::kTarget || (j.def.type == JointType::kWeld && HasSpring(j))) continue;
+    // Target joints, the only ones without a body A, have none: StateA's shared ground stays
+    // unused. (The type from JointWork: most joints need nothing else from the table here.)
+    if (w.type == JointType::kTarget || (w.type == JointType::kWeld && HasSpring(table_->joints[w.slot]))) return;
     const BodyState& a = StateA(w, states);
     const BodyState& b = states[w.b];
     const double turn_a = a.angular_velocity * h, turn_b = b.angular_velocity * h;
     const Vec2 ra = turned(w.ra, turn_a), rb = turned(w.rb, turn_b);
     const Vec2 separation = (b.position + h * b.velocity + rb) - (a.position + h * a.velocity + ra);
-    switch (j.def.type) {
+    switch (w.type) {
       case JointType::kRevolute:
       case JointType::kWeld:
         w.drift_point = separation - w.separation - h * PointVelocity(w, a, b);
@@ -320,11 +381,17 @@ void JointSolver::PredictDrift(std::span<BodyState> states, double h) {
       }
       default: break;
     }
-  }
+  });
 }
 
 void JointSolver::Solve(std::span<BodyState> states, double inv_h) {
-  for (JointWork& w : work_) {
+  if (wide_passes_) {
+    ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+      wide_passes_->joint_solve(blocks, count, states.data(), inv_h);
+    });
+  }
+  for (const std::uint32_t i : scalar_works_) {
+    JointWork& w = work_[i];
     Joint& j = table_->joints[w.slot];
     JointImpulses& p = j.impulses;
     BodyState& a = StateA(w, states);
@@ -440,7 +507,13 @@ void JointSolver::PushOut(std::span<const BodyState> states, PushVelocities push
   };
   for (JointWork& w : work_) w.push_lower = w.push_upper = 0.0;
   for (int pass = 0; pass < passes; ++pass) {
-    for (JointWork& w : work_) {
+    if (wide_passes_) {
+      ForEachJointBlock([&](JointBlock* blocks, std::size_t count) {
+        wide_passes_->joint_push_out(blocks, count, push.linear.data(), push.angular.data(), rate);
+      });
+    }
+    for (const std::uint32_t i : scalar_works_) {
+      JointWork& w = work_[i];
       const Joint& j = table_->joints[w.slot];
       if (j.def.type == JointType::kTarget) continue;
       if (HasSpring(j) && j.def.type == JointType::kWeld) continue;

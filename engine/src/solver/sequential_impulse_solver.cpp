@@ -123,6 +123,7 @@ void SequentialImpulseSolver::Step(StepContext& context) {
     push_angular_.assign(def.rotation ? context.states.size() : 0, 0.0);
     const PushVelocities push{push_linear_, push_angular_};
     joints->PushOut(context.states, push, 1.0 / def.dt, def.velocity_iterations);
+    joints->End();
     MoveByPush(context.states, push, def.rotation, def.dt);
   }
 }

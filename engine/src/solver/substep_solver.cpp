@@ -56,7 +56,9 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
                       std::find(loaded_.begin(), loaded_.end(), 1) == loaded_.end();
   plan.block_solver = features.block_solver;
   plan.check_forces = context.forces.BeyondGravity();
-  plan.track_turning = def.rotation;
+  // How far bodies turned is for the contacts' separations: a jointed net without contacts
+  // would turn every body twice a substep for nothing.
+  plan.track_turning = def.rotation && !context.contacts.empty();
   plan.h = def.dt / def.substeps;
   plan.inv_h = 1.0 / plan.h;
   // Remove the same fraction of the overlap per step as the sequential-impulse solver does,
@@ -171,6 +173,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
   }
   if (context.joints) {
+    context.joints->End();
     // A bounce's lag moves the pair after the substeps, where no joint would pull it back: a
     // link of a whipping chain came off its joint by 14 cm for a step. Jointed bodies bounce
     // without it.

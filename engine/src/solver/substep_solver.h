@@ -29,7 +29,7 @@ struct SubstepPlan {
   bool energy_limit;       ///< no applied force acts: the contacts may only take energy out
   bool block_solver;       ///< two-point turning contacts solved together (switch)
   bool check_forces;       ///< forces beyond gravity act: they may overflow, checked each substep
-  bool track_turning;      ///< rotation is on: contacts follow how far bodies have turned
+  bool track_turning;      ///< rotation is on and there are contacts: they follow how far bodies have turned
   double h;                ///< the substep, s
   double inv_h;
   double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep

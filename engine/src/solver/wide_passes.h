@@ -5,13 +5,14 @@
 #include <cstddef>
 
 #include "engine/body.h"
+#include "joints/wide_joints.h"
 #include "solver/wide_constraints.h"
 
 namespace engine::detail {
 
 /// One width's passes. Each does, lane by lane, exactly the arithmetic of its one-at-a-time
 /// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint
-/// and for angular SubstepConstraints),
+/// and for angular SubstepConstraints) or joint_solver.cpp (a revolute joint's point),
 /// so every width gives the same bits: lane-wise IEEE operations round as scalar ones do, and
 /// the blocks of a colour touch different moving bodies. Raw pointers, not spans: the AVX2
 /// passes live in a file compiled for AVX2, which must not emit any inline function that other
@@ -32,6 +33,10 @@ struct WidePasses {
   void (*turning_push_out)(TurningBlock* blocks, std::size_t count, const BodyState* states,
                            const Vec2* start_positions, const Rot* turned, Vec2* push, double* push_angular,
                            double push_out_rate, double max_push_out_speed, double linear_slop);
+  // Revolute joints' point rows (JointSolver's warm start, Solve and PushOut for them).
+  void (*joint_warm_start)(JointBlock* blocks, std::size_t count, BodyState* states);
+  void (*joint_solve)(JointBlock* blocks, std::size_t count, BodyState* states, double inv_h);
+  void (*joint_push_out)(JointBlock* blocks, std::size_t count, Vec2* push, double* push_angular, double rate);
 };
 
 /// The widest lanes this processor runs: 4 with AVX2, 2 on any other x86-64, 1 elsewhere.

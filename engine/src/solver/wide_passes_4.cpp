@@ -82,9 +82,11 @@ inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* ind
 
 #include "solver/wide_kernels.inl"
 #include "solver/wide_turning_kernels.inl"
+#include "joints/wide_joint_kernels.inl"
 
 constexpr WidePasses kPasses{4, WarmStartBlocks, SolveBlocks, PushOutBlocks,
-                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks};
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks,
+                             JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace
 
