@@ -326,10 +326,11 @@ TEMPLATE_TEST_CASE("pair budget: every broad phase keeps what the rule keeps, pi
   }
 }
 
-TEST_CASE("uniform grid shared among threads: all pairs, and the budget's, as on one", "[broadphase][parallel]") {
-  // Enough boxes that the grid shares its buckets out (past its 4 096 entries), moving, and a
-  // pile with small quotas so the budget crowds bodies: the pairs found by two and three threads
-  // must be the rule's, which the budget applies in the order the buckets are scanned.
+TEMPLATE_TEST_CASE("grid and tree shared among threads: all pairs, and the budget's, as on one", "[broadphase][parallel]",
+                   engine::UniformGrid, engine::AabbTree) {
+  // Enough boxes that the grid shares its buckets out (past its 4 096 entries) and the tree its
+  // kept candidates, moving, and a pile with small quotas so the budget crowds bodies: the pairs
+  // found by two and three threads must be the rule's.
   std::mt19937_64 rng(5);
   auto boxes = RandomBoxes(rng, 9000, 160);
   std::uniform_real_distribution<double> near(-0.5, 0.5);
@@ -343,7 +344,7 @@ TEST_CASE("uniform grid shared among threads: all pairs, and the budget's, as on
   }
   for (const int threads : {2, 3}) {
     engine::detail::WorkerPool pool(threads);
-    engine::UniformGrid grid;
+    TestType grid;
     std::vector<BodyPair> all, pairs;
     for (int step = 0; step < 6; ++step) {
       INFO("threads " << threads << ", step " << step);

@@ -216,7 +216,7 @@ void AabbTree::Rotate(std::int32_t a) {
 }
 
 void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                         std::span<const PairQuota> quotas) {
+                         std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   collector_.Begin(boxes, quotas, pairs);
   if (boxes.size() < leaf_of_.size()) Clear();  // bodies went away: start over
   moved_.assign(boxes.size(), 0);
@@ -228,7 +228,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   forget_motion_ = false;
 
   RefreshCandidates(boxes);
-  if (!crowded_) AddOverlappingCandidates(boxes);  // a crowded tree handed its pairs over already
+  if (!crowded_) AddOverlappingCandidates(boxes, pool);  // a crowded tree handed its pairs over already
   collector_.Finish();
 }
 
@@ -284,9 +284,30 @@ void AabbTree::RefreshCandidates(std::span<const AABB> boxes) {
   }
 }
 
-void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes) {
-  for (const BodyPair& p : candidates_) {
-    if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
+// Shared, each thread checks a run of the candidates and keeps the overlapping ones; the runs
+// then go to the collector in order, as one thread's would.
+void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  constexpr std::size_t kMinSharedCandidates = 4096;
+  const int threads = pool ? pool->Threads() : 1;
+  if (threads == 1 || candidates_.size() < kMinSharedCandidates) {
+    for (const BodyPair& p : candidates_) {
+      if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
+    }
+    return;
+  }
+  found_.resize(static_cast<std::size_t>(threads));
+  pool->RunOnAll([&](int t) {
+    const std::size_t n = candidates_.size();
+    const auto part = static_cast<std::size_t>(t);
+    std::vector<BodyPair>& found = found_[part].value;
+    found.clear();
+    for (std::size_t i = n * part / threads; i < n * (part + 1) / threads; ++i) {
+      const BodyPair p = candidates_[i];
+      if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
+    }
+  });
+  for (const auto& part : found_) {
+    for (const BodyPair& p : part.value) collector_.Add(p.a, p.b);
   }
 }
 
@@ -343,7 +364,7 @@ void AabbTree::AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AA
   candidates_.push_back(MakePair(a, b));
   if (candidates_.size() <= limit) return;
   crowded_ = true;
-  AddOverlappingCandidates(boxes);
+  AddOverlappingCandidates(boxes, nullptr);
   candidates_.clear();
   candidates_.shrink_to_fit();
 }

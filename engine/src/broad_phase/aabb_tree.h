@@ -9,6 +9,8 @@
 
 #include "body_pair.h"
 #include "broad_phase/pair_collector.h"
+#include "parallel/per_thread.h"
+#include "parallel/worker_pool.h"
 #include "engine/math.h"
 
 namespace engine {
@@ -23,8 +25,10 @@ namespace engine {
 /// order. Pairs come out sorted by (a, b).
 class AabbTree {
  public:
+  /// `pool`: threads to share the check of the kept candidates among (the pairs and the
+  /// budget's choices are the same whatever the pool).
   void FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                 std::span<const PairQuota> quotas = {});
+                 std::span<const PairQuota> quotas = {}, detail::WorkerPool* pool = nullptr);
   const PairCollector& Collector() const { return collector_; }
   /// True while the fat boxes overlap in more pairs than the tree keeps (kCandidatesPerBody a
   /// body): the pairs are then found by a traversal every call, and none are kept.
@@ -82,7 +86,7 @@ class AabbTree {
   /// Adds to fresh_ the pairs of moved body `body` with the leaves its fat box overlaps.
   void QueryFreshPairs(std::uint32_t body);
   /// The candidates whose bodies' own boxes overlap, to the collector.
-  void AddOverlappingCandidates(std::span<const AABB> boxes);
+  void AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   std::size_t CandidateLimit() const;
 
   std::vector<Node> nodes_;
@@ -107,6 +111,7 @@ class AabbTree {
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
   PairCollector collector_;
+  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's overlapping candidates
 };
 
 }  // namespace engine

@@ -53,7 +53,7 @@ void BroadPhase::FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std
     case BroadPhaseType::kSweepAndPrune: sweep_and_prune_.FindPairs(boxes, pairs, quotas); break;
     case BroadPhaseType::kUniformGrid: uniform_grid_.FindPairs(boxes, pairs, quotas, pool); break;
     case BroadPhaseType::kQuadtree: quadtree_.FindPairs(boxes, pairs, quotas); break;
-    case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(boxes, pairs, quotas); break;
+    case BroadPhaseType::kAabbTree: aabb_tree_.FindPairs(boxes, pairs, quotas, pool); break;
   }
 }
 
@@ -81,18 +81,18 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
     auto_previous_.assign(boxes.begin(), boxes.end());
     return;
   }
-  FindPairsAutoTree(boxes, pairs, quotas);
+  FindPairsAutoTree(boxes, pairs, quotas, pool);
 }
 
 // The tree, and a switch to the grid when it reinserted more than a quarter of the bodies.
 void BroadPhase::FindPairsAutoTree(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                                   std::span<const PairQuota> quotas) {
+                                   std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   const std::size_t n = boxes.size();
   // New bodies are inserted, not moved: only a call on the same bodies measures motion.
   const bool same_bodies = auto_tree_bodies_ == n;
   auto_tree_bodies_ = n;
   last_used_ = BroadPhaseType::kAabbTree;
-  aabb_tree_.FindPairs(boxes, pairs, quotas);
+  aabb_tree_.FindPairs(boxes, pairs, quotas, pool);
   if (same_bodies && 4 * aabb_tree_.LastReinsertCount() > n) {
     auto_on_grid_ = true;
     auto_grid_calls_ = 0;

@@ -31,7 +31,8 @@ namespace engine {
 class BroadPhase {
  public:
   /// `quotas`: empty (every pair), or one per box (the pair budget, see PairCollector).
-  /// `pool`: threads the uniform grid may share its search among (the others run on the caller).
+  /// `pool`: threads the uniform grid and the AABB tree may share their searches among (the
+  /// others run on the caller).
   void FindPairs(BroadPhaseType type, std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                  std::span<const PairQuota> quotas = {}, detail::WorkerPool* pool = nullptr);
 
@@ -46,7 +47,7 @@ class BroadPhase {
   void FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
                      std::span<const PairQuota> quotas, detail::WorkerPool* pool);
   void FindPairsAutoTree(std::span<const AABB> boxes, std::vector<BodyPair>* pairs,
-                         std::span<const PairQuota> quotas);
+                         std::span<const PairQuota> quotas, detail::WorkerPool* pool);
 
   AllPairs all_pairs_;
   SweepAndPrune sweep_and_prune_;
