@@ -11,14 +11,13 @@ namespace {
 
 constexpr std::uint32_t kUnreached = std::numeric_limits<std::uint32_t>::max();
 
-// Breadth-first levels from the static bodies through the contacts; returns how many bodies
-// were reached.
+}  // namespace
+
 template <typename C>
-std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo> infos,
-                        ShockScratch* s) {
+void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> infos, ShockScratch* s) {
   const std::size_t n = infos.size();
   s->level.assign(n, kUnreached);
-  // Adjacency as a compressed list, built in constraint order.
+  // Adjacency as a compressed list.
   s->start.assign(n + 1, 0);
   s->neighbours.resize(2 * constraints.size());
   for (const C& c : constraints) ++s->start[c.a + 1], ++s->start[c.b + 1];
@@ -51,15 +50,18 @@ std::size_t BuildLevels(std::span<const C> constraints, std::span<const BodyInfo
       tail += was == kUnreached;
     }
   }
-  return tail;
+  s->reached = tail;
 }
 
-}  // namespace
+template void BuildShockLevels(std::span<const Contact>, std::span<const BodyInfo>, ShockScratch*);
+template void BuildShockLevels(std::span<const SubstepConstraint>, std::span<const BodyInfo>, ShockScratch*);
+template void BuildShockLevels(std::span<const LinearConstraint>, std::span<const BodyInfo>, ShockScratch*);
 
 template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
-                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows) {
-  const std::size_t reached = BuildLevels(constraints, infos, scratch);
+                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built) {
+  if (!levels_built) BuildShockLevels(constraints, infos, scratch);
+  const std::size_t reached = scratch->reached;
   const std::span<const std::uint32_t> level = scratch->level;
   // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
   // static after all levels), or one past that for the rest. A counting sort by bucket is
@@ -97,9 +99,9 @@ void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> in
 }
 
 template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const BodyInfo>, Vec2,
-                             ShockScratch*, std::vector<ShockRow>*);
+                             ShockScratch*, std::vector<ShockRow>*, bool);
 template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
-                             ShockScratch*, std::vector<ShockRow>*);
+                             ShockScratch*, std::vector<ShockRow>*, bool);
 
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop) {

@@ -33,7 +33,14 @@ struct ShockScratch {
   std::vector<std::uint32_t> level;  ///< per body: graph distance from a static body
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
   std::vector<std::uint32_t> bucket;  ///< per constraint: its place in the order's counting sort
+  std::size_t reached = 0;            ///< how many bodies the levels reach
 };
+
+/// Each body's level (graph distance through the contacts from a static body), and how many are
+/// reached. `constraints`: anything with bodies a and b, one per contact, in any order: the
+/// levels are distances, the same whatever order the search meets the contacts in.
+template <typename C>
+void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> infos, ShockScratch* scratch);
 
 /// Each body's level (graph distance through contacts from a static body: static bodies 0,
 /// bodies touching nothing static the highest), then the rows of the supporting contacts (normal
@@ -45,9 +52,10 @@ struct ShockScratch {
 /// Between turning bodies the pass stays out: holding a centre up would stop a box balanced on a
 /// corner from toppling, and one-sided pushes rectify rocking into a pumping jitter. Their
 /// contacts are solved by more passes instead (World's automatic settings).
+/// `levels_built`: BuildShockLevels already ran on this step's contacts (else it runs first).
 template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
-                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
+                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built = false);
 
 /// One pass over the rows: no contact within the slop may approach faster than its gap allows
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse

@@ -32,13 +32,27 @@ void SubstepSolver::Step(StepContext& context) {
     }
     Step(context, &substep_constraints_);
   } else {
-    if (context.def.substep_features.colour_order) {
-      order_.ByColour(context.contacts, context.infos);
+    const auto order = [&] {
+      if (context.def.substep_features.colour_order) {
+        order_.ByColour(context.contacts, context.infos);
+      } else {
+        order_.AsFound(context.contacts.size());
+      }
+    };
+    // Shock propagation's levels need only who touches whom: found beside the colouring.
+    shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
+                          context.pool.Threads() > 1;
+    if (shock_levels_built_) {
+      context.pool.RunSideBySide(order, [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); });
     } else {
-      order_.AsFound(context.contacts.size());
+      order();
     }
     Step(context, &linear_constraints_);
   }
+}
+
+bool SubstepSolver::ShockPropagates(const WorldDef& def) {
+  return def.substep_features.shock_propagation && Length(def.gravity) > 0.0;
 }
 
 SubstepPlan SubstepSolver::Plan(const StepContext& context) {
@@ -46,7 +60,7 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   const SubstepFeatures& features = def.substep_features;
   SubstepPlan plan{};
   plan.impact_pass = features.impact_pass;
-  plan.shock_propagation = features.shock_propagation && Length(def.gravity) > 0.0;
+  plan.shock_propagation = ShockPropagates(def);
   plan.direct_solve = false;  // known once the constraints are built (PrepareDirectSolve)
   FindLoadedBodies(context);
   // Nothing loaded at all: a closed world without applied forces.
@@ -116,13 +130,16 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if constexpr (kCanTurn<C>) {
     plan.direct_solve = def.substep_features.direct_solve &&
                         PrepareDirectSolve(constraints, context.infos, &direct_solver_);
+    // Shock propagation takes only pairs that cannot turn: where every contact turns (every
+    // moving body can), it has nothing to do.
+    plan.shock_propagation &= std::any_of(constraints.begin(), constraints.end(), [](const C& c) { return !Turns(c); });
   }
   // Two tasks side by side: the shock rows only read the constraints, the pile's height only
   // positions, the impacts only write velocities and the lanes only their blocks.
   const auto shock_rows = [&] {
     if (!plan.shock_propagation) return;  // stacks are supported against gravity: its direction is up
     BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
-                      &shock_rows_);
+                      &shock_rows_, shock_levels_built_);
     shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
   };
   const auto impacts_and_lanes = [&] {

@@ -78,6 +78,8 @@ class SubstepSolver {
   template <typename C>
   void Step(StepContext& context, std::vector<C>* constraints);
   SubstepPlan Plan(const StepContext& context);
+  /// Whether shock propagation runs: switched on, and gravity gives an up.
+  static bool ShockPropagates(const WorldDef& def);
   /// `passes`, or 2 where nothing turns and the pile stands taller than kDeepPile.
   static int PassesForPile(const StepContext& context, int passes);
   /// Which bodies an applied force pushes (their contacts may carry a load); empty when every
@@ -121,6 +123,7 @@ class SubstepSolver {
   std::vector<std::uint8_t> pushed_;
   DirectSolver direct_solver_;                          ///< islands with a large mass ratio
   ShockScratch shock_scratch_;
+  bool shock_levels_built_ = false;                     ///< this step's levels found beside the colouring
   std::vector<ShockRow> shock_rows_;
   ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
 };
