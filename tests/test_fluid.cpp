@@ -193,21 +193,18 @@ TEST_CASE("the fluid kernel's terms for pairs, worked out lanes at a time, are t
     for (std::size_t count = 0; count <= 9; ++count) {
       for (std::size_t start = 0; start + count <= offsets.size(); start += 7) {
         std::vector<double> dx(count + 4, 0.0), dy(count + 4, 0.0), r2(count + 4, k.h2);
-        std::vector<std::uint32_t> at(count);
         for (std::size_t q = 0; q < count; ++q) {
           dx[q] = offsets[start + q].x, dy[q] = offsets[start + q].y;
           r2[q] = engine::LengthSquared(offsets[start + q]);
-          at[q] = static_cast<std::uint32_t>(count - 1 - q);  // stored out of order
         }
         std::vector<engine::detail::PairTerms> terms(count, {-1.0, {-1.0, -1.0}, -1.0});
         engine::detail::KernelTermsOfPairs(k, inv_clumping_w, clumping_scale, with_gradients,
-                                           {dx.data(), dy.data(), r2.data(), at.data(),
-                                            static_cast<std::uint32_t>(count)},
+                                           {dx.data(), dy.data(), r2.data(), static_cast<std::uint32_t>(count)},
                                            terms.data());
         for (std::size_t q = 0; q < count; ++q) {
           const Vec2 d = offsets[start + q];
           const double r = std::sqrt(engine::LengthSquared(d));
-          const engine::detail::PairTerms& t = terms[at[q]];
+          const engine::detail::PairTerms& t = terms[q];
           REQUIRE(bits(t.weight) == bits(k.W(engine::LengthSquared(d), r)));
           if (!with_gradients) continue;
           const Vec2 gradient = k.Gradient(d, r);

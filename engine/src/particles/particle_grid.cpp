@@ -34,6 +34,24 @@ void ParticleGrid::Build(std::span<const Vec2> positions, double cell) {
   cell_starts_.push_back(static_cast<std::uint32_t>(order_.size()));
 }
 
+void ParticleGrid::RenumberFrom(std::uint32_t first, std::vector<std::uint32_t>* old_of_new,
+                                std::vector<std::uint32_t>* row_starts) {
+  // Within a cell the lower numbers (before `first`) come first and keep theirs, and the others
+  // get rising numbers in the order they are met: the list stays sorted by (cell, number).
+  old_of_new->clear();
+  row_starts->clear();
+  for (std::size_t c = 0; c < cell_keys_.size(); ++c) {
+    if (c == 0 || cell_keys_[c] >> 32 != cell_keys_[c - 1] >> 32) {
+      row_starts->push_back(static_cast<std::uint32_t>(old_of_new->size()));
+    }
+    for (std::uint32_t k = cell_starts_[c]; k < cell_starts_[c + 1]; ++k) {
+      if (order_[k] < first) continue;
+      old_of_new->push_back(order_[k] - first);
+      order_[k] = first + static_cast<std::uint32_t>(old_of_new->size() - 1);
+    }
+  }
+}
+
 std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::int32_t first,
                                                          std::int32_t last) const {
   const auto lo = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), Key(first, row));
@@ -44,8 +62,7 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                                   std::vector<std::uint32_t>* offsets,
                                   std::vector<std::uint32_t>* neighbours,
-                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
-                                  std::vector<std::uint32_t>* entry_pairs) const {
+                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
@@ -96,7 +113,6 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
   neighbours->resize(2 * total);
-  entry_pairs->resize(2 * total);
   pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
@@ -104,9 +120,7 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
       const auto [i, j] = pairs_[t][q];
-      (*entry_pairs)[fill[i]] = p;
       (*neighbours)[fill[i]++] = j;
-      (*entry_pairs)[fill[j]] = p;
       (*neighbours)[fill[j]++] = i;
       (*pairs)[p++] = {i, j};
     }

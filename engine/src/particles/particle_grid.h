@@ -18,16 +18,23 @@ class ParticleGrid {
   /// Sorts `positions` into cells `cell` wide (> 0).
   void Build(std::span<const Vec2> positions, double cell);
 
+  /// Renumbers the particles from `first` on in the grid's order (row by row, cell by cell, by
+  /// number within a cell) and lists them by their new numbers, still in that order:
+  /// `old_of_new[k]` is the old number of new number first + k, less first. `row_starts` gets,
+  /// for each row of cells, the first new number (less first) in it or after it. The caller
+  /// moves the particles' data to match.
+  void RenumberFrom(std::uint32_t first, std::vector<std::uint32_t>* old_of_new,
+                    std::vector<std::uint32_t>* row_starts);
+
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
   /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
   /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
-  /// `pairs`, and `entry_pairs` gives each list entry its pair's index there, so a quantity of a
-  /// pair can be worked out once for both its particles.
+  /// `pairs`, in the order of the cells of their lower particles, so a quantity of a pair can be
+  /// worked out once for both its particles.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                       std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
-                      std::vector<std::uint32_t>* entry_pairs) const;
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>

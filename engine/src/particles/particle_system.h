@@ -101,6 +101,9 @@ class ParticleSystem {
   void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
                        double radius, std::uint32_t group);
   void FindContacts(const WorldDef& def, const Bodies& bodies);
+  /// The fluid's particles into the grid's order for the step (fluid_order_), or back into
+  /// their own order (as FluidPositions lists them) after it.
+  void ReorderFluid(bool to_grid_order);
   double LatticeKernelSum() const;
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
@@ -109,12 +112,14 @@ class ParticleSystem {
   /// first's mass.
   template <bool kOneMass>
   void DensityAndMoves(const SphKernels& k);
-  /// pair_terms_ (their gradients only if `with_gradients`) and pair_near_ for the particles
-  /// where they are now.
-  void FindPairTerms(const SphKernels& k, bool with_gradients);
-  /// Packs fluid particle i's entries with pair_near_ set at the start of its run of
-  /// near_particles_ and near_pairs_, in list order; returns how many.
-  std::uint32_t PackNear(std::uint32_t i);
+  /// Splits the fluid's pairs into chunks of whole rows of the grid (chunk_particles_,
+  /// chunk_pairs_), after FindNeighbours.
+  void FindChunks();
+  /// Calls visit(i, j, terms) for each pair of chunk `chunk` whose two fluid particles lie
+  /// within the kernel, in pair order, with its kernel terms (only the weight unless
+  /// `with_gradients`) where the particles are now.
+  template <typename Visit>
+  void ForEachNearPair(const SphKernels& k, std::uint32_t chunk, bool with_gradients, Visit&& visit) const;
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
@@ -155,6 +160,9 @@ class ParticleSystem {
 
   // The step's scratch.
   ParticleGrid grid_;
+  /// This step's order of the fluid's particles, by grid cell, so that neighbours lie near in
+  /// memory: each one's own number (less fluid_first_); and where each row of cells begins.
+  std::vector<std::uint32_t> fluid_order_, fluid_rows_;
   std::vector<std::uint32_t> neighbour_offsets_, neighbours_;
   std::vector<PlaneContact> planes_;
   std::vector<Vec2> start_centers_;
@@ -166,14 +174,23 @@ class ParticleSystem {
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
-  /// Each pair of neighbours once (i < j), and each neighbour-list entry's index into it.
+  /// Each pair of neighbours once (i < j), in the order of the grid's cells.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
-  std::vector<std::uint32_t> entry_pairs_;
-  std::vector<PairTerms> pair_terms_;  ///< this substep's
-  std::vector<std::uint8_t> pair_near_;  ///< 1 for two fluid particles within the kernel
-  /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
-  /// them from its offset in the neighbour list, with their pairs' indices.
-  std::vector<std::uint32_t> near_particles_, near_pairs_, near_counts_;
+  /// The fluid's pairs in chunks, each summed on one thread: chunk c holds the fluid particles
+  /// [chunk_particles_[c], chunk_particles_[c + 1]) (less fluid_first_), whole rows of the
+  /// grid, and pairs_[chunk_pairs_[c], chunk_pairs_[c + 1]), whose lower particles are those.
+  /// A pair's higher particle lies in the same chunk or in the next one's first row: it adds
+  /// into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
+  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_;
+  /// What the density pass sums over a particle's neighbours.
+  struct DensitySums {
+    double density = 0.0;
+    Vec2 gradient;
+    double denominator = 0.0;
+  };
+  std::vector<DensitySums> sums_, spill_sums_;
+  std::vector<Vec2> moves_, spill_moves_;
+  std::vector<double> inv_rest_;  ///< each fluid particle's 1 / rest density
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
   std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)
