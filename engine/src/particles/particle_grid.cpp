@@ -62,7 +62,8 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                                   std::vector<std::uint32_t>* offsets,
                                   std::vector<std::uint32_t>* neighbours,
-                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs) const {
+                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
+                                  std::uint32_t ordered_from, std::uint32_t lists_below) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
@@ -92,8 +93,12 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
         std::pair<std::uint32_t, std::uint32_t>* const out = pairs.data();
         for (std::uint32_t a = a0; a < a1; ++a) {
           const std::uint32_t i = order[a];
+          // A particle numbered in the grid's order has only lower numbers in the row below
+          // and before it in its own row: none of them can pair with it, so they are skipped.
+          const bool ordered = i >= ordered_from;
+          if (ordered && dr < 0) continue;
           const Vec2 xi = x[i];
-          for (std::uint32_t b = b0; b < b1; ++b) {
+          for (std::uint32_t b = ordered && dr == 0 ? a + 1 : b0; b < b1; ++b) {
             const std::uint32_t j = order[b];
             out[count] = {i, j};
             count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
@@ -107,12 +112,16 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   counts.assign(n + 1, 0);
   std::size_t total = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
-    for (std::size_t q = 0; q < pair_counts_[t]; ++q) ++counts[pairs_[t][q].first], ++counts[pairs_[t][q].second];
+    for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
+      const auto [i, j] = pairs_[t][q];
+      counts[i] += i < lists_below;
+      counts[j] += j < lists_below;
+    }
     total += pair_counts_[t];
   }
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
-  neighbours->resize(2 * total);
+  neighbours->resize(offsets->back());
   pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
@@ -120,8 +129,8 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
       const auto [i, j] = pairs_[t][q];
-      (*neighbours)[fill[i]++] = j;
-      (*neighbours)[fill[j]++] = i;
+      if (i < lists_below) (*neighbours)[fill[i]++] = j;
+      if (j < lists_below) (*neighbours)[fill[j]++] = i;
       (*pairs)[p++] = {i, j};
     }
   }

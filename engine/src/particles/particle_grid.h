@@ -31,10 +31,14 @@ class ParticleGrid {
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
   /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
   /// `pairs`, in the order of the cells of their lower particles, so a quantity of a pair can be
-  /// worked out once for both its particles.
+  /// worked out once for both its particles. The particles from `ordered_from` on are numbered
+  /// in the grid's order (RenumberFrom), which lets their search skip the cells with only lower
+  /// numbers; only the particles below `lists_below` get lists (the others' are empty), the
+  /// pairs being all a fluid needs. Neither changes the lists or the pairs.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                       std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs) const;
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs, std::uint32_t ordered_from,
+                      std::uint32_t lists_below) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>

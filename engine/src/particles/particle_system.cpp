@@ -314,7 +314,10 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
     grid_.RenumberFrom(fluid_first_, &fluid_order_, &fluid_rows_);
     ReorderFluid(true);
   }
-  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_);
+  // The fluid's particles need lists only for vorticity (its other passes go by pairs).
+  const bool vorticity = std::any_of(fluid_.vorticity.begin(), fluid_.vorticity.end(), [](double v) { return v > 0.0; });
+  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_, fluid_first_,
+                       vorticity ? static_cast<std::uint32_t>(x_.size()) : fluid_first_);
   if (FluidCount() > 0) FindChunks();
   planes_.clear();
   std::vector<BodyPlane> found;
@@ -377,17 +380,43 @@ void ParticleSystem::FindChunks() {
     if (start - chunk_particles_.back() >= kChunkParticles && start < n) chunk_particles_.push_back(start);
   }
   chunk_particles_.push_back(n);
-  // The pairs come in the order of their lower particles' cells, so a chunk's are a run (pairs
-  // with a soft particle lie between them, and are skipped).
-  const auto chunks = static_cast<std::uint32_t>(chunk_particles_.size() - 1);
-  chunk_pairs_.assign(chunks + 1, static_cast<std::uint32_t>(pairs_.size()));
-  chunk_pairs_[0] = 0;
-  std::uint32_t c = 0;
-  for (std::uint32_t p = 0; p < pairs_.size(); ++p) {
-    const std::uint32_t i = pairs_[p].first;
-    if (i < first) continue;
-    while (i - first >= chunk_particles_[c + 1]) chunk_pairs_[++c] = p;
+  // The fluid's pairs by their lower particle (a stable counting sort: each particle's in the
+  // order found), so that a particle's pairs follow each other and its sums can wait in
+  // registers (AddDensityOfPairs); a chunk's pairs are then a run.
+  pair_starts_.assign(n + 1, 0);
+  for (const ParticlePair& p : pairs_) {
+    if (p.first >= first) ++pair_starts_[p.first - first + 1];
   }
+  for (std::uint32_t f = 0; f < n; ++f) pair_starts_[f + 1] += pair_starts_[f];
+  fluid_pairs_.resize(pair_starts_[n]);
+  for (const ParticlePair& p : pairs_) {
+    if (p.first >= first) fluid_pairs_[pair_starts_[p.first - first]++] = {p.first - first, p.second - first};
+  }
+  // pair_starts_[f] is now where f + 1's pairs begin.
+  chunk_pairs_.assign(1, 0);
+  for (std::size_t c = 1; c < chunk_particles_.size(); ++c) chunk_pairs_.push_back(pair_starts_[chunk_particles_[c] - 1]);
+  near_pairs_.resize(fluid_pairs_.size());
+  near_counts_.resize(chunk_particles_.size() - 1);
+  // A fluid of one kind (one block, or blocks of one density) takes its mass and density once
+  // rather than per pair, four pairs at a time (AddDensityOfPairs): the same values, so the
+  // same bits.
+  inv_rest_.resize(n);
+  one_kind_ = true;
+  for (std::uint32_t f = 0; f < n; ++f) {
+    inv_rest_[f] = 1.0 / fluid_.rest_density[f];
+    one_kind_ &= (fluid_.mass[f] == fluid_.mass[0]) & (inv_mass_[first + f] == inv_mass_[first]) &
+                 (inv_rest_[f] == inv_rest_[0]);
+  }
+}
+
+std::span<const ParticlePair> ParticleSystem::NearPairs(std::uint32_t chunk) const {
+  return std::span(near_pairs_).subspan(chunk_pairs_[chunk], near_counts_[chunk]);
+}
+
+void ParticleSystem::FindNearPairs(double h2, std::uint32_t chunk) {
+  const std::uint32_t begin = chunk_pairs_[chunk], end = chunk_pairs_[chunk + 1];
+  near_counts_[chunk] = PairsWithin(x_.data() + fluid_first_, std::span(fluid_pairs_).subspan(begin, end - begin), h2,
+                                    near_pairs_.data() + begin);
 }
 
 template <typename Visit>
@@ -399,31 +428,24 @@ void ParticleSystem::ForEachNearPair(const SphKernels& k, std::uint32_t chunk, b
   const double clumping_over_w = 1.0 / k.W(std::pow(kClumpingDistance * k.h, 2));
   const double clumping_strength = -kClumpingStrength / density_denominator_;
   constexpr std::uint32_t kBlock = 256;
-  // In locals: the stores could alias anything reached through a reference.
-  const Vec2* const x = x_.data();
-  const std::pair<std::uint32_t, std::uint32_t>* const pairs = pairs_.data();
-  const double h2 = k.h2;
-  const std::uint32_t first = fluid_first_;
+  const Vec2* const x = x_.data() + fluid_first_;
+  const ParticlePair* const near = near_pairs_.data() + chunk_pairs_[chunk];
+  const std::uint32_t count = near_counts_[chunk];
   alignas(32) double dxs[kBlock + 4], dys[kBlock + 4], r2s[kBlock + 4];
-  std::pair<std::uint32_t, std::uint32_t> near[kBlock + 4];
   PairTerms terms[kBlock + 4];
-  for (std::uint32_t begin = chunk_pairs_[chunk]; begin < chunk_pairs_[chunk + 1]; begin += kBlock) {
-    const std::uint32_t end = std::min(chunk_pairs_[chunk + 1], begin + kBlock);
-    // The block's pairs of fluid particles within the kernel (two thirds of them mid-splash),
-    // gathered first so that only they pay for the square root and the division. Every pair
-    // is written and kept or overwritten by the next: whether it is near is a coin toss.
-    std::uint32_t m = 0;
-    for (std::uint32_t p = begin; p < end; ++p) {
-      const auto [i, j] = pairs[p];
+  for (std::uint32_t begin = 0; begin < count; begin += kBlock) {
+    const std::uint32_t m = std::min(kBlock, count - begin);
+    for (std::uint32_t q = 0; q < m; ++q) {
+      const auto [i, j] = near[begin + q];
       const Vec2 d = x[i] - x[j];
-      const double r2 = LengthSquared(d);
-      dxs[m] = d.x, dys[m] = d.y, r2s[m] = r2, near[m] = pairs[p];
-      m += (i >= first) & (r2 < h2);
+      dxs[q] = d.x, dys[q] = d.y, r2s[q] = LengthSquared(d);
     }
     // The lanes past the last pair work on a harmless stand-in and are not stored.
-    for (std::uint32_t q = m; q < m + 4; ++q) dxs[q] = 0.0, dys[q] = 0.0, r2s[q] = h2;
+    for (std::uint32_t q = m; q < m + 4; ++q) dxs[q] = 0.0, dys[q] = 0.0, r2s[q] = k.h2;
     KernelTermsOfPairs(k, clumping_over_w, clumping_strength, with_gradients, {dxs, dys, r2s, m}, terms);
-    for (std::uint32_t q = 0; q < m; ++q) visit(near[q].first, near[q].second, terms[q]);
+    for (std::uint32_t q = 0; q < m; ++q) {
+      visit(fluid_first_ + near[begin + q].first, fluid_first_ + near[begin + q].second, terms[q]);
+    }
   }
 }
 
@@ -432,29 +454,14 @@ void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const std::uint32_t first = fluid_first_, n = FluidCount();
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
-  inv_rest_.resize(n);
-  for (std::uint32_t f = 0; f < n; ++f) inv_rest_[f] = 1.0 / fluid_.rest_density[f];
   FindWalls(pushes);
-  // With one mass for every fluid particle (one block, or blocks of one density), the passes
-  // take it once rather than look it up per pair: the same values, so the same bits, and two
-  // loads fewer per pair.
-  const double mass_0 = fluid_.mass[0], inv_mass_0 = inv_mass_[first];
-  bool one_mass = true;
-  for (std::uint32_t f = 0; f < n; ++f) {
-    one_mass &= (fluid_.mass[f] == mass_0) & (inv_mass_[first + f] == inv_mass_0);
-  }
-  if (one_mass) {
-    DensityAndMoves<true>(k);
-  } else {
-    DensityAndMoves<false>(k);
-  }
+  DensityAndMoves(k);
   PushWalls(h, pushes);
   // Jacobi: a pair pushes each of its particles from both their constraints, which in a
   // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
   for (std::uint32_t f = 0; f < n; ++f) x_[first + f] += kJacobiShare * delta_[f];
 }
 
-template <bool kOneMass>
 void ParticleSystem::DensityAndMoves(const SphKernels& k) {
   // Each pair adds into both its particles, in pair order (each particle's sums then go in the
   // order of its neighbour list): the pairs' terms are used as they are worked out, never
@@ -467,7 +474,10 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
   const double* const inv_mass = inv_mass_.data();
   const double* const mass = fluid_.mass.data();
   const double* const inv_rest = inv_rest_.data();
-  const double mass_0 = mass[0], inv_mass_0 = inv_mass[first];
+  const bool uniform = one_kind_;
+  UniformPairs one_kind{k, mass[0], inv_mass[first], inv_rest[0], 1.0 / k.W(std::pow(kClumpingDistance * k.h, 2)),
+                        -kClumpingStrength / density_denominator_, 0};
+  pair_terms_.resize(3 * fluid_pairs_.size());
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
   sums_.resize(n);
   spill_sums_.assign(n, DensitySums{});
@@ -482,15 +492,21 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
     to.denominator += denominator;
   };
   pool_->ParallelFor(chunks, 2, [&](std::uint32_t c) {
+    FindNearPairs(k.h2, c);
     const std::uint32_t own_end = chunk_particles_[c + 1];
+    if (uniform) {
+      UniformPairs chunk = one_kind;
+      chunk.own_end = own_end;
+      AddDensityOfPairs(chunk, x_.data() + first, NearPairs(c), sums, spill_sums,
+                        pair_terms_.data() + 3 * chunk_pairs_[c]);
+      return;
+    }
     ForEachNearPair(k, c, true, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
       // Soft particles meet the fluid by contact, not pressure: only fluid pairs come here.
       const std::uint32_t fi = i - first, fj = j - first;
-      const double mi = kOneMass ? mass_0 : mass[fi], mj = kOneMass ? mass_0 : mass[fj];
-      const Vec2 gi = (mj * inv_rest[fi]) * t.gradient, gj = (mi * inv_rest[fj]) * (-t.gradient);
-      add(sums[fi], mj * t.weight, gi, (kOneMass ? inv_mass_0 : inv_mass[j]) * LengthSquared(gi));
-      add(fj < own_end ? sums[fj] : spill_sums[fj], mi * t.weight, gj,
-          (kOneMass ? inv_mass_0 : inv_mass[i]) * LengthSquared(gj));
+      const Vec2 gi = (mass[fj] * inv_rest[fi]) * t.gradient, gj = (mass[fi] * inv_rest[fj]) * (-t.gradient);
+      add(sums[fi], mass[fj] * t.weight, gi, inv_mass[j] * LengthSquared(gi));
+      add(fj < own_end ? sums[fj] : spill_sums[fj], mass[fi] * t.weight, gj, inv_mass[i] * LengthSquared(gj));
     });
   });
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
@@ -507,8 +523,7 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
     lambda_[f] = -c / (denominator + epsilon);
     lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
   });
-  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping
-  // (its pair's term from KernelTermsOfPairs).
+  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
   moves_.assign(n, Vec2{});
   spill_moves_.assign(n, Vec2{});
   Vec2* const moves = moves_.data();
@@ -517,11 +532,17 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
   const double* const lambda_over_rest = lambda_over_rest_.data();
   pool_->ParallelFor(chunks, 2, [&](std::uint32_t c) {
     const std::uint32_t own_end = chunk_particles_[c + 1];
+    if (uniform) {
+      UniformPairs chunk = one_kind;
+      chunk.own_end = own_end;
+      AddMovesOfPairs(chunk, x_.data() + first, NearPairs(c), lambda, lambda_over_rest,
+                      pair_terms_.data() + 3 * chunk_pairs_[c], moves, spill_moves);
+      return;
+    }
     ForEachNearPair(k, c, true, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
       const std::uint32_t fi = i - first, fj = j - first;
-      const double mi = kOneMass ? mass_0 : mass[fi], mj = kOneMass ? mass_0 : mass[fj];
-      const double weight_i = (lambda[fi] + t.clumping) * (mj * inv_rest[fi]) + mi * lambda_over_rest[fj];
-      const double weight_j = (lambda[fj] + t.clumping) * (mi * inv_rest[fj]) + mj * lambda_over_rest[fi];
+      const double weight_i = (lambda[fi] + t.clumping) * (mass[fj] * inv_rest[fi]) + mass[fi] * lambda_over_rest[fj];
+      const double weight_j = (lambda[fj] + t.clumping) * (mass[fi] * inv_rest[fj]) + mass[fj] * lambda_over_rest[fi];
       moves[fi] += weight_i * t.gradient;
       (fj < own_end ? moves[fj] : spill_moves[fj]) += weight_j * (-t.gradient);
     });
@@ -781,6 +802,7 @@ void ParticleSystem::ApplyViscosity(double dt) {
   const double* const mass = fluid_.mass.data();
   const double* const density = fluid_.density.data();
   pool_->ParallelFor(static_cast<std::uint32_t>(chunk_particles_.size() - 1), 2, [&](std::uint32_t c) {
+    FindNearPairs(k.h2, c);
     const std::uint32_t own_end = chunk_particles_[c + 1];
     ForEachNearPair(k, c, false, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
       const std::uint32_t fi = i - first, fj = j - first;

@@ -15,6 +15,8 @@
 #include "engine/world_def.h"
 #include "parallel/worker_pool.h"
 #include "particles/body_contact.h"
+#include "particles/fluid_pairs.h"
+#include "particles/near_pairs.h"
 #include "particles/particle_grid.h"
 #include "particles/sph_kernels.h"
 #include "particles/soft_bodies.h"
@@ -108,16 +110,16 @@ class ParticleSystem {
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
-  /// SolveFluid's density and move passes (delta_); `kOneMass`: every fluid particle has the
-  /// first's mass.
-  template <bool kOneMass>
+  /// SolveFluid's density and move passes (delta_).
   void DensityAndMoves(const SphKernels& k);
-  /// Splits the fluid's pairs into chunks of whole rows of the grid (chunk_particles_,
+  /// The fluid's pairs (fluid_pairs_) in chunks of whole rows of the grid (chunk_particles_,
   /// chunk_pairs_), after FindNeighbours.
   void FindChunks();
-  /// Calls visit(i, j, terms) for each pair of chunk `chunk` whose two fluid particles lie
-  /// within the kernel, in pair order, with its kernel terms (only the weight unless
-  /// `with_gradients`) where the particles are now.
+  /// near_pairs_ and near_counts_ of chunk `chunk` for the particles where they are now.
+  void FindNearPairs(double h2, std::uint32_t chunk);
+  std::span<const ParticlePair> NearPairs(std::uint32_t chunk) const;
+  /// Calls visit(i, j, terms) for each of chunk `chunk`'s near pairs (FindNearPairs), in pair
+  /// order, with its kernel terms (only the weight unless `with_gradients`).
   template <typename Visit>
   void ForEachNearPair(const SphKernels& k, std::uint32_t chunk, bool with_gradients, Visit&& visit) const;
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
@@ -174,23 +176,24 @@ class ParticleSystem {
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
-  /// Each pair of neighbours once (i < j), in the order of the grid's cells.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+  /// Each pair of neighbours once (i < j), in the order of the grid's cells; those of two fluid
+  /// particles, by their lower particle, numbered from fluid_first_.
+  std::vector<ParticlePair> pairs_, fluid_pairs_;
   /// The fluid's pairs in chunks, each summed on one thread: chunk c holds the fluid particles
   /// [chunk_particles_[c], chunk_particles_[c + 1]) (less fluid_first_), whole rows of the
-  /// grid, and pairs_[chunk_pairs_[c], chunk_pairs_[c + 1]), whose lower particles are those.
-  /// A pair's higher particle lies in the same chunk or in the next one's first row: it adds
-  /// into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
-  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_;
-  /// What the density pass sums over a particle's neighbours.
-  struct DensitySums {
-    double density = 0.0;
-    Vec2 gradient;
-    double denominator = 0.0;
-  };
+  /// grid, and fluid_pairs_[chunk_pairs_[c], chunk_pairs_[c + 1]), whose lower particles are
+  /// those. A pair's higher particle lies in the same chunk or in the next one's first row: it
+  /// adds into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
+  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_, pair_starts_;
+  /// Each chunk's pairs within the kernel this substep: near_counts_[c] of them from
+  /// near_pairs_[chunk_pairs_[c]], with their terms from pair_terms_[3 · chunk_pairs_[c]].
+  std::vector<ParticlePair> near_pairs_;
+  std::vector<double> pair_terms_;
+  std::vector<std::uint32_t> near_counts_;
   std::vector<DensitySums> sums_, spill_sums_;
   std::vector<Vec2> moves_, spill_moves_;
   std::vector<double> inv_rest_;  ///< each fluid particle's 1 / rest density
+  bool one_kind_ = false;         ///< every fluid particle has the same mass and rest density
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
   std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)
