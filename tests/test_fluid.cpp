@@ -281,13 +281,20 @@ TEST_CASE("the pairs within a distance, four at a time, are the plain loop's", "
       if (engine::LengthSquared(x[p.first] - x[p.second]) < r2) want.push_back(p);
     }
     std::vector<engine::detail::ParticlePair> got(count);
-    got.resize(engine::detail::PairsWithin(x.data(), some, r2, got.data()));
+    std::vector<double> dx(count), dy(count), d2(count);
+    got.resize(engine::detail::PairsWithin(x.data(), some, r2, got.data(), {dx.data(), dy.data(), d2.data()}));
     REQUIRE(got == want);
+    for (std::size_t q = 0; q < got.size(); ++q) {
+      const Vec2 d = x[got[q].first] - x[got[q].second];
+      REQUIRE(Bits(dx[q]) == Bits(d.x));
+      REQUIRE(Bits(dy[q]) == Bits(d.y));
+      REQUIRE(Bits(d2[q]) == Bits(engine::LengthSquared(d)));
+    }
   }
 }
 
 TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair at a time's bits", "[fluid]") {
-  // AddDensityOfPairs and AddMovesOfPairs at the widest lanes against one pair at a time, on the
+  // AddDensityOfPairs, AddMovesOfPairs and AddPullsOfPairs at the widest lanes against one pair at a time, on the
   // same pairs (by lower particle, each with runs of pairs and a tail, some adding into the
   // spill sums), from the same sums: bit for bit.
   const engine::detail::SphKernels k(0.125);
@@ -310,8 +317,14 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
     }
     auto sums_1 = sums, spill_1 = spill;
     std::vector<double> terms(3 * pairs.size()), unused(3 * pairs.size());
-    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, sums.data(), spill.data(), terms.data());
-    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, sums_1.data(), spill_1.data(), unused.data(), 1);
+    std::vector<double> dx(pairs.size()), dy(pairs.size()), d2(pairs.size());
+    for (std::size_t q = 0; q < pairs.size(); ++q) {
+      const Vec2 d = x[pairs[q].first] - x[pairs[q].second];
+      dx[q] = d.x, dy[q] = d.y, d2[q] = engine::LengthSquared(d);
+    }
+    const engine::detail::PairOffsets offsets{dx.data(), dy.data(), d2.data()};
+    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums.data(), spill.data(), terms.data());
+    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums_1.data(), spill_1.data(), unused.data(), 1);
     for (std::size_t f = 0; f < x.size(); ++f) {
       for (const auto* both : {&sums, &spill}) {
         const auto& one = both == &sums ? sums_1[f] : spill_1[f];
@@ -336,6 +349,25 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
       REQUIRE(Bits(moves[f].y) == Bits(moves_1[f].y));
       REQUIRE(Bits(moves_spill[f].x) == Bits(moves_spill_1[f].x));
       REQUIRE(Bits(moves_spill[f].y) == Bits(moves_spill_1[f].y));
+    }
+    // XSPH's pulls, from random velocities and m/ρ.
+    std::vector<Vec2> v(x.size());
+    std::vector<double> mass_over_density(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      v[f] = {Uniform(state) - 0.5, Uniform(state) - 0.5};
+      mass_over_density[f] = 0.001 * (1.0 + Uniform(state));
+    }
+    auto pulls = moves, pulls_spill = moves_spill;
+    auto pulls_1 = moves, pulls_spill_1 = moves_spill;
+    engine::detail::AddPullsOfPairs(fluid, x.data(), v.data(), mass_over_density.data(), pairs, offsets, pulls.data(),
+                                    pulls_spill.data());
+    engine::detail::AddPullsOfPairs(fluid, x.data(), v.data(), mass_over_density.data(), pairs, offsets,
+                                    pulls_1.data(), pulls_spill_1.data(), 1);
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      REQUIRE(Bits(pulls[f].x) == Bits(pulls_1[f].x));
+      REQUIRE(Bits(pulls[f].y) == Bits(pulls_1[f].y));
+      REQUIRE(Bits(pulls_spill[f].x) == Bits(pulls_spill_1[f].x));
+      REQUIRE(Bits(pulls_spill[f].y) == Bits(pulls_spill_1[f].y));
     }
   }
 }

@@ -16,14 +16,16 @@ static_assert(sizeof(DensitySums) == 4 * sizeof(double) && sizeof(Vec2) == 2 * s
 
 namespace {
 
-// The sums `fj` (from first) adds into: its own chunk's, or the next chunk's spill.
+// The sums `fj` adds into: its own chunk's, or the next chunk's spill. (`own_end` is taken by
+// value so that the stores into the sums cannot make it be read again.)
 template <typename T>
-T& Target(const UniformPairs& fluid, std::uint32_t fj, T* own, T* spill) {
-  return fj < fluid.own_end ? own[fj] : spill[fj];
+T& Target(std::uint32_t own_end, std::uint32_t fj, T* own, T* spill) {
+  return fj < own_end ? own[fj] : spill[fj];
 }
 
 void DensityBy1(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs, DensitySums* own,
                 DensitySums* spill) {
+  const std::uint32_t own_end = fluid.own_end;
   const SphKernels& k = fluid.kernel;
   const double a = fluid.mass * fluid.inv_rest;
   for (const auto& [i, j] : pairs) {
@@ -36,7 +38,7 @@ void DensityBy1(const UniformPairs& fluid, const Vec2* x, std::span<const Partic
     si.density += mw;
     si.gradient += g;
     si.denominator += denominator;
-    DensitySums& sj = Target(fluid, j, own, spill);
+    DensitySums& sj = Target(own_end, j, own, spill);
     sj.density += mw;
     sj.gradient += -g;
     sj.denominator += denominator;
@@ -45,6 +47,7 @@ void DensityBy1(const UniformPairs& fluid, const Vec2* x, std::span<const Partic
 
 void MovesBy1(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs, const double* lambda,
               const double* lambda_over_rest, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
   const SphKernels& k = fluid.kernel;
   const double a = fluid.mass * fluid.inv_rest;
   for (const auto& [i, j] : pairs) {
@@ -58,14 +61,25 @@ void MovesBy1(const UniformPairs& fluid, const Vec2* x, std::span<const Particle
     const double weight_i = (lambda[fi] + clumping) * a + fluid.mass * lambda_over_rest[fj];
     const double weight_j = (lambda[fj] + clumping) * a + fluid.mass * lambda_over_rest[fi];
     own[fi] += weight_i * gradient;
-    Target(fluid, fj, own, spill) += weight_j * (-gradient);
+    Target(own_end, fj, own, spill) += weight_j * (-gradient);
+  }
+}
+
+void PullsBy1(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+              std::span<const ParticlePair> pairs, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  for (const auto& [i, j] : pairs) {
+    const double r2 = LengthSquared(x[i] - x[j]);
+    const double w = fluid.kernel.W(r2, std::sqrt(r2));
+    own[i] += (mass_over_density[j] * w) * (v[j] - v[i]);
+    Target(own_end, j, own, spill) += (mass_over_density[i] * w) * (v[i] - v[j]);
   }
 }
 
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
 #define BALLBOX_AVX2 __attribute__((target("avx2")))
 
-// The x and y of the four pairs' particles i (or j), lanes in pair order.
+// The x and y of four Vec2s, lanes in the order given.
 BALLBOX_AVX2 inline void Gather4(const Vec2* x, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
                                  __m256d* xs, __m256d* ys) {
   const __m256d ab = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[a].x)), _mm_loadu_pd(&x[b].x), 1);
@@ -80,12 +94,7 @@ struct Kernel4 {
   __m256d w, gx, gy;
 };
 
-BALLBOX_AVX2 inline Kernel4 KernelOf4(const SphKernels& k, const Vec2* x, const ParticlePair* q) {
-  __m256d xi, yi, xj, yj;
-  Gather4(x, q[0].first, q[1].first, q[2].first, q[3].first, &xi, &yi);
-  Gather4(x, q[0].second, q[1].second, q[2].second, q[3].second, &xj, &yj);
-  const __m256d dx = _mm256_sub_pd(xi, xj), dy = _mm256_sub_pd(yi, yj);
-  const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+BALLBOX_AVX2 inline Kernel4 KernelOf4(const SphKernels& k, __m256d dx, __m256d dy, __m256d r2) {
   const __m256d h = _mm256_set1_pd(k.h), scale = _mm256_set1_pd(k.scale);
   const __m256d r = _mm256_sqrt_pd(r2);
   const __m256d f = _mm256_sub_pd(h, r);
@@ -99,7 +108,8 @@ BALLBOX_AVX2 inline Kernel4 KernelOf4(const SphKernels& k, const Vec2* x, const 
 }
 
 BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                             DensitySums* own, DensitySums* spill, double* stored) {
+                             const PairOffsets& offsets, DensitySums* own, DensitySums* spill, double* stored) {
+  const std::uint32_t own_end = fluid.own_end;
   const __m256d a = _mm256_set1_pd(fluid.mass * fluid.inv_rest);
   const __m256d mass = _mm256_set1_pd(fluid.mass), inv_mass = _mm256_set1_pd(fluid.inv_mass);
   const __m256d flip = _mm256_set_pd(0.0, -0.0, -0.0, 0.0);  // j's side: the gradient's sign
@@ -114,7 +124,8 @@ BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span
   std::size_t p = 0;
   for (; p + 4 <= pairs.size(); p += 4) {
     const ParticlePair* const q = pairs.data() + p;
-    const Kernel4 t = KernelOf4(fluid.kernel, x, q);
+    const Kernel4 t = KernelOf4(fluid.kernel, _mm256_loadu_pd(offsets.dx + p), _mm256_loadu_pd(offsets.dy + p),
+                                _mm256_loadu_pd(offsets.r2 + p));
     // The move pass's terms, so that it need not work them out again.
     const __m256d ratio = _mm256_mul_pd(t.w, over_w);
     const __m256d ratio2 = _mm256_mul_pd(ratio, ratio);
@@ -137,7 +148,7 @@ BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span
         lower = _mm256_loadu_pd(&own[fi].density);
       }
       lower = _mm256_add_pd(lower, terms[l]);
-      double* const sj = &Target(fluid, q[l].second, own, spill).density;
+      double* const sj = &Target(own_end, q[l].second, own, spill).density;
       _mm256_storeu_pd(sj, _mm256_add_pd(_mm256_loadu_pd(sj), _mm256_xor_pd(terms[l], flip)));
     }
   }
@@ -148,6 +159,7 @@ BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span
 BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
                            const double* lambda, const double* lambda_over_rest, const double* stored, Vec2* own,
                            Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
   const __m256d a = _mm256_set1_pd(fluid.mass * fluid.inv_rest), mass = _mm256_set1_pd(fluid.mass);
   const __m256d minus = _mm256_set1_pd(-0.0);
   if (pairs.size() < 4) return MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
@@ -188,12 +200,60 @@ BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<c
         lower = _mm_loadu_pd(&own[fi].x);
       }
       lower = _mm_add_pd(lower, moves_i[l]);
-      double* const mj = &Target(fluid, q[l].second, own, spill).x;
+      double* const mj = &Target(own_end, q[l].second, own, spill).x;
       _mm_storeu_pd(mj, _mm_add_pd(_mm_loadu_pd(mj), moves_j[l]));
     }
   }
   _mm_storeu_pd(&own[lower_at].x, lower);
   MovesBy1(fluid, x, pairs.subspan(p), lambda, lambda_over_rest, own, spill);
+}
+
+BALLBOX_AVX2 void PullsBy4(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+                           std::span<const ParticlePair> pairs, const PairOffsets& offsets, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  const SphKernels& k = fluid.kernel;
+  const __m256d h = _mm256_set1_pd(k.h), h2 = _mm256_set1_pd(k.h2), scale = _mm256_set1_pd(k.scale);
+  const double* const r2s = offsets.r2;
+  const std::size_t full = pairs.size() / 4 * 4;
+  if (full == 0) return PullsBy1(fluid, x, v, mass_over_density, pairs, own, spill);
+  std::uint32_t lower_at = pairs[0].first;  // as in DensityBy4
+  __m128d lower = _mm_loadu_pd(&own[lower_at].x);
+  for (std::size_t p = 0; p < full; p += 4) {
+    const ParticlePair* const q = pairs.data() + p;
+    const __m256d r2 = _mm256_loadu_pd(r2s + p);
+    const __m256d f = _mm256_sub_pd(h, _mm256_sqrt_pd(r2));
+    const __m256d w = _mm256_and_pd(_mm256_cmp_pd(r2, h2, _CMP_LT_OQ),
+                                    _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(scale, f), f), f));
+    __m256d vxi, vyi, vxj, vyj;
+    Gather4(v, q[0].first, q[1].first, q[2].first, q[3].first, &vxi, &vyi);
+    Gather4(v, q[0].second, q[1].second, q[2].second, q[3].second, &vxj, &vyj);
+    const __m256d over_i = _mm256_set_pd(mass_over_density[q[3].first], mass_over_density[q[2].first],
+                                         mass_over_density[q[1].first], mass_over_density[q[0].first]);
+    const __m256d over_j = _mm256_set_pd(mass_over_density[q[3].second], mass_over_density[q[2].second],
+                                         mass_over_density[q[1].second], mass_over_density[q[0].second]);
+    const __m256d wi = _mm256_mul_pd(over_j, w), wj = _mm256_mul_pd(over_i, w);
+    const __m256d xi = _mm256_mul_pd(wi, _mm256_sub_pd(vxj, vxi)), yi = _mm256_mul_pd(wi, _mm256_sub_pd(vyj, vyi));
+    const __m256d xj = _mm256_mul_pd(wj, _mm256_sub_pd(vxi, vxj)), yj = _mm256_mul_pd(wj, _mm256_sub_pd(vyi, vyj));
+    const __m256d lo_i = _mm256_unpacklo_pd(xi, yi), hi_i = _mm256_unpackhi_pd(xi, yi);
+    const __m256d lo_j = _mm256_unpacklo_pd(xj, yj), hi_j = _mm256_unpackhi_pd(xj, yj);
+    const __m128d pulls_i[4] = {_mm256_castpd256_pd128(lo_i), _mm256_castpd256_pd128(hi_i),
+                                _mm256_extractf128_pd(lo_i, 1), _mm256_extractf128_pd(hi_i, 1)};
+    const __m128d pulls_j[4] = {_mm256_castpd256_pd128(lo_j), _mm256_castpd256_pd128(hi_j),
+                                _mm256_extractf128_pd(lo_j, 1), _mm256_extractf128_pd(hi_j, 1)};
+    for (int l = 0; l < 4; ++l) {
+      const std::uint32_t fi = q[l].first;
+      if (fi != lower_at) {
+        _mm_storeu_pd(&own[lower_at].x, lower);
+        lower_at = fi;
+        lower = _mm_loadu_pd(&own[fi].x);
+      }
+      lower = _mm_add_pd(lower, pulls_i[l]);
+      double* const pj = &Target(own_end, q[l].second, own, spill).x;
+      _mm_storeu_pd(pj, _mm_add_pd(_mm_loadu_pd(pj), pulls_j[l]));
+    }
+  }
+  _mm_storeu_pd(&own[lower_at].x, lower);
+  PullsBy1(fluid, x, v, mass_over_density, pairs.subspan(full), own, spill);
 }
 
 bool HasAvx2() {
@@ -205,20 +265,31 @@ bool HasAvx2() {
 }  // namespace
 
 void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                       DensitySums* own, DensitySums* spill, double* terms, int lanes) {
+                       [[maybe_unused]] const PairOffsets& offsets, DensitySums* own, DensitySums* spill,
+                       [[maybe_unused]] double* terms, [[maybe_unused]] int lanes) {
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
-  if (lanes != 1 && HasAvx2()) return DensityBy4(fluid, x, pairs, own, spill, terms);
+  if (lanes != 1 && HasAvx2()) return DensityBy4(fluid, x, pairs, offsets, own, spill, terms);
 #endif
   DensityBy1(fluid, x, pairs, own, spill);
 }
 
 void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                     const double* lambda, const double* lambda_over_rest, const double* terms, Vec2* own,
-                     Vec2* spill, int lanes) {
+                     const double* lambda, const double* lambda_over_rest, [[maybe_unused]] const double* terms,
+                     Vec2* own, Vec2* spill, [[maybe_unused]] int lanes) {
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
   if (lanes != 1 && HasAvx2()) return MovesBy4(fluid, x, pairs, lambda, lambda_over_rest, terms, own, spill);
 #endif
   MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
+}
+
+
+void AddPullsOfPairs(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+                     std::span<const ParticlePair> pairs, [[maybe_unused]] const PairOffsets& offsets, Vec2* own,
+                     Vec2* spill, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes != 1 && HasAvx2()) return PullsBy4(fluid, x, v, mass_over_density, pairs, offsets, own, spill);
+#endif
+  PullsBy1(fluid, x, v, mass_over_density, pairs, own, spill);
 }
 
 }  // namespace engine::detail

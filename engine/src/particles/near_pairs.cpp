@@ -11,13 +11,20 @@ namespace engine::detail {
 
 namespace {
 
-std::uint32_t PairsWithinBy1(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out) {
+std::uint32_t PairsWithinBy1(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
+                             const PairOffsets& offsets) {
   // Every pair is written and kept or overwritten by the next: whether a pair is near is a
   // coin toss a branch would mispredict.
+  double* const dxs = offsets.dx;
+  double* const dys = offsets.dy;
+  double* const r2s = offsets.r2;
   std::uint32_t m = 0;
   for (const ParticlePair& p : pairs) {
+    const Vec2 d = x[p.first] - x[p.second];
+    const double d2 = LengthSquared(d);
     out[m] = p;
-    m += LengthSquared(x[p.first] - x[p.second]) < r2;
+    dxs[m] = d.x, dys[m] = d.y, r2s[m] = d2;
+    m += d2 < r2;
   }
   return m;
 }
@@ -47,11 +54,21 @@ __attribute__((target("avx2"))) inline void Gather4(const Vec2* x, std::uint32_t
   *ys = _mm256_permute4x64_pd(_mm256_unpackhi_pd(ab, cd), 0xd8);
 }
 
+// The kept doubles moved to the front by the same 32-bit lanes (two halves each).
+__attribute__((target("avx2"))) inline __m256d KeepLanes(__m256d v, __m256i lanes) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), lanes));
+}
+
 __attribute__((target("avx2"))) std::uint32_t PairsWithinBy4(const Vec2* x, std::span<const ParticlePair> pairs,
-                                                             double r2, ParticlePair* out) {
+                                                             double r2, ParticlePair* out,
+                                                             const PairOffsets& offsets) {
   static_assert(sizeof(ParticlePair) == 8);
   const __m256d limit = _mm256_set1_pd(r2);
   const std::size_t count = pairs.size();
+  // In locals: the stores could otherwise alias the pointers and make them be read again.
+  double* const dxs = offsets.dx;
+  double* const dys = offsets.dy;
+  double* const r2s = offsets.r2;
   std::uint32_t m = 0;
   std::size_t p = 0;
   for (; p + 4 <= count; p += 4) {
@@ -66,20 +83,24 @@ __attribute__((target("avx2"))) std::uint32_t PairsWithinBy4(const Vec2* x, std:
     const __m256i four = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q));
     const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kKeep.lanes[keep]));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m), _mm256_permutevar8x32_epi32(four, lanes));
+    _mm256_storeu_pd(dxs + m, KeepLanes(dx, lanes));
+    _mm256_storeu_pd(dys + m, KeepLanes(dy, lanes));
+    _mm256_storeu_pd(r2s + m, KeepLanes(d2, lanes));
     m += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(keep)));
   }
-  return m + PairsWithinBy1(x, pairs.subspan(p), r2, out + m);
+  return m + PairsWithinBy1(x, pairs.subspan(p), r2, out + m, {dxs + m, dys + m, r2s + m});
 }
 #endif
 
 }  // namespace
 
-std::uint32_t PairsWithin(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out) {
+std::uint32_t PairsWithin(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
+                          const PairOffsets& offsets) {
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return PairsWithinBy4(x, pairs, r2, out);
+  if (avx2) return PairsWithinBy4(x, pairs, r2, out, offsets);
 #endif
-  return PairsWithinBy1(x, pairs, r2, out);
+  return PairsWithinBy1(x, pairs, r2, out, offsets);
 }
 
 }  // namespace engine::detail

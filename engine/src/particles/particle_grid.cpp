@@ -16,22 +16,57 @@ std::int32_t ParticleGrid::Cell(double coordinate) const {
 
 void ParticleGrid::Build(std::span<const Vec2> positions, double cell) {
   cell_ = cell;
-  scratch_.resize(positions.size());
-  for (std::uint32_t i = 0; i < positions.size(); ++i) {
-    scratch_[i] = {Key(Cell(positions[i].x), Cell(positions[i].y)), i};
-  }
-  std::sort(scratch_.begin(), scratch_.end());
-  order_.resize(positions.size());
+  const auto n = static_cast<std::uint32_t>(positions.size());
+  order_.resize(n);
   cell_keys_.clear();
   cell_starts_.clear();
-  for (std::uint32_t k = 0; k < scratch_.size(); ++k) {
-    if (cell_keys_.empty() || cell_keys_.back() != scratch_[k].first) {
-      cell_keys_.push_back(scratch_[k].first);
-      cell_starts_.push_back(k);
-    }
-    order_[k] = scratch_[k].second;
+  if (n == 0) {
+    cell_starts_.push_back(0);
+    return;
   }
-  cell_starts_.push_back(static_cast<std::uint32_t>(order_.size()));
+  columns_.resize(n);
+  rows_.resize(n);
+  std::int32_t c0 = std::numeric_limits<std::int32_t>::max(), c1 = std::numeric_limits<std::int32_t>::min();
+  std::int32_t r0 = c0, r1 = c1;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    columns_[i] = Cell(positions[i].x), rows_[i] = Cell(positions[i].y);
+    c0 = std::min(c0, columns_[i]), c1 = std::max(c1, columns_[i]);
+    r0 = std::min(r0, rows_[i]), r1 = std::max(r1, rows_[i]);
+  }
+  const auto width = static_cast<std::uint64_t>(std::int64_t{c1} - c0 + 1);
+  const std::uint64_t area = width * static_cast<std::uint64_t>(std::int64_t{r1} - r0 + 1);
+  if (area > 4 * std::uint64_t{n} + 1024) {
+    // Spread thin (a particle flung far away): sorted by key and index.
+    scratch_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) scratch_[i] = {Key(columns_[i], rows_[i]), i};
+    std::sort(scratch_.begin(), scratch_.end());
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (cell_keys_.empty() || cell_keys_.back() != scratch_[k].first) {
+        cell_keys_.push_back(scratch_[k].first);
+        cell_starts_.push_back(k);
+      }
+      order_[k] = scratch_[k].second;
+    }
+    cell_starts_.push_back(n);
+    return;
+  }
+  // A counting sort over the cells of the particles' bounding box, row by row: the same
+  // order as sorting by (key, index), since particles are entered in index order.
+  counts_.assign(area + 1, 0);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    ++counts_[(rows_[i] - r0) * width + static_cast<std::uint64_t>(columns_[i] - c0) + 1];
+  }
+  for (std::uint64_t c = 0; c < area; ++c) {
+    if (counts_[c + 1] > 0) {
+      cell_keys_.push_back(Key(c0 + static_cast<std::int32_t>(c % width), r0 + static_cast<std::int32_t>(c / width)));
+      cell_starts_.push_back(counts_[c]);
+    }
+    counts_[c + 1] += counts_[c];
+  }
+  cell_starts_.push_back(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    order_[counts_[(rows_[i] - r0) * width + static_cast<std::uint64_t>(columns_[i] - c0)]++] = i;
+  }
 }
 
 void ParticleGrid::RenumberFrom(std::uint32_t first, std::vector<std::uint32_t>* old_of_new,

@@ -58,6 +58,7 @@ class ParticleGrid {
   std::vector<std::uint32_t> cell_starts_;  ///< into order_, one more than cell_keys_
   std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
   std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
+  std::vector<std::int32_t> columns_, rows_;  ///< Build's: each particle's cell
   /// FindNeighbours' scratch: each thread's pairs, the first pair_counts_[t] of pairs_[t]
   mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_;
   mutable std::vector<std::size_t> pair_counts_;

@@ -380,6 +380,13 @@ void ParticleSystem::FindChunks() {
     if (start - chunk_particles_.back() >= kChunkParticles && start < n) chunk_particles_.push_back(start);
   }
   chunk_particles_.push_back(n);
+  // Each chunk's first row but the first chunk's, where the chunk before may spill.
+  spill_rows_.clear();
+  for (std::size_t c = 1; c + 1 < chunk_particles_.size(); ++c) {
+    const std::uint32_t begin = chunk_particles_[c];
+    const auto next_row = std::upper_bound(fluid_rows_.begin(), fluid_rows_.end(), begin);
+    spill_rows_.push_back({begin, next_row == fluid_rows_.end() ? n : std::min(*next_row, chunk_particles_[c + 1])});
+  }
   // The fluid's pairs by their lower particle (a stable counting sort: each particle's in the
   // order found), so that a particle's pairs follow each other and its sums can wait in
   // registers (AddDensityOfPairs); a chunk's pairs are then a run.
@@ -396,6 +403,9 @@ void ParticleSystem::FindChunks() {
   chunk_pairs_.assign(1, 0);
   for (std::size_t c = 1; c < chunk_particles_.size(); ++c) chunk_pairs_.push_back(pair_starts_[chunk_particles_[c] - 1]);
   near_pairs_.resize(fluid_pairs_.size());
+  near_dx_.resize(fluid_pairs_.size());
+  near_dy_.resize(fluid_pairs_.size());
+  near_r2_.resize(fluid_pairs_.size());
   near_counts_.resize(chunk_particles_.size() - 1);
   // A fluid of one kind (one block, or blocks of one density) takes its mass and density once
   // rather than per pair, four pairs at a time (AddDensityOfPairs): the same values, so the
@@ -409,6 +419,11 @@ void ParticleSystem::FindChunks() {
   }
 }
 
+PairOffsets ParticleSystem::NearOffsets(std::uint32_t chunk) {
+  const std::uint32_t begin = chunk_pairs_[chunk];
+  return {near_dx_.data() + begin, near_dy_.data() + begin, near_r2_.data() + begin};
+}
+
 std::span<const ParticlePair> ParticleSystem::NearPairs(std::uint32_t chunk) const {
   return std::span(near_pairs_).subspan(chunk_pairs_[chunk], near_counts_[chunk]);
 }
@@ -416,7 +431,7 @@ std::span<const ParticlePair> ParticleSystem::NearPairs(std::uint32_t chunk) con
 void ParticleSystem::FindNearPairs(double h2, std::uint32_t chunk) {
   const std::uint32_t begin = chunk_pairs_[chunk], end = chunk_pairs_[chunk + 1];
   near_counts_[chunk] = PairsWithin(x_.data() + fluid_first_, std::span(fluid_pairs_).subspan(begin, end - begin), h2,
-                                    near_pairs_.data() + begin);
+                                    near_pairs_.data() + begin, NearOffsets(chunk));
 }
 
 template <typename Visit>
@@ -451,18 +466,14 @@ void ParticleSystem::ForEachNearPair(const SphKernels& k, std::uint32_t chunk, b
 
 void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const SphKernels k(KernelRadius(fluid_.spacing));
-  const std::uint32_t first = fluid_first_, n = FluidCount();
+  const std::uint32_t n = FluidCount();
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
   FindWalls(pushes);
-  DensityAndMoves(k);
-  PushWalls(h, pushes);
-  // Jacobi: a pair pushes each of its particles from both their constraints, which in a
-  // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
-  for (std::uint32_t f = 0; f < n; ++f) x_[first + f] += kJacobiShare * delta_[f];
+  DensityAndMoves(k, h, pushes);
 }
 
-void ParticleSystem::DensityAndMoves(const SphKernels& k) {
+void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<BodyPush>& pushes) {
   // Each pair adds into both its particles, in pair order (each particle's sums then go in the
   // order of its neighbour list): the pairs' terms are used as they are worked out, never
   // stored and looked up again. A chunk's pairs add into its own particles' sums, and into the
@@ -480,7 +491,8 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
   pair_terms_.resize(3 * fluid_pairs_.size());
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
   sums_.resize(n);
-  spill_sums_.assign(n, DensitySums{});
+  spill_sums_.resize(n);
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_sums_.begin() + begin, spill_sums_.begin() + end, DensitySums{});
   for (std::uint32_t f = 0; f < n; ++f) {
     sums_[f] = {fluid_.mass[f] * k.W(0.0, 0.0) + fluid_.rest_density[f] * wall_share_[f], wall_slope_[f], 0.0};
   }
@@ -497,7 +509,7 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
     if (uniform) {
       UniformPairs chunk = one_kind;
       chunk.own_end = own_end;
-      AddDensityOfPairs(chunk, x_.data() + first, NearPairs(c), sums, spill_sums,
+      AddDensityOfPairs(chunk, x_.data() + first, NearPairs(c), NearOffsets(c), sums, spill_sums,
                         pair_terms_.data() + 3 * chunk_pairs_[c]);
       return;
     }
@@ -509,23 +521,35 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
       add(fj < own_end ? sums[fj] : spill_sums[fj], mass[fi] * t.weight, gj, inv_mass[i] * LengthSquared(gj));
     });
   });
+  // A particle's sums are its spill plus its own (elsewhere the spill is nothing, and adding
+  // +0 would change no bit).
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) {
+      DensitySums& own = sums_[f];
+      const DensitySums& spill = spill_sums_[f];
+      own = {spill.density + own.density, spill.gradient + own.gradient, spill.denominator + own.denominator};
+    }
+  }
+  moves_.resize(n);
+  spill_moves_.resize(n);
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    const DensitySums& own = sums_[f];
-    const DensitySums& spill = spill_sums_[f];
-    const double density = spill.density + own.density;
-    const Vec2 gradient_i = spill.gradient + own.gradient;
-    const double denominator = (spill.denominator + own.denominator) +
-                               (inv_mass[first + f] * LengthSquared(gradient_i) + wall_denominator_[f]);
+    const DensitySums& sum = sums_[f];
+    const double density = sum.density;
+    const Vec2 gradient_i = sum.gradient;
+    const double denominator =
+        sum.denominator + (inv_mass[first + f] * LengthSquared(gradient_i) + wall_denominator_[f]);
     fluid_.density[f] = density;
+    moves_[f] = Vec2{};
     // Only compression is pushed apart: a free surface, below the rest density, is left alone
     // rather than pulled together.
     const double c = std::max(0.0, density * inv_rest[f] - 1.0);
     lambda_[f] = -c / (denominator + epsilon);
     lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
   });
+  // The walls' side (before any particle moves).
+  PushWalls(h, pushes);
   // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
-  moves_.assign(n, Vec2{});
-  spill_moves_.assign(n, Vec2{});
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_moves_.begin() + begin, spill_moves_.begin() + end, Vec2{});
   Vec2* const moves = moves_.data();
   Vec2* const spill_moves = spill_moves_.data();
   const double* const lambda = lambda_.data();
@@ -547,9 +571,15 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k) {
       (fj < own_end ? moves[fj] : spill_moves[fj]) += weight_j * (-t.gradient);
     });
   });
-  delta_.resize(n);
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) moves_[f] = spill_moves_[f] + moves_[f];
+  }
+  // Jacobi: a pair pushes each of its particles from both their constraints, which in a
+  // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
+  Vec2* const x = x_.data() + first;
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    delta_[f] = inv_mass[first + f] * ((spill_moves_[f] + moves_[f]) + kWallFactor * lambda_[f] * wall_slope_[f]);
+    const Vec2 delta = inv_mass[first + f] * (moves_[f] + kWallFactor * lambda_[f] * wall_slope_[f]);
+    x[f] += kJacobiShare * delta;
   });
 }
 
@@ -796,22 +826,27 @@ void ParticleSystem::ApplyViscosity(double dt) {
   }
   // Each pair within the kernel adds into both its particles, as in DensityAndMoves.
   moves_.assign(n, Vec2{});
-  spill_moves_.assign(n, Vec2{});
+  spill_moves_.resize(n);
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_moves_.begin() + begin, spill_moves_.begin() + end, Vec2{});
   Vec2* const pulls = moves_.data();
   Vec2* const spill_pulls = spill_moves_.data();
   const double* const mass = fluid_.mass.data();
   const double* const density = fluid_.density.data();
+  // Each particle's m/ρ, as the pairs take it.
+  mass_over_density_.resize(n);
+  for (std::uint32_t f = 0; f < n; ++f) mass_over_density_[f] = mass[f] / density[f];
+  // Masses and densities come per particle here, so any fluid takes the four-lane loop.
   pool_->ParallelFor(static_cast<std::uint32_t>(chunk_particles_.size() - 1), 2, [&](std::uint32_t c) {
     FindNearPairs(k.h2, c);
-    const std::uint32_t own_end = chunk_particles_[c + 1];
-    ForEachNearPair(k, c, false, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
-      const std::uint32_t fi = i - first, fj = j - first;
-      pulls[fi] += (mass[fj] / density[fj] * t.weight) * (v_[j] - v_[i]);
-      (fj < own_end ? pulls[fj] : spill_pulls[fj]) += (mass[fi] / density[fi] * t.weight) * (v_[i] - v_[j]);
-    });
+    UniformPairs chunk{k, 0.0, 0.0, 0.0, 0.0, 0.0, chunk_particles_[c + 1]};
+    AddPullsOfPairs(chunk, x_.data() + first, v_.data() + first, mass_over_density_.data(), NearPairs(c),
+                    NearOffsets(c), pulls, spill_pulls);
   });
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) moves_[f] = spill_moves_[f] + moves_[f];
+  }
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    delta_[f] = fluid_.viscosity[f] == 0.0 ? Vec2{} : shares_[f] * (spill_moves_[f] + moves_[f]);
+    delta_[f] = fluid_.viscosity[f] == 0.0 ? Vec2{} : shares_[f] * moves_[f];
   });
   for (std::uint32_t f = 0; f < n; ++f) v_[first + f] += delta_[f];
 }

@@ -110,14 +110,16 @@ class ParticleSystem {
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
-  /// SolveFluid's density and move passes (delta_).
-  void DensityAndMoves(const SphKernels& k);
+  /// SolveFluid's density and move passes, the walls' side (PushWalls) between them, and the
+  /// particles moved.
+  void DensityAndMoves(const SphKernels& k, double h, std::vector<BodyPush>& pushes);
   /// The fluid's pairs (fluid_pairs_) in chunks of whole rows of the grid (chunk_particles_,
   /// chunk_pairs_), after FindNeighbours.
   void FindChunks();
   /// near_pairs_ and near_counts_ of chunk `chunk` for the particles where they are now.
   void FindNearPairs(double h2, std::uint32_t chunk);
   std::span<const ParticlePair> NearPairs(std::uint32_t chunk) const;
+  PairOffsets NearOffsets(std::uint32_t chunk);
   /// Calls visit(i, j, terms) for each of chunk `chunk`'s near pairs (FindNearPairs), in pair
   /// order, with its kernel terms (only the weight unless `with_gradients`).
   template <typename Visit>
@@ -172,7 +174,7 @@ class ParticleSystem {
   std::vector<BodyPush> pushes_;
   std::vector<BodyIndex> touched_;
   std::vector<double> omega_;
-  std::vector<double> shares_;  ///< ApplyViscosity's, per particle
+  std::vector<double> shares_, mass_over_density_;  ///< ApplyViscosity's, per particle
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
@@ -185,9 +187,13 @@ class ParticleSystem {
   /// those. A pair's higher particle lies in the same chunk or in the next one's first row: it
   /// adds into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
   std::vector<std::uint32_t> chunk_particles_, chunk_pairs_, pair_starts_;
+  /// The particles [begin, end) (from fluid_first_) that the chunk before theirs may spill into.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spill_rows_;
   /// Each chunk's pairs within the kernel this substep: near_counts_[c] of them from
-  /// near_pairs_[chunk_pairs_[c]], with their terms from pair_terms_[3 · chunk_pairs_[c]].
+  /// near_pairs_[chunk_pairs_[c]], with their terms from pair_terms_[3 · chunk_pairs_[c]] once
+  /// the density pass has found them.
   std::vector<ParticlePair> near_pairs_;
+  std::vector<double> near_dx_, near_dy_, near_r2_;  ///< their offsets (PairsWithin)
   std::vector<double> pair_terms_;
   std::vector<std::uint32_t> near_counts_;
   std::vector<DensitySums> sums_, spill_sums_;
