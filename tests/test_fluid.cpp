@@ -1,6 +1,7 @@
 // Position-based fluid: Archimedes' principle through the two-way coupling, a dam break that
 // settles incompressible and stays in its tank, the hash and snapshot it joins, and the kernel
-// worked out for pairs lanes at a time giving the scalar kernel's bits.
+// worked out for pairs lanes at a time giving the scalar kernel's bits (as do the pair sums and
+// the search for pairs within the kernel).
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
@@ -9,6 +10,8 @@
 #include <vector>
 
 #include "engine/world.h"
+#include "particles/fluid_pairs.h"
+#include "particles/near_pairs.h"
 #include "particles/sph_kernels.h"
 #include "world_builders.h"
 
@@ -26,6 +29,14 @@ void Tank(World& world, double half_width) {
   world.CreateBody(testing::Static(testing::Box({-half_width - 0.5, 2.0}, {1.0, 4.0})));
   world.CreateBody(testing::Static(testing::Box({half_width + 0.5, 2.0}, {1.0, 4.0})));
 }
+
+// A uniform number in [0, 1) from a 64-bit LCG's state.
+double Uniform(std::uint64_t& state) {
+  state = state * 6364136223846793005ull + 1442695040888963407ull;
+  return static_cast<double>(state >> 11) * 0x1.0p-53;
+}
+
+std::uint64_t Bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 
 }  // namespace
 
@@ -193,21 +204,18 @@ TEST_CASE("the fluid kernel's terms for pairs, worked out lanes at a time, are t
     for (std::size_t count = 0; count <= 9; ++count) {
       for (std::size_t start = 0; start + count <= offsets.size(); start += 7) {
         std::vector<double> dx(count + 4, 0.0), dy(count + 4, 0.0), r2(count + 4, k.h2);
-        std::vector<std::uint32_t> at(count);
         for (std::size_t q = 0; q < count; ++q) {
           dx[q] = offsets[start + q].x, dy[q] = offsets[start + q].y;
           r2[q] = engine::LengthSquared(offsets[start + q]);
-          at[q] = static_cast<std::uint32_t>(count - 1 - q);  // stored out of order
         }
         std::vector<engine::detail::PairTerms> terms(count, {-1.0, {-1.0, -1.0}, -1.0});
         engine::detail::KernelTermsOfPairs(k, inv_clumping_w, clumping_scale, with_gradients,
-                                           {dx.data(), dy.data(), r2.data(), at.data(),
-                                            static_cast<std::uint32_t>(count)},
+                                           {dx.data(), dy.data(), r2.data(), static_cast<std::uint32_t>(count)},
                                            terms.data());
         for (std::size_t q = 0; q < count; ++q) {
           const Vec2 d = offsets[start + q];
           const double r = std::sqrt(engine::LengthSquared(d));
-          const engine::detail::PairTerms& t = terms[at[q]];
+          const engine::detail::PairTerms& t = terms[q];
           REQUIRE(bits(t.weight) == bits(k.W(engine::LengthSquared(d), r)));
           if (!with_gradients) continue;
           const Vec2 gradient = k.Gradient(d, r);
@@ -250,4 +258,116 @@ TEST_CASE("a light fluid poured under a heavy one rises above it", "[fluid]") {
   const auto [oil_after, water_after] = mean_heights();
   INFO("mean heights after 10 s: oil " << oil_after << " m, water " << water_after << " m");
   REQUIRE(oil_after > water_after);
+}
+
+TEST_CASE("the pairs within a distance, four at a time, are the plain loop's", "[fluid]") {
+  // PairsWithin (four at a time with AVX2 where the processor has it) against a loop over the
+  // pairs: the same pairs kept in the same order, for lists of every length up to 41 (every
+  // tail), with pairs at exactly the distance (not kept) and at one point.
+  std::uint64_t state = 99;
+  std::vector<Vec2> x(40);
+  for (Vec2& p : x) p = {Uniform(state), Uniform(state)};
+  x[1] = x[0] + Vec2{0.25, 0.0};
+  x[2] = x[0];
+  std::vector<engine::detail::ParticlePair> pairs{{0, 1}, {0, 2}};
+  while (pairs.size() < 41) {
+    pairs.push_back({static_cast<std::uint32_t>(Uniform(state) * 40), static_cast<std::uint32_t>(Uniform(state) * 40)});
+  }
+  const double r2 = 0.0625;
+  for (std::size_t count = 0; count <= pairs.size(); ++count) {
+    const std::span<const engine::detail::ParticlePair> some(pairs.data(), count);
+    std::vector<engine::detail::ParticlePair> want;
+    for (const auto& p : some) {
+      if (engine::LengthSquared(x[p.first] - x[p.second]) < r2) want.push_back(p);
+    }
+    std::vector<engine::detail::ParticlePair> got(count);
+    std::vector<double> dx(count), dy(count), d2(count);
+    got.resize(engine::detail::PairsWithin(x.data(), some, r2, got.data(), {dx.data(), dy.data(), d2.data()}));
+    REQUIRE(got == want);
+    for (std::size_t q = 0; q < got.size(); ++q) {
+      const Vec2 d = x[got[q].first] - x[got[q].second];
+      REQUIRE(Bits(dx[q]) == Bits(d.x));
+      REQUIRE(Bits(dy[q]) == Bits(d.y));
+      REQUIRE(Bits(d2[q]) == Bits(engine::LengthSquared(d)));
+    }
+  }
+}
+
+TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair at a time's bits", "[fluid]") {
+  // AddDensityOfPairs, AddMovesOfPairs and AddPullsOfPairs at the widest lanes against one pair at a time, on the
+  // same pairs (by lower particle, each with runs of pairs and a tail, some adding into the
+  // spill sums), from the same sums: bit for bit.
+  const engine::detail::SphKernels k(0.125);
+  std::uint64_t state = 7;
+  std::vector<Vec2> x(60);
+  for (Vec2& p : x) p = {0.3 * Uniform(state), 0.3 * Uniform(state)};
+  x[5] = x[4];  // two particles at the same spot: no gradient
+  for (const std::uint32_t count : {3u, 4u, 9u, 37u, 160u}) {
+    std::vector<engine::detail::ParticlePair> pairs;
+    for (std::uint32_t i = 0; i < x.size() && pairs.size() < count; ++i) {
+      for (std::uint32_t j = i + 1; j < x.size() && pairs.size() < count; ++j) {
+        if (engine::LengthSquared(x[i] - x[j]) < k.h2) pairs.push_back({i, j});
+      }
+    }
+    const engine::detail::UniformPairs fluid{k, 0.9, 1.0 / 0.9, 1.0 / 1000.0, 3.1, -0.004, 40};
+    std::vector<engine::detail::DensitySums> sums(x.size()), spill(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      sums[f] = {Uniform(state), {Uniform(state), Uniform(state)}, Uniform(state)};
+      spill[f] = {Uniform(state), {Uniform(state), Uniform(state)}, Uniform(state)};
+    }
+    auto sums_1 = sums, spill_1 = spill;
+    std::vector<double> terms(3 * pairs.size()), unused(3 * pairs.size());
+    std::vector<double> dx(pairs.size()), dy(pairs.size()), d2(pairs.size());
+    for (std::size_t q = 0; q < pairs.size(); ++q) {
+      const Vec2 d = x[pairs[q].first] - x[pairs[q].second];
+      dx[q] = d.x, dy[q] = d.y, d2[q] = engine::LengthSquared(d);
+    }
+    const engine::detail::PairOffsets offsets{dx.data(), dy.data(), d2.data()};
+    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums.data(), spill.data(), terms.data());
+    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums_1.data(), spill_1.data(), unused.data(), 1);
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      for (const auto* both : {&sums, &spill}) {
+        const auto& one = both == &sums ? sums_1[f] : spill_1[f];
+        const auto& wide = (*both)[f];
+        REQUIRE(Bits(wide.density) == Bits(one.density));
+        REQUIRE(Bits(wide.gradient.x) == Bits(one.gradient.x));
+        REQUIRE(Bits(wide.gradient.y) == Bits(one.gradient.y));
+        REQUIRE(Bits(wide.denominator) == Bits(one.denominator));
+      }
+    }
+    std::vector<double> lambda(x.size()), over_rest(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) lambda[f] = -Uniform(state), over_rest[f] = lambda[f] / 1000.0;
+    std::vector<Vec2> moves(x.size()), moves_spill(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) moves[f] = {Uniform(state), 0.0}, moves_spill[f] = {0.0, Uniform(state)};
+    auto moves_1 = moves, moves_spill_1 = moves_spill;
+    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), over_rest.data(), terms.data(), moves.data(),
+                                    moves_spill.data());
+    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), over_rest.data(), unused.data(),
+                                    moves_1.data(), moves_spill_1.data(), 1);
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      REQUIRE(Bits(moves[f].x) == Bits(moves_1[f].x));
+      REQUIRE(Bits(moves[f].y) == Bits(moves_1[f].y));
+      REQUIRE(Bits(moves_spill[f].x) == Bits(moves_spill_1[f].x));
+      REQUIRE(Bits(moves_spill[f].y) == Bits(moves_spill_1[f].y));
+    }
+    // XSPH's pulls, from random velocities and m/ρ.
+    std::vector<Vec2> v(x.size());
+    std::vector<double> mass_over_density(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      v[f] = {Uniform(state) - 0.5, Uniform(state) - 0.5};
+      mass_over_density[f] = 0.001 * (1.0 + Uniform(state));
+    }
+    auto pulls = moves, pulls_spill = moves_spill;
+    auto pulls_1 = moves, pulls_spill_1 = moves_spill;
+    engine::detail::AddPullsOfPairs(fluid, x.data(), v.data(), mass_over_density.data(), pairs, offsets, pulls.data(),
+                                    pulls_spill.data());
+    engine::detail::AddPullsOfPairs(fluid, x.data(), v.data(), mass_over_density.data(), pairs, offsets,
+                                    pulls_1.data(), pulls_spill_1.data(), 1);
+    for (std::size_t f = 0; f < x.size(); ++f) {
+      REQUIRE(Bits(pulls[f].x) == Bits(pulls_1[f].x));
+      REQUIRE(Bits(pulls[f].y) == Bits(pulls_1[f].y));
+      REQUIRE(Bits(pulls_spill[f].x) == Bits(pulls_spill_1[f].x));
+      REQUIRE(Bits(pulls_spill[f].y) == Bits(pulls_spill_1[f].y));
+    }
+  }
 }

@@ -16,22 +16,75 @@ std::int32_t ParticleGrid::Cell(double coordinate) const {
 
 void ParticleGrid::Build(std::span<const Vec2> positions, double cell) {
   cell_ = cell;
-  scratch_.resize(positions.size());
-  for (std::uint32_t i = 0; i < positions.size(); ++i) {
-    scratch_[i] = {Key(Cell(positions[i].x), Cell(positions[i].y)), i};
-  }
-  std::sort(scratch_.begin(), scratch_.end());
-  order_.resize(positions.size());
+  const auto n = static_cast<std::uint32_t>(positions.size());
+  order_.resize(n);
   cell_keys_.clear();
   cell_starts_.clear();
-  for (std::uint32_t k = 0; k < scratch_.size(); ++k) {
-    if (cell_keys_.empty() || cell_keys_.back() != scratch_[k].first) {
-      cell_keys_.push_back(scratch_[k].first);
-      cell_starts_.push_back(k);
-    }
-    order_[k] = scratch_[k].second;
+  if (n == 0) {
+    cell_starts_.push_back(0);
+    return;
   }
-  cell_starts_.push_back(static_cast<std::uint32_t>(order_.size()));
+  columns_.resize(n);
+  rows_.resize(n);
+  std::int32_t c0 = std::numeric_limits<std::int32_t>::max(), c1 = std::numeric_limits<std::int32_t>::min();
+  std::int32_t r0 = c0, r1 = c1;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    columns_[i] = Cell(positions[i].x), rows_[i] = Cell(positions[i].y);
+    c0 = std::min(c0, columns_[i]), c1 = std::max(c1, columns_[i]);
+    r0 = std::min(r0, rows_[i]), r1 = std::max(r1, rows_[i]);
+  }
+  const auto width = static_cast<std::uint64_t>(std::int64_t{c1} - c0 + 1);
+  const std::uint64_t area = width * static_cast<std::uint64_t>(std::int64_t{r1} - r0 + 1);
+  if (area > 4 * std::uint64_t{n} + 1024) {
+    // Spread thin (a particle flung far away): sorted by key and index.
+    scratch_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) scratch_[i] = {Key(columns_[i], rows_[i]), i};
+    std::sort(scratch_.begin(), scratch_.end());
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (cell_keys_.empty() || cell_keys_.back() != scratch_[k].first) {
+        cell_keys_.push_back(scratch_[k].first);
+        cell_starts_.push_back(k);
+      }
+      order_[k] = scratch_[k].second;
+    }
+    cell_starts_.push_back(n);
+    return;
+  }
+  // A counting sort over the cells of the particles' bounding box, row by row: the same
+  // order as sorting by (key, index), since particles are entered in index order.
+  counts_.assign(area + 1, 0);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    ++counts_[(rows_[i] - r0) * width + static_cast<std::uint64_t>(columns_[i] - c0) + 1];
+  }
+  for (std::uint64_t c = 0; c < area; ++c) {
+    if (counts_[c + 1] > 0) {
+      cell_keys_.push_back(Key(c0 + static_cast<std::int32_t>(c % width), r0 + static_cast<std::int32_t>(c / width)));
+      cell_starts_.push_back(counts_[c]);
+    }
+    counts_[c + 1] += counts_[c];
+  }
+  cell_starts_.push_back(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    order_[counts_[(rows_[i] - r0) * width + static_cast<std::uint64_t>(columns_[i] - c0)]++] = i;
+  }
+}
+
+void ParticleGrid::RenumberFrom(std::uint32_t first, std::vector<std::uint32_t>* old_of_new,
+                                std::vector<std::uint32_t>* row_starts) {
+  // Within a cell the lower numbers (before `first`) come first and keep theirs, and the others
+  // get rising numbers in the order they are met: the list stays sorted by (cell, number).
+  old_of_new->clear();
+  row_starts->clear();
+  for (std::size_t c = 0; c < cell_keys_.size(); ++c) {
+    if (c == 0 || cell_keys_[c] >> 32 != cell_keys_[c - 1] >> 32) {
+      row_starts->push_back(static_cast<std::uint32_t>(old_of_new->size()));
+    }
+    for (std::uint32_t k = cell_starts_[c]; k < cell_starts_[c + 1]; ++k) {
+      if (order_[k] < first) continue;
+      old_of_new->push_back(order_[k] - first);
+      order_[k] = first + static_cast<std::uint32_t>(old_of_new->size() - 1);
+    }
+  }
 }
 
 std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::int32_t first,
@@ -45,7 +98,7 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
                                   std::vector<std::uint32_t>* offsets,
                                   std::vector<std::uint32_t>* neighbours,
                                   std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
-                                  std::vector<std::uint32_t>* entry_pairs) const {
+                                  std::uint32_t ordered_from, std::uint32_t lists_below) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
@@ -75,8 +128,12 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
         std::pair<std::uint32_t, std::uint32_t>* const out = pairs.data();
         for (std::uint32_t a = a0; a < a1; ++a) {
           const std::uint32_t i = order[a];
+          // A particle numbered in the grid's order has only lower numbers in the row below
+          // and before it in its own row: none of them can pair with it, so they are skipped.
+          const bool ordered = i >= ordered_from;
+          if (ordered && dr < 0) continue;
           const Vec2 xi = x[i];
-          for (std::uint32_t b = b0; b < b1; ++b) {
+          for (std::uint32_t b = ordered && dr == 0 ? a + 1 : b0; b < b1; ++b) {
             const std::uint32_t j = order[b];
             out[count] = {i, j};
             count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
@@ -90,13 +147,16 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   counts.assign(n + 1, 0);
   std::size_t total = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
-    for (std::size_t q = 0; q < pair_counts_[t]; ++q) ++counts[pairs_[t][q].first], ++counts[pairs_[t][q].second];
+    for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
+      const auto [i, j] = pairs_[t][q];
+      counts[i] += i < lists_below;
+      counts[j] += j < lists_below;
+    }
     total += pair_counts_[t];
   }
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
-  neighbours->resize(2 * total);
-  entry_pairs->resize(2 * total);
+  neighbours->resize(offsets->back());
   pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
@@ -104,10 +164,8 @@ void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
       const auto [i, j] = pairs_[t][q];
-      (*entry_pairs)[fill[i]] = p;
-      (*neighbours)[fill[i]++] = j;
-      (*entry_pairs)[fill[j]] = p;
-      (*neighbours)[fill[j]++] = i;
+      if (i < lists_below) (*neighbours)[fill[i]++] = j;
+      if (j < lists_below) (*neighbours)[fill[j]++] = i;
       (*pairs)[p++] = {i, j};
     }
   }

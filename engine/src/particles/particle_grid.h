@@ -18,16 +18,27 @@ class ParticleGrid {
   /// Sorts `positions` into cells `cell` wide (> 0).
   void Build(std::span<const Vec2> positions, double cell);
 
+  /// Renumbers the particles from `first` on in the grid's order (row by row, cell by cell, by
+  /// number within a cell) and lists them by their new numbers, still in that order:
+  /// `old_of_new[k]` is the old number of new number first + k, less first. `row_starts` gets,
+  /// for each row of cells, the first new number (less first) in it or after it. The caller
+  /// moves the particles' data to match.
+  void RenumberFrom(std::uint32_t first, std::vector<std::uint32_t>* old_of_new,
+                    std::vector<std::uint32_t>* row_starts);
+
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
   /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
   /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
-  /// `pairs`, and `entry_pairs` gives each list entry its pair's index there, so a quantity of a
-  /// pair can be worked out once for both its particles.
+  /// `pairs`, in the order of the cells of their lower particles, so a quantity of a pair can be
+  /// worked out once for both its particles. The particles from `ordered_from` on are numbered
+  /// in the grid's order (RenumberFrom), which lets their search skip the cells with only lower
+  /// numbers; only the particles below `lists_below` get lists (the others' are empty), the
+  /// pairs being all a fluid needs. Neither changes the lists or the pairs.
   void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
                       std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
-                      std::vector<std::uint32_t>* entry_pairs) const;
+                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs, std::uint32_t ordered_from,
+                      std::uint32_t lists_below) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>
@@ -47,6 +58,7 @@ class ParticleGrid {
   std::vector<std::uint32_t> cell_starts_;  ///< into order_, one more than cell_keys_
   std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
   std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
+  std::vector<std::int32_t> columns_, rows_;  ///< Build's: each particle's cell
   /// FindNeighbours' scratch: each thread's pairs, the first pair_counts_[t] of pairs_[t]
   mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_;
   mutable std::vector<std::size_t> pair_counts_;

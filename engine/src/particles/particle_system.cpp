@@ -35,13 +35,25 @@ constexpr double kWallFactor = 2.0;
 /// Fewer fluid particles than this are looped over on one thread: handing the others their
 /// chunks costs a few microseconds, more than a few hundred particles' work.
 constexpr std::uint32_t kMinParallel = 1024;
-
-/// A pair's gradient is at x_i − x_j for its lower index i: its sign as seen from the particle
-/// of the higher index (kSide[0]) and the lower (kSide[1]). Looked up rather than chosen by a
-/// branch, which the neighbours' order made a coin toss.
-constexpr double kSide[2] = {-1.0, 1.0};
+/// The fewest fluid particles in a chunk of pairs (FindChunks) but the last: enough that
+/// handing a chunk to a thread costs little beside its work.
+constexpr std::uint32_t kChunkParticles = 1024;
 
 double KernelRadius(double spacing) { return kKernelSpacings * spacing; }
+
+/// values[offset + k] = the old values[offset + order[k]], for each k.
+template <typename T>
+void GatherInOrder(std::vector<T>& values, std::size_t offset, std::span<const std::uint32_t> order) {
+  const std::vector<T> old(values.begin() + static_cast<std::ptrdiff_t>(offset), values.end());
+  for (std::size_t k = 0; k < order.size(); ++k) values[offset + k] = old[order[k]];
+}
+
+/// GatherInOrder undone: values[offset + order[k]] = the old values[offset + k].
+template <typename T>
+void ScatterFromOrder(std::vector<T>& values, std::size_t offset, std::span<const std::uint32_t> order) {
+  const std::vector<T> sorted(values.begin() + static_cast<std::ptrdiff_t>(offset), values.end());
+  for (std::size_t k = 0; k < order.size(); ++k) values[offset + order[k]] = sorted[k];
+}
 
 }  // namespace
 
@@ -264,6 +276,7 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
   if (FluidCount() > 0) {
     ApplyViscosity(def.dt);
     ApplyVorticity(def.dt);
+    ReorderFluid(false);
   }
   // The bodies keep what the particles pushed them by; sleeping ones pushed hard enough wake.
   for (const BodyIndex b : touched_) {
@@ -297,7 +310,15 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   const double skin = kernel > 0.0 ? std::min(2.0 * travel, 0.25 * kernel) : 2.0 * travel;
   const double reach = std::max(kernel, 2.0 * largest_radius_) + skin;
   grid_.Build(x_, reach);
-  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_, &entry_pairs_);
+  if (FluidCount() > 0) {
+    grid_.RenumberFrom(fluid_first_, &fluid_order_, &fluid_rows_);
+    ReorderFluid(true);
+  }
+  // The fluid's particles need lists only for vorticity (its other passes go by pairs).
+  const bool vorticity = std::any_of(fluid_.vorticity.begin(), fluid_.vorticity.end(), [](double v) { return v > 0.0; });
+  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_, fluid_first_,
+                       vorticity ? static_cast<std::uint32_t>(x_.size()) : fluid_first_);
+  if (FluidCount() > 0) FindChunks();
   planes_.clear();
   std::vector<BodyPlane> found;
   for (const BodyId id : bodies.live_ids) {
@@ -329,155 +350,236 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   }
 }
 
-void ParticleSystem::FindPairTerms(const SphKernels& k, bool with_gradients) {
+void ParticleSystem::ReorderFluid(bool to_grid_order) {
+  // Every per-particle array of the fluid, so that nothing read during the step need know.
+  const auto reorder = [&](auto& values, std::size_t offset) {
+    if (to_grid_order) {
+      GatherInOrder(values, offset, fluid_order_);
+    } else {
+      ScatterFromOrder(values, offset, fluid_order_);
+    }
+  };
+  reorder(x_, fluid_first_);
+  reorder(v_, fluid_first_);
+  reorder(inv_mass_, fluid_first_);
+  reorder(radius_, fluid_first_);
+  reorder(fluid_.rest_density, 0);
+  reorder(fluid_.mass, 0);
+  reorder(fluid_.viscosity, 0);
+  reorder(fluid_.vorticity, 0);
+  reorder(fluid_.friction, 0);
+  reorder(fluid_.density, 0);
+}
+
+void ParticleSystem::FindChunks() {
+  // Whole rows, so that a pair's higher particle (in its lower one's row or the next, since
+  // the fluid is numbered row by row) lies at most in the next chunk's first row.
+  const std::uint32_t first = fluid_first_, n = FluidCount();
+  chunk_particles_.assign(1, 0);
+  for (const std::uint32_t start : fluid_rows_) {
+    if (start - chunk_particles_.back() >= kChunkParticles && start < n) chunk_particles_.push_back(start);
+  }
+  chunk_particles_.push_back(n);
+  // Each chunk's first row but the first chunk's, where the chunk before may spill.
+  spill_rows_.clear();
+  for (std::size_t c = 1; c + 1 < chunk_particles_.size(); ++c) {
+    const std::uint32_t begin = chunk_particles_[c];
+    const auto next_row = std::upper_bound(fluid_rows_.begin(), fluid_rows_.end(), begin);
+    spill_rows_.push_back({begin, next_row == fluid_rows_.end() ? n : std::min(*next_row, chunk_particles_[c + 1])});
+  }
+  // The fluid's pairs by their lower particle (a stable counting sort: each particle's in the
+  // order found), so that a particle's pairs follow each other and its sums can wait in
+  // registers (AddDensityOfPairs); a chunk's pairs are then a run.
+  pair_starts_.assign(n + 1, 0);
+  for (const ParticlePair& p : pairs_) {
+    if (p.first >= first) ++pair_starts_[p.first - first + 1];
+  }
+  for (std::uint32_t f = 0; f < n; ++f) pair_starts_[f + 1] += pair_starts_[f];
+  fluid_pairs_.resize(pair_starts_[n]);
+  for (const ParticlePair& p : pairs_) {
+    if (p.first >= first) fluid_pairs_[pair_starts_[p.first - first]++] = {p.first - first, p.second - first};
+  }
+  // pair_starts_[f] is now where f + 1's pairs begin.
+  chunk_pairs_.assign(1, 0);
+  for (std::size_t c = 1; c < chunk_particles_.size(); ++c) chunk_pairs_.push_back(pair_starts_[chunk_particles_[c] - 1]);
+  near_pairs_.resize(fluid_pairs_.size());
+  near_dx_.resize(fluid_pairs_.size());
+  near_dy_.resize(fluid_pairs_.size());
+  near_r2_.resize(fluid_pairs_.size());
+  near_counts_.resize(chunk_particles_.size() - 1);
+  // A fluid of one kind (one block, or blocks of one density) takes its mass and density once
+  // rather than per pair, four pairs at a time (AddDensityOfPairs): the same values, so the
+  // same bits.
+  inv_rest_.resize(n);
+  one_kind_ = true;
+  for (std::uint32_t f = 0; f < n; ++f) {
+    inv_rest_[f] = 1.0 / fluid_.rest_density[f];
+    one_kind_ &= (fluid_.mass[f] == fluid_.mass[0]) & (inv_mass_[first + f] == inv_mass_[first]) &
+                 (inv_rest_[f] == inv_rest_[0]);
+  }
+}
+
+PairOffsets ParticleSystem::NearOffsets(std::uint32_t chunk) {
+  const std::uint32_t begin = chunk_pairs_[chunk];
+  return {near_dx_.data() + begin, near_dy_.data() + begin, near_r2_.data() + begin};
+}
+
+std::span<const ParticlePair> ParticleSystem::NearPairs(std::uint32_t chunk) const {
+  return std::span(near_pairs_).subspan(chunk_pairs_[chunk], near_counts_[chunk]);
+}
+
+void ParticleSystem::FindNearPairs(double h2, std::uint32_t chunk) {
+  const std::uint32_t begin = chunk_pairs_[chunk], end = chunk_pairs_[chunk + 1];
+  near_counts_[chunk] = PairsWithin(x_.data() + fluid_first_, std::span(fluid_pairs_).subspan(begin, end - begin), h2,
+                                    near_pairs_.data() + begin, NearOffsets(chunk));
+}
+
+template <typename Visit>
+void ParticleSystem::ForEachNearPair(const SphKernels& k, std::uint32_t chunk, bool with_gradients,
+                                     Visit&& visit) const {
   // Each pair's kernel and gradient once for both its particles (the two sides differ only in
   // the gradient's sign), several pairs at a time: the square root and the division were most
   // of the density pass when worked out per list entry, one at a time.
-  const auto count = static_cast<std::uint32_t>(pairs_.size());
-  pair_terms_.resize(count);
-  pair_near_.resize(count);
-  near_particles_.resize(neighbours_.size());
-  near_pairs_.resize(neighbours_.size());
   const double clumping_over_w = 1.0 / k.W(std::pow(kClumpingDistance * k.h, 2));
   const double clumping_strength = -kClumpingStrength / density_denominator_;
-  constexpr std::uint32_t kBlock = 512;
-  const std::uint32_t blocks = (count + kBlock - 1) / kBlock;
-  pool_->ParallelFor(blocks, kMinParallel / kBlock * 4, [&](std::uint32_t b) {
-    // In locals: the flags' byte stores could alias anything reached through a reference.
-    const Vec2* const x = x_.data();
-    const std::pair<std::uint32_t, std::uint32_t>* const pairs = pairs_.data();
-    std::uint8_t* const near = pair_near_.data();
-    const double h2 = k.h2;
-    const std::uint32_t first = fluid_first_;
-    const std::uint32_t begin = b * kBlock, end = std::min(count, begin + kBlock);
-    // The block's pairs of fluid particles within the kernel (two thirds of them mid-splash),
-    // gathered first so that only they pay for the square root and the division.
-    alignas(32) double dxs[kBlock + 4], dys[kBlock + 4], r2s[kBlock + 4];
-    std::uint32_t at[kBlock + 4];
-    std::uint32_t m = 0;
-    for (std::uint32_t p = begin; p < end; ++p) {
-      const auto [i, j] = pairs[p];
+  constexpr std::uint32_t kBlock = 256;
+  const Vec2* const x = x_.data() + fluid_first_;
+  const ParticlePair* const near = near_pairs_.data() + chunk_pairs_[chunk];
+  const std::uint32_t count = near_counts_[chunk];
+  alignas(32) double dxs[kBlock + 4], dys[kBlock + 4], r2s[kBlock + 4];
+  PairTerms terms[kBlock + 4];
+  for (std::uint32_t begin = 0; begin < count; begin += kBlock) {
+    const std::uint32_t m = std::min(kBlock, count - begin);
+    for (std::uint32_t q = 0; q < m; ++q) {
+      const auto [i, j] = near[begin + q];
       const Vec2 d = x[i] - x[j];
-      const double r2 = LengthSquared(d);
-      const std::uint8_t inside = (i >= first) & (r2 < h2);
-      near[p] = inside;
-      dxs[m] = d.x, dys[m] = d.y, r2s[m] = r2, at[m] = p;
-      m += inside;
+      dxs[q] = d.x, dys[q] = d.y, r2s[q] = LengthSquared(d);
     }
     // The lanes past the last pair work on a harmless stand-in and are not stored.
-    for (std::uint32_t q = m; q < m + 4; ++q) dxs[q] = 0.0, dys[q] = 0.0, r2s[q] = h2;
-    KernelTermsOfPairs(k, clumping_over_w, clumping_strength, with_gradients, {dxs, dys, r2s, at, m},
-                       pair_terms_.data());
-  });
-}
-
-std::uint32_t ParticleSystem::PackNear(std::uint32_t i) {
-  // Into locals first: the packing stores could otherwise alias what they read.
-  const std::uint32_t begin = neighbour_offsets_[i], end = neighbour_offsets_[i + 1];
-  const std::uint32_t* const list = neighbours_.data();
-  const std::uint32_t* const list_pairs = entry_pairs_.data();
-  const std::uint8_t* const inside = pair_near_.data();
-  std::uint32_t* const packed = near_particles_.data() + begin;
-  std::uint32_t* const packed_pairs = near_pairs_.data() + begin;
-  std::uint32_t count = 0;
-  for (std::uint32_t a = begin; a < end; ++a) {
-    const std::uint32_t p = list_pairs[a];
-    packed[count] = list[a];
-    packed_pairs[count] = p;
-    count += inside[p];
+    for (std::uint32_t q = m; q < m + 4; ++q) dxs[q] = 0.0, dys[q] = 0.0, r2s[q] = k.h2;
+    KernelTermsOfPairs(k, clumping_over_w, clumping_strength, with_gradients, {dxs, dys, r2s, m}, terms);
+    for (std::uint32_t q = 0; q < m; ++q) {
+      visit(fluid_first_ + near[begin + q].first, fluid_first_ + near[begin + q].second, terms[q]);
+    }
   }
-  return count;
 }
 
 void ParticleSystem::SolveFluid(double h, std::vector<BodyPush>& pushes) {
   const SphKernels k(KernelRadius(fluid_.spacing));
-  const std::uint32_t first = fluid_first_, n = FluidCount();
+  const std::uint32_t n = FluidCount();
   lambda_.resize(n);
   lambda_over_rest_.resize(n);
   FindWalls(pushes);
-  FindPairTerms(k, true);
-  // With one mass for every fluid particle (one block, or blocks of one density), the passes
-  // take it once rather than look it up per entry: the same values, so the same bits, and two
-  // loads fewer per entry (6 % of a step).
-  const double mass_0 = fluid_.mass[0], inv_mass_0 = inv_mass_[first];
-  bool one_mass = true;
-  for (std::uint32_t f = 0; f < n; ++f) {
-    one_mass &= (fluid_.mass[f] == mass_0) & (inv_mass_[first + f] == inv_mass_0);
-  }
-  if (one_mass) {
-    DensityAndMoves<true>(k);
-  } else {
-    DensityAndMoves<false>(k);
-  }
-  PushWalls(h, pushes);
-  // Jacobi: a pair pushes each of its particles from both their constraints, which in a
-  // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
-  for (std::uint32_t f = 0; f < n; ++f) x_[first + f] += kJacobiShare * delta_[f];
+  DensityAndMoves(k, h, pushes);
 }
 
-template <bool kOneMass>
-void ParticleSystem::DensityAndMoves(const SphKernels& k) {
+void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<BodyPush>& pushes) {
+  // Each pair adds into both its particles, in pair order (each particle's sums then go in the
+  // order of its neighbour list): the pairs' terms are used as they are worked out, never
+  // stored and looked up again. A chunk's pairs add into its own particles' sums, and into the
+  // `spill` sums of the next chunk's first row, so that chunks can run on any threads; a
+  // particle's sums are then its spill plus its own, the same bits with any thread count.
   const std::uint32_t first = fluid_first_, n = FluidCount();
+  const auto chunks = static_cast<std::uint32_t>(chunk_particles_.size() - 1);
   const double epsilon = kRelaxation * density_denominator_;
-  // Each particle's fluid neighbours within the kernel this substep, packed at the start of
-  // its run of the step's neighbour list with their pairs: the two passes below then read a
-  // dense run with no test per entry (the entries beyond the kernel, a third of them
-  // mid-splash, cost a mispredicted branch each when skipped in place).
-  near_counts_.resize(n);
   const double* const inv_mass = inv_mass_.data();
   const double* const mass = fluid_.mass.data();
-  const double mass_0 = mass[0], inv_mass_0 = inv_mass[first];
-  const std::uint32_t* const offsets = neighbour_offsets_.data();
-  const PairTerms* const terms = pair_terms_.data();
-  const std::uint32_t* const near = near_particles_.data();
-  const std::uint32_t* const near_pairs = near_pairs_.data();
+  const double* const inv_rest = inv_rest_.data();
+  const bool uniform = one_kind_;
+  UniformPairs one_kind{k, mass[0], inv_mass[first], inv_rest[0], 1.0 / k.W(std::pow(kClumpingDistance * k.h, 2)),
+                        -kClumpingStrength / density_denominator_, 0};
+  pair_terms_.resize(3 * fluid_pairs_.size());
   // Each particle's density and multiplier (Macklin and Müller 2013, eq. 11).
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    const std::uint32_t i = first + f;
-    // Soft particles meet the fluid by contact, not pressure: they are left out.
-    const std::uint32_t begin = offsets[i], count = PackNear(i);
-    near_counts_[f] = count;
-    const double rest = fluid_.rest_density[f], inv_rest = 1.0 / rest;
-    double density = fluid_.mass[f] * k.W(0.0, 0.0) + rest * wall_share_[f];
-    Vec2 gradient_i = wall_slope_[f];
-    double denominator = 0.0;
-    for (std::uint32_t a = begin; a < begin + count; ++a) {
-      const std::uint32_t j = near[a];
-      const PairTerms& t = terms[near_pairs[a]];
-      const double side = kSide[j > i];
-      const double mj = kOneMass ? mass_0 : mass[j - first];
-      density += mj * t.weight;
-      const Vec2 g = (mj * inv_rest) * (side * t.gradient);
-      gradient_i += g;
-      denominator += (kOneMass ? inv_mass_0 : inv_mass[j]) * LengthSquared(g);
+  sums_.resize(n);
+  spill_sums_.resize(n);
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_sums_.begin() + begin, spill_sums_.begin() + end, DensitySums{});
+  for (std::uint32_t f = 0; f < n; ++f) {
+    sums_[f] = {fluid_.mass[f] * k.W(0.0, 0.0) + fluid_.rest_density[f] * wall_share_[f], wall_slope_[f], 0.0};
+  }
+  DensitySums* const sums = sums_.data();
+  DensitySums* const spill_sums = spill_sums_.data();
+  const auto add = [](DensitySums& to, double density, Vec2 gradient, double denominator) {
+    to.density += density;
+    to.gradient += gradient;
+    to.denominator += denominator;
+  };
+  pool_->ParallelFor(chunks, 2, [&](std::uint32_t c) {
+    FindNearPairs(k.h2, c);
+    const std::uint32_t own_end = chunk_particles_[c + 1];
+    if (uniform) {
+      UniformPairs chunk = one_kind;
+      chunk.own_end = own_end;
+      AddDensityOfPairs(chunk, x_.data() + first, NearPairs(c), NearOffsets(c), sums, spill_sums,
+                        pair_terms_.data() + 3 * chunk_pairs_[c]);
+      return;
     }
-    denominator += inv_mass[i] * LengthSquared(gradient_i) + wall_denominator_[f];
+    ForEachNearPair(k, c, true, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
+      // Soft particles meet the fluid by contact, not pressure: only fluid pairs come here.
+      const std::uint32_t fi = i - first, fj = j - first;
+      const Vec2 gi = (mass[fj] * inv_rest[fi]) * t.gradient, gj = (mass[fi] * inv_rest[fj]) * (-t.gradient);
+      add(sums[fi], mass[fj] * t.weight, gi, inv_mass[j] * LengthSquared(gi));
+      add(fj < own_end ? sums[fj] : spill_sums[fj], mass[fi] * t.weight, gj, inv_mass[i] * LengthSquared(gj));
+    });
+  });
+  // A particle's sums are its spill plus its own (elsewhere the spill is nothing, and adding
+  // +0 would change no bit).
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) {
+      DensitySums& own = sums_[f];
+      const DensitySums& spill = spill_sums_[f];
+      own = {spill.density + own.density, spill.gradient + own.gradient, spill.denominator + own.denominator};
+    }
+  }
+  moves_.resize(n);
+  spill_moves_.resize(n);
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+    const DensitySums& sum = sums_[f];
+    const double density = sum.density;
+    const Vec2 gradient_i = sum.gradient;
+    const double denominator =
+        sum.denominator + (inv_mass[first + f] * LengthSquared(gradient_i) + wall_denominator_[f]);
     fluid_.density[f] = density;
+    moves_[f] = Vec2{};
     // Only compression is pushed apart: a free surface, below the rest density, is left alone
     // rather than pulled together.
-    const double c = std::max(0.0, density * inv_rest - 1.0);
+    const double c = std::max(0.0, density * inv_rest[f] - 1.0);
     lambda_[f] = -c / (denominator + epsilon);
-    lambda_over_rest_[f] = lambda_[f] * inv_rest;
+    lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
   });
-  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping
-  // (its pair's term from FindPairTerms).
-  delta_.resize(n);
+  // The walls' side (before any particle moves).
+  PushWalls(h, pushes);
+  // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_moves_.begin() + begin, spill_moves_.begin() + end, Vec2{});
+  Vec2* const moves = moves_.data();
+  Vec2* const spill_moves = spill_moves_.data();
   const double* const lambda = lambda_.data();
   const double* const lambda_over_rest = lambda_over_rest_.data();
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    const std::uint32_t i = first + f;
-    const double inv_rest_i = 1.0 / fluid_.rest_density[f], mass_i = fluid_.mass[f];
-    const double lambda_i = lambda[f];
-    const std::uint32_t begin = offsets[i], end = begin + near_counts_[f];
-    Vec2 step;
-    for (std::uint32_t a = begin; a < end; ++a) {
-      const std::uint32_t j = near[a], g = j - first;
-      const PairTerms& t = terms[near_pairs[a]];
-      const double mj = kOneMass ? mass_0 : mass[g];
-      const double weight = (lambda_i + t.clumping) * (mj * inv_rest_i) + mass_i * lambda_over_rest[g];
-      step += weight * (kSide[j > i] * t.gradient);
+  pool_->ParallelFor(chunks, 2, [&](std::uint32_t c) {
+    const std::uint32_t own_end = chunk_particles_[c + 1];
+    if (uniform) {
+      UniformPairs chunk = one_kind;
+      chunk.own_end = own_end;
+      AddMovesOfPairs(chunk, x_.data() + first, NearPairs(c), lambda, lambda_over_rest,
+                      pair_terms_.data() + 3 * chunk_pairs_[c], moves, spill_moves);
+      return;
     }
-    delta_[f] = inv_mass[i] * (step + kWallFactor * lambda_i * wall_slope_[f]);
+    ForEachNearPair(k, c, true, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
+      const std::uint32_t fi = i - first, fj = j - first;
+      const double weight_i = (lambda[fi] + t.clumping) * (mass[fj] * inv_rest[fi]) + mass[fi] * lambda_over_rest[fj];
+      const double weight_j = (lambda[fj] + t.clumping) * (mass[fi] * inv_rest[fj]) + mass[fj] * lambda_over_rest[fi];
+      moves[fi] += weight_i * t.gradient;
+      (fj < own_end ? moves[fj] : spill_moves[fj]) += weight_j * (-t.gradient);
+    });
+  });
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) moves_[f] = spill_moves_[f] + moves_[f];
+  }
+  // Jacobi: a pair pushes each of its particles from both their constraints, which in a
+  // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
+  Vec2* const x = x_.data() + first;
+  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+    const Vec2 delta = inv_mass[first + f] * (moves_[f] + kWallFactor * lambda_[f] * wall_slope_[f]);
+    x[f] += kJacobiShare * delta;
   });
 }
 
@@ -722,19 +824,29 @@ void ParticleSystem::ApplyViscosity(double dt) {
                      ? shares_[f - 1]
                      : 1.0 - std::pow(1.0 - fluid_.viscosity[f], 60.0 * dt);
   }
-  // The kernel of each pair within it, once for both its particles (see FindPairTerms).
-  FindPairTerms(k, false);
+  // Each pair within the kernel adds into both its particles, as in DensityAndMoves.
+  moves_.assign(n, Vec2{});
+  spill_moves_.resize(n);
+  for (const auto& [begin, end] : spill_rows_) std::fill(spill_moves_.begin() + begin, spill_moves_.begin() + end, Vec2{});
+  Vec2* const pulls = moves_.data();
+  Vec2* const spill_pulls = spill_moves_.data();
+  const double* const mass = fluid_.mass.data();
+  const double* const density = fluid_.density.data();
+  // Each particle's m/ρ, as the pairs take it.
+  mass_over_density_.resize(n);
+  for (std::uint32_t f = 0; f < n; ++f) mass_over_density_[f] = mass[f] / density[f];
+  // Masses and densities come per particle here, so any fluid takes the four-lane loop.
+  pool_->ParallelFor(static_cast<std::uint32_t>(chunk_particles_.size() - 1), 2, [&](std::uint32_t c) {
+    FindNearPairs(k.h2, c);
+    UniformPairs chunk{k, 0.0, 0.0, 0.0, 0.0, 0.0, chunk_particles_[c + 1]};
+    AddPullsOfPairs(chunk, x_.data() + first, v_.data() + first, mass_over_density_.data(), NearPairs(c),
+                    NearOffsets(c), pulls, spill_pulls);
+  });
+  for (const auto& [begin, end] : spill_rows_) {
+    for (std::uint32_t f = begin; f < end; ++f) moves_[f] = spill_moves_[f] + moves_[f];
+  }
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    if (fluid_.viscosity[f] == 0.0) return;
-    const std::uint32_t i = first + f;
-    const std::uint32_t begin = neighbour_offsets_[i], end = begin + PackNear(i);
-    const Vec2 vi = v_[i];
-    Vec2 pull;
-    for (std::uint32_t a = begin; a < end; ++a) {
-      const std::uint32_t j = near_particles_[a], g = j - first;
-      pull += (fluid_.mass[g] / fluid_.density[g] * pair_terms_[near_pairs_[a]].weight) * (v_[j] - vi);
-    }
-    delta_[f] = shares_[f] * pull;
+    delta_[f] = fluid_.viscosity[f] == 0.0 ? Vec2{} : shares_[f] * moves_[f];
   });
   for (std::uint32_t f = 0; f < n; ++f) v_[first + f] += delta_[f];
 }

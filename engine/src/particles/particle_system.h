@@ -15,6 +15,8 @@
 #include "engine/world_def.h"
 #include "parallel/worker_pool.h"
 #include "particles/body_contact.h"
+#include "particles/fluid_pairs.h"
+#include "particles/near_pairs.h"
 #include "particles/particle_grid.h"
 #include "particles/sph_kernels.h"
 #include "particles/soft_bodies.h"
@@ -101,20 +103,27 @@ class ParticleSystem {
   void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
                        double radius, std::uint32_t group);
   void FindContacts(const WorldDef& def, const Bodies& bodies);
+  /// The fluid's particles into the grid's order for the step (fluid_order_), or back into
+  /// their own order (as FluidPositions lists them) after it.
+  void ReorderFluid(bool to_grid_order);
   double LatticeKernelSum() const;
   /// The constants that follow from the fluid's spacing (set) and its first block's density.
   void SetUpFluidKernel(double first_density);
   void SolveFluid(double h, std::vector<BodyPush>& pushes);
-  /// SolveFluid's density and move passes (delta_); `kOneMass`: every fluid particle has the
-  /// first's mass.
-  template <bool kOneMass>
-  void DensityAndMoves(const SphKernels& k);
-  /// pair_terms_ (their gradients only if `with_gradients`) and pair_near_ for the particles
-  /// where they are now.
-  void FindPairTerms(const SphKernels& k, bool with_gradients);
-  /// Packs fluid particle i's entries with pair_near_ set at the start of its run of
-  /// near_particles_ and near_pairs_, in list order; returns how many.
-  std::uint32_t PackNear(std::uint32_t i);
+  /// SolveFluid's density and move passes, the walls' side (PushWalls) between them, and the
+  /// particles moved.
+  void DensityAndMoves(const SphKernels& k, double h, std::vector<BodyPush>& pushes);
+  /// The fluid's pairs (fluid_pairs_) in chunks of whole rows of the grid (chunk_particles_,
+  /// chunk_pairs_), after FindNeighbours.
+  void FindChunks();
+  /// near_pairs_ and near_counts_ of chunk `chunk` for the particles where they are now.
+  void FindNearPairs(double h2, std::uint32_t chunk);
+  std::span<const ParticlePair> NearPairs(std::uint32_t chunk) const;
+  PairOffsets NearOffsets(std::uint32_t chunk);
+  /// Calls visit(i, j, terms) for each of chunk `chunk`'s near pairs (FindNearPairs), in pair
+  /// order, with its kernel terms (only the weight unless `with_gradients`).
+  template <typename Visit>
+  void ForEachNearPair(const SphKernels& k, std::uint32_t chunk, bool with_gradients, Visit&& visit) const;
   /// Each fluid particle's share of its kernel filled by the bodies near it, and its slope.
   void FindWalls(std::vector<BodyPush>& pushes);
   void PushWalls(double h, std::vector<BodyPush>& pushes);
@@ -155,6 +164,9 @@ class ParticleSystem {
 
   // The step's scratch.
   ParticleGrid grid_;
+  /// This step's order of the fluid's particles, by grid cell, so that neighbours lie near in
+  /// memory: each one's own number (less fluid_first_); and where each row of cells begins.
+  std::vector<std::uint32_t> fluid_order_, fluid_rows_;
   std::vector<std::uint32_t> neighbour_offsets_, neighbours_;
   std::vector<PlaneContact> planes_;
   std::vector<Vec2> start_centers_;
@@ -162,18 +174,32 @@ class ParticleSystem {
   std::vector<BodyPush> pushes_;
   std::vector<BodyIndex> touched_;
   std::vector<double> omega_;
-  std::vector<double> shares_;  ///< ApplyViscosity's, per particle
+  std::vector<double> shares_, mass_over_density_;  ///< ApplyViscosity's, per particle
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
-  /// Each pair of neighbours once (i < j), and each neighbour-list entry's index into it.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
-  std::vector<std::uint32_t> entry_pairs_;
-  std::vector<PairTerms> pair_terms_;  ///< this substep's
-  std::vector<std::uint8_t> pair_near_;  ///< 1 for two fluid particles within the kernel
-  /// Each fluid particle's fluid neighbours within the kernel this substep: near_counts_[f] of
-  /// them from its offset in the neighbour list, with their pairs' indices.
-  std::vector<std::uint32_t> near_particles_, near_pairs_, near_counts_;
+  /// Each pair of neighbours once (i < j), in the order of the grid's cells; those of two fluid
+  /// particles, by their lower particle, numbered from fluid_first_.
+  std::vector<ParticlePair> pairs_, fluid_pairs_;
+  /// The fluid's pairs in chunks, each summed on one thread: chunk c holds the fluid particles
+  /// [chunk_particles_[c], chunk_particles_[c + 1]) (less fluid_first_), whole rows of the
+  /// grid, and fluid_pairs_[chunk_pairs_[c], chunk_pairs_[c + 1]), whose lower particles are
+  /// those. A pair's higher particle lies in the same chunk or in the next one's first row: it
+  /// adds into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
+  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_, pair_starts_;
+  /// The particles [begin, end) (from fluid_first_) that the chunk before theirs may spill into.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spill_rows_;
+  /// Each chunk's pairs within the kernel this substep: near_counts_[c] of them from
+  /// near_pairs_[chunk_pairs_[c]], with their terms from pair_terms_[3 · chunk_pairs_[c]] once
+  /// the density pass has found them.
+  std::vector<ParticlePair> near_pairs_;
+  std::vector<double> near_dx_, near_dy_, near_r2_;  ///< their offsets (PairsWithin)
+  std::vector<double> pair_terms_;
+  std::vector<std::uint32_t> near_counts_;
+  std::vector<DensitySums> sums_, spill_sums_;
+  std::vector<Vec2> moves_, spill_moves_;
+  std::vector<double> inv_rest_;  ///< each fluid particle's 1 / rest density
+  bool one_kind_ = false;         ///< every fluid particle has the same mass and rest density
   std::vector<double> wall_share_;
   std::vector<Vec2> wall_slope_;
   std::vector<double> wall_distances_;    ///< per plane, this substep (fluid particles' only)

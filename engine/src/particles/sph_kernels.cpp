@@ -29,8 +29,8 @@ void PairTermsBy2(const SphKernels& k, double inv_clumping_w, double clumping_sc
     const Double2 w = KeepWhere(reinterpret_cast<Mask2>(r2 < Splat2(h2)), Splat2(scale) * f * f * f);
     const bool second = q + 1 < batch.count;
     if (!with_gradients) {
-      terms[batch.at[q]].weight = w[0];
-      if (second) terms[batch.at[q + 1]].weight = w[1];
+      terms[q].weight = w[0];
+      if (second) terms[q + 1].weight = w[1];
       continue;
     }
     const Mask2 slope = reinterpret_cast<Mask2>(r < Splat2(h)) & reinterpret_cast<Mask2>(r != Splat2(0.0));
@@ -39,8 +39,8 @@ void PairTermsBy2(const SphKernels& k, double inv_clumping_w, double clumping_sc
     const Double2 ratio = w * Splat2(inv_clumping_w);
     const Double2 ratio2 = ratio * ratio;
     const Double2 clumping = Splat2(clumping_scale) * (ratio2 * ratio2);
-    terms[batch.at[q]] = {w[0], {gx[0], gy[0]}, clumping[0]};
-    if (second) terms[batch.at[q + 1]] = {w[1], {gx[1], gy[1]}, clumping[1]};
+    terms[q] = {w[0], {gx[0], gy[0]}, clumping[0]};
+    if (second) terms[q + 1] = {w[1], {gx[1], gy[1]}, clumping[1]};
   }
 }
 
@@ -63,7 +63,7 @@ __attribute__((target("avx"))) void PairTermsBy4(const SphKernels& k, double inv
     alignas(32) double ws[4], gxs[4], gys[4], cs[4];
     _mm256_store_pd(ws, w);
     if (!with_gradients) {
-      for (std::uint32_t l = 0; l < lanes; ++l) terms[batch.at[q + l]].weight = ws[l];
+      for (std::uint32_t l = 0; l < lanes; ++l) terms[q + l].weight = ws[l];
       continue;
     }
     const __m256d slope = _mm256_and_pd(_mm256_cmp_pd(r, h, _CMP_LT_OQ), _mm256_cmp_pd(r, zero, _CMP_NEQ_UQ));
@@ -73,7 +73,7 @@ __attribute__((target("avx"))) void PairTermsBy4(const SphKernels& k, double inv
     const __m256d ratio = _mm256_mul_pd(w, over_w);
     const __m256d ratio2 = _mm256_mul_pd(ratio, ratio);
     _mm256_store_pd(cs, _mm256_mul_pd(clumping_by, _mm256_mul_pd(ratio2, ratio2)));
-    for (std::uint32_t l = 0; l < lanes; ++l) terms[batch.at[q + l]] = {ws[l], {gxs[l], gys[l]}, cs[l]};
+    for (std::uint32_t l = 0; l < lanes; ++l) terms[q + l] = {ws[l], {gxs[l], gys[l]}, cs[l]};
   }
 }
 #endif

@@ -46,17 +46,15 @@ struct PairTerms {
 };
 
 /// A batch of pairs within the kernel: offsets dx, dy (x_i − x_j) and r2 = dx² + dy², each
-/// array holding `count` rounded up to 4 entries (the extra ones finite), and where each
-/// pair's terms go.
+/// array holding `count` rounded up to 4 entries (the extra ones finite).
 struct PairBatch {
   const double* dx;
   const double* dy;
   const double* r2;
-  const std::uint32_t* at;
   std::uint32_t count;
 };
 
-/// terms[at[q]] for each pair q of the batch: SphKernels::W(r2, √r2) and Gradient(d, √r2)
+/// terms[q] for each pair q of the batch: SphKernels::W(r2, √r2) and Gradient(d, √r2)
 /// operation for operation (only the weight unless `with_gradients`), lane by lane: four
 /// lanes where the processor has AVX, else two. The bits are the scalar functions' on every
 /// machine: each lane's IEEE operations are the scalar ones, in their order.

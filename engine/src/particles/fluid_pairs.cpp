@@ -1,0 +1,295 @@
+// The pair loops of a fluid of one kind. Four lanes (AVX2) do each pair's IEEE operations in
+// the scalar code's order, one pair per lane, and add into the particles in pair order, so the
+// bits are the one-at-a-time loop's.
+#include "particles/fluid_pairs.h"
+
+#include <cmath>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define BALLBOX_AVX2_AT_RUN_TIME 1
+#endif
+
+namespace engine::detail {
+
+static_assert(sizeof(DensitySums) == 4 * sizeof(double) && sizeof(Vec2) == 2 * sizeof(double));
+
+namespace {
+
+// The sums `fj` adds into: its own chunk's, or the next chunk's spill. (`own_end` is taken by
+// value so that the stores into the sums cannot make it be read again.)
+template <typename T>
+T& Target(std::uint32_t own_end, std::uint32_t fj, T* own, T* spill) {
+  return fj < own_end ? own[fj] : spill[fj];
+}
+
+void DensityBy1(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs, DensitySums* own,
+                DensitySums* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  const SphKernels& k = fluid.kernel;
+  const double a = fluid.mass * fluid.inv_rest;
+  for (const auto& [i, j] : pairs) {
+    const Vec2 d = x[i] - x[j];
+    const double r2 = LengthSquared(d), r = std::sqrt(r2);
+    const double mw = fluid.mass * k.W(r2, r);
+    const Vec2 g = a * k.Gradient(d, r);
+    const double denominator = fluid.inv_mass * LengthSquared(g);
+    DensitySums& si = own[i];
+    si.density += mw;
+    si.gradient += g;
+    si.denominator += denominator;
+    DensitySums& sj = Target(own_end, j, own, spill);
+    sj.density += mw;
+    sj.gradient += -g;
+    sj.denominator += denominator;
+  }
+}
+
+void MovesBy1(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs, const double* lambda,
+              const double* lambda_over_rest, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  const SphKernels& k = fluid.kernel;
+  const double a = fluid.mass * fluid.inv_rest;
+  for (const auto& [i, j] : pairs) {
+    const std::uint32_t fi = i, fj = j;
+    const Vec2 d = x[i] - x[j];
+    const double r2 = LengthSquared(d), r = std::sqrt(r2);
+    const double ratio = k.W(r2, r) * fluid.clumping_over_w;
+    const double ratio2 = ratio * ratio;
+    const double clumping = fluid.clumping_strength * (ratio2 * ratio2);
+    const Vec2 gradient = k.Gradient(d, r);
+    const double weight_i = (lambda[fi] + clumping) * a + fluid.mass * lambda_over_rest[fj];
+    const double weight_j = (lambda[fj] + clumping) * a + fluid.mass * lambda_over_rest[fi];
+    own[fi] += weight_i * gradient;
+    Target(own_end, fj, own, spill) += weight_j * (-gradient);
+  }
+}
+
+void PullsBy1(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+              std::span<const ParticlePair> pairs, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  for (const auto& [i, j] : pairs) {
+    const double r2 = LengthSquared(x[i] - x[j]);
+    const double w = fluid.kernel.W(r2, std::sqrt(r2));
+    own[i] += (mass_over_density[j] * w) * (v[j] - v[i]);
+    Target(own_end, j, own, spill) += (mass_over_density[i] * w) * (v[i] - v[j]);
+  }
+}
+
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+#define BALLBOX_AVX2 __attribute__((target("avx2")))
+
+// The x and y of four Vec2s, lanes in the order given.
+BALLBOX_AVX2 inline void Gather4(const Vec2* x, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                                 __m256d* xs, __m256d* ys) {
+  const __m256d ab = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[a].x)), _mm_loadu_pd(&x[b].x), 1);
+  const __m256d cd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[c].x)), _mm_loadu_pd(&x[d].x), 1);
+  // unpack gives (a, c, b, d); the permute puts them back in order.
+  *xs = _mm256_permute4x64_pd(_mm256_unpacklo_pd(ab, cd), 0xd8);
+  *ys = _mm256_permute4x64_pd(_mm256_unpackhi_pd(ab, cd), 0xd8);
+}
+
+// W, and ∇W's x and y, of four pairs, as SphKernels::W(r2, r) and Gradient(d, r).
+struct Kernel4 {
+  __m256d w, gx, gy;
+};
+
+BALLBOX_AVX2 inline Kernel4 KernelOf4(const SphKernels& k, __m256d dx, __m256d dy, __m256d r2) {
+  const __m256d h = _mm256_set1_pd(k.h), scale = _mm256_set1_pd(k.scale);
+  const __m256d r = _mm256_sqrt_pd(r2);
+  const __m256d f = _mm256_sub_pd(h, r);
+  const __m256d w = _mm256_and_pd(_mm256_cmp_pd(r2, _mm256_set1_pd(k.h2), _CMP_LT_OQ),
+                                  _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(scale, f), f), f));
+  const __m256d slope =
+      _mm256_and_pd(_mm256_cmp_pd(r, h, _CMP_LT_OQ), _mm256_cmp_pd(r, _mm256_setzero_pd(), _CMP_NEQ_UQ));
+  const __m256d c =
+      _mm256_div_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(-3.0 * k.scale), f), f), r);
+  return {w, _mm256_and_pd(slope, _mm256_mul_pd(c, dx)), _mm256_and_pd(slope, _mm256_mul_pd(c, dy))};
+}
+
+BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                             const PairOffsets& offsets, DensitySums* own, DensitySums* spill, double* stored) {
+  const std::uint32_t own_end = fluid.own_end;
+  const __m256d a = _mm256_set1_pd(fluid.mass * fluid.inv_rest);
+  const __m256d mass = _mm256_set1_pd(fluid.mass), inv_mass = _mm256_set1_pd(fluid.inv_mass);
+  const __m256d flip = _mm256_set_pd(0.0, -0.0, -0.0, 0.0);  // j's side: the gradient's sign
+  const __m256d over_w = _mm256_set1_pd(fluid.clumping_over_w);
+  const __m256d strength = _mm256_set1_pd(fluid.clumping_strength);
+  // A particle's pairs as the lower one follow each other (and it is never a pair's higher
+  // one): its sums wait in `lower` rather than go through memory after each pair, which made
+  // the next pair wait for the store. The additions are the same, in the same order.
+  if (pairs.size() < 4) return DensityBy1(fluid, x, pairs, own, spill);
+  std::uint32_t lower_at = pairs[0].first;
+  __m256d lower = _mm256_loadu_pd(&own[lower_at].density);
+  std::size_t p = 0;
+  for (; p + 4 <= pairs.size(); p += 4) {
+    const ParticlePair* const q = pairs.data() + p;
+    const Kernel4 t = KernelOf4(fluid.kernel, _mm256_loadu_pd(offsets.dx + p), _mm256_loadu_pd(offsets.dy + p),
+                                _mm256_loadu_pd(offsets.r2 + p));
+    // The move pass's terms, so that it need not work them out again.
+    const __m256d ratio = _mm256_mul_pd(t.w, over_w);
+    const __m256d ratio2 = _mm256_mul_pd(ratio, ratio);
+    _mm256_storeu_pd(stored + 3 * p, t.gx);
+    _mm256_storeu_pd(stored + 3 * p + 4, t.gy);
+    _mm256_storeu_pd(stored + 3 * p + 8, _mm256_mul_pd(strength, _mm256_mul_pd(ratio2, ratio2)));
+    const __m256d gx = _mm256_mul_pd(a, t.gx), gy = _mm256_mul_pd(a, t.gy);
+    const __m256d mw = _mm256_mul_pd(mass, t.w);
+    const __m256d denominator = _mm256_mul_pd(inv_mass, _mm256_add_pd(_mm256_mul_pd(gx, gx), _mm256_mul_pd(gy, gy)));
+    // Each pair's (m·W, g, m⁻¹·|g|²) in one vector, laid out as DensitySums.
+    const __m256d lo0 = _mm256_unpacklo_pd(mw, gx), hi0 = _mm256_unpackhi_pd(mw, gx);
+    const __m256d lo1 = _mm256_unpacklo_pd(gy, denominator), hi1 = _mm256_unpackhi_pd(gy, denominator);
+    const __m256d terms[4] = {_mm256_permute2f128_pd(lo0, lo1, 0x20), _mm256_permute2f128_pd(hi0, hi1, 0x20),
+                              _mm256_permute2f128_pd(lo0, lo1, 0x31), _mm256_permute2f128_pd(hi0, hi1, 0x31)};
+    for (int l = 0; l < 4; ++l) {
+      const std::uint32_t fi = q[l].first;
+      if (fi != lower_at) {
+        _mm256_storeu_pd(&own[lower_at].density, lower);
+        lower_at = fi;
+        lower = _mm256_loadu_pd(&own[fi].density);
+      }
+      lower = _mm256_add_pd(lower, terms[l]);
+      double* const sj = &Target(own_end, q[l].second, own, spill).density;
+      _mm256_storeu_pd(sj, _mm256_add_pd(_mm256_loadu_pd(sj), _mm256_xor_pd(terms[l], flip)));
+    }
+  }
+  _mm256_storeu_pd(&own[lower_at].density, lower);
+  DensityBy1(fluid, x, pairs.subspan(p), own, spill);
+}
+
+BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                           const double* lambda, const double* lambda_over_rest, const double* stored, Vec2* own,
+                           Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  const __m256d a = _mm256_set1_pd(fluid.mass * fluid.inv_rest), mass = _mm256_set1_pd(fluid.mass);
+  const __m256d minus = _mm256_set1_pd(-0.0);
+  if (pairs.size() < 4) return MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
+  std::uint32_t lower_at = pairs[0].first;  // as in DensityBy4
+  __m128d lower = _mm_loadu_pd(&own[lower_at].x);
+  std::size_t p = 0;
+  for (; p + 4 <= pairs.size(); p += 4) {
+    const ParticlePair* const q = pairs.data() + p;
+    const Kernel4 t{_mm256_setzero_pd(), _mm256_loadu_pd(stored + 3 * p), _mm256_loadu_pd(stored + 3 * p + 4)};
+    const __m256d clumping = _mm256_loadu_pd(stored + 3 * p + 8);
+    const std::uint32_t i0 = q[0].first, i1 = q[1].first, i2 = q[2].first,
+                        i3 = q[3].first;
+    const std::uint32_t j0 = q[0].second, j1 = q[1].second, j2 = q[2].second,
+                        j3 = q[3].second;
+    const __m256d lambda_i = _mm256_set_pd(lambda[i3], lambda[i2], lambda[i1], lambda[i0]);
+    const __m256d lambda_j = _mm256_set_pd(lambda[j3], lambda[j2], lambda[j1], lambda[j0]);
+    const __m256d over_i =
+        _mm256_set_pd(lambda_over_rest[i3], lambda_over_rest[i2], lambda_over_rest[i1], lambda_over_rest[i0]);
+    const __m256d over_j =
+        _mm256_set_pd(lambda_over_rest[j3], lambda_over_rest[j2], lambda_over_rest[j1], lambda_over_rest[j0]);
+    const __m256d weight_i = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(lambda_i, clumping), a), _mm256_mul_pd(mass, over_j));
+    const __m256d weight_j = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(lambda_j, clumping), a), _mm256_mul_pd(mass, over_i));
+    const __m256d xi = _mm256_mul_pd(weight_i, t.gx), yi = _mm256_mul_pd(weight_i, t.gy);
+    const __m256d xj = _mm256_mul_pd(weight_j, _mm256_xor_pd(t.gx, minus));
+    const __m256d yj = _mm256_mul_pd(weight_j, _mm256_xor_pd(t.gy, minus));
+    // Each pair's move as (x, y): lanes 0 and 1 in the low halves, 2 and 3 in the high.
+    const __m256d lo_i = _mm256_unpacklo_pd(xi, yi), hi_i = _mm256_unpackhi_pd(xi, yi);
+    const __m256d lo_j = _mm256_unpacklo_pd(xj, yj), hi_j = _mm256_unpackhi_pd(xj, yj);
+    const __m128d moves_i[4] = {_mm256_castpd256_pd128(lo_i), _mm256_castpd256_pd128(hi_i),
+                                _mm256_extractf128_pd(lo_i, 1), _mm256_extractf128_pd(hi_i, 1)};
+    const __m128d moves_j[4] = {_mm256_castpd256_pd128(lo_j), _mm256_castpd256_pd128(hi_j),
+                                _mm256_extractf128_pd(lo_j, 1), _mm256_extractf128_pd(hi_j, 1)};
+    for (int l = 0; l < 4; ++l) {
+      const std::uint32_t fi = q[l].first;
+      if (fi != lower_at) {
+        _mm_storeu_pd(&own[lower_at].x, lower);
+        lower_at = fi;
+        lower = _mm_loadu_pd(&own[fi].x);
+      }
+      lower = _mm_add_pd(lower, moves_i[l]);
+      double* const mj = &Target(own_end, q[l].second, own, spill).x;
+      _mm_storeu_pd(mj, _mm_add_pd(_mm_loadu_pd(mj), moves_j[l]));
+    }
+  }
+  _mm_storeu_pd(&own[lower_at].x, lower);
+  MovesBy1(fluid, x, pairs.subspan(p), lambda, lambda_over_rest, own, spill);
+}
+
+BALLBOX_AVX2 void PullsBy4(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+                           std::span<const ParticlePair> pairs, const PairOffsets& offsets, Vec2* own, Vec2* spill) {
+  const std::uint32_t own_end = fluid.own_end;
+  const SphKernels& k = fluid.kernel;
+  const __m256d h = _mm256_set1_pd(k.h), h2 = _mm256_set1_pd(k.h2), scale = _mm256_set1_pd(k.scale);
+  const double* const r2s = offsets.r2;
+  const std::size_t full = pairs.size() / 4 * 4;
+  if (full == 0) return PullsBy1(fluid, x, v, mass_over_density, pairs, own, spill);
+  std::uint32_t lower_at = pairs[0].first;  // as in DensityBy4
+  __m128d lower = _mm_loadu_pd(&own[lower_at].x);
+  for (std::size_t p = 0; p < full; p += 4) {
+    const ParticlePair* const q = pairs.data() + p;
+    const __m256d r2 = _mm256_loadu_pd(r2s + p);
+    const __m256d f = _mm256_sub_pd(h, _mm256_sqrt_pd(r2));
+    const __m256d w = _mm256_and_pd(_mm256_cmp_pd(r2, h2, _CMP_LT_OQ),
+                                    _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(scale, f), f), f));
+    __m256d vxi, vyi, vxj, vyj;
+    Gather4(v, q[0].first, q[1].first, q[2].first, q[3].first, &vxi, &vyi);
+    Gather4(v, q[0].second, q[1].second, q[2].second, q[3].second, &vxj, &vyj);
+    const __m256d over_i = _mm256_set_pd(mass_over_density[q[3].first], mass_over_density[q[2].first],
+                                         mass_over_density[q[1].first], mass_over_density[q[0].first]);
+    const __m256d over_j = _mm256_set_pd(mass_over_density[q[3].second], mass_over_density[q[2].second],
+                                         mass_over_density[q[1].second], mass_over_density[q[0].second]);
+    const __m256d wi = _mm256_mul_pd(over_j, w), wj = _mm256_mul_pd(over_i, w);
+    const __m256d xi = _mm256_mul_pd(wi, _mm256_sub_pd(vxj, vxi)), yi = _mm256_mul_pd(wi, _mm256_sub_pd(vyj, vyi));
+    const __m256d xj = _mm256_mul_pd(wj, _mm256_sub_pd(vxi, vxj)), yj = _mm256_mul_pd(wj, _mm256_sub_pd(vyi, vyj));
+    const __m256d lo_i = _mm256_unpacklo_pd(xi, yi), hi_i = _mm256_unpackhi_pd(xi, yi);
+    const __m256d lo_j = _mm256_unpacklo_pd(xj, yj), hi_j = _mm256_unpackhi_pd(xj, yj);
+    const __m128d pulls_i[4] = {_mm256_castpd256_pd128(lo_i), _mm256_castpd256_pd128(hi_i),
+                                _mm256_extractf128_pd(lo_i, 1), _mm256_extractf128_pd(hi_i, 1)};
+    const __m128d pulls_j[4] = {_mm256_castpd256_pd128(lo_j), _mm256_castpd256_pd128(hi_j),
+                                _mm256_extractf128_pd(lo_j, 1), _mm256_extractf128_pd(hi_j, 1)};
+    for (int l = 0; l < 4; ++l) {
+      const std::uint32_t fi = q[l].first;
+      if (fi != lower_at) {
+        _mm_storeu_pd(&own[lower_at].x, lower);
+        lower_at = fi;
+        lower = _mm_loadu_pd(&own[fi].x);
+      }
+      lower = _mm_add_pd(lower, pulls_i[l]);
+      double* const pj = &Target(own_end, q[l].second, own, spill).x;
+      _mm_storeu_pd(pj, _mm_add_pd(_mm_loadu_pd(pj), pulls_j[l]));
+    }
+  }
+  _mm_storeu_pd(&own[lower_at].x, lower);
+  PullsBy1(fluid, x, v, mass_over_density, pairs.subspan(full), own, spill);
+}
+
+bool HasAvx2() {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+}
+#endif
+
+}  // namespace
+
+void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                       [[maybe_unused]] const PairOffsets& offsets, DensitySums* own, DensitySums* spill,
+                       [[maybe_unused]] double* terms, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes != 1 && HasAvx2()) return DensityBy4(fluid, x, pairs, offsets, own, spill, terms);
+#endif
+  DensityBy1(fluid, x, pairs, own, spill);
+}
+
+void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                     const double* lambda, const double* lambda_over_rest, [[maybe_unused]] const double* terms,
+                     Vec2* own, Vec2* spill, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes != 1 && HasAvx2()) return MovesBy4(fluid, x, pairs, lambda, lambda_over_rest, terms, own, spill);
+#endif
+  MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
+}
+
+
+void AddPullsOfPairs(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+                     std::span<const ParticlePair> pairs, [[maybe_unused]] const PairOffsets& offsets, Vec2* own,
+                     Vec2* spill, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes != 1 && HasAvx2()) return PullsBy4(fluid, x, v, mass_over_density, pairs, offsets, own, spill);
+#endif
+  PullsBy1(fluid, x, v, mass_over_density, pairs, own, spill);
+}
+
+}  // namespace engine::detail

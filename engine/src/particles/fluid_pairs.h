@@ -1,0 +1,57 @@
+// The density and move passes' loops over the fluid's pairs within the kernel, for a fluid of
+// one kind (every particle the same mass and rest density, as in one block): each pair's terms
+// worked out once and added into both its particles, four pairs at a time with AVX2 where the
+// processor has it, else one at a time, the same bits either way. Internal.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "engine/math.h"
+#include "particles/near_pairs.h"
+#include "particles/sph_kernels.h"
+
+namespace engine::detail {
+
+/// What the density pass sums over a particle's neighbours.
+struct DensitySums {
+  double density = 0.0;
+  Vec2 gradient;
+  double denominator = 0.0;
+};
+
+/// A fluid of one kind, and where a chunk's pairs add: into `own` below `own_end` and into
+/// `spill` from there on (DensityAndMoves). Particles are numbered from the fluid's first.
+struct UniformPairs {
+  SphKernels kernel;
+  double mass, inv_mass, inv_rest;
+  double clumping_over_w, clumping_strength;  ///< PBF's artificial pressure, as KernelTermsOfPairs
+  std::uint32_t own_end;
+};
+
+/// For each pair (i, j) in order, with W and ∇W at x_i − x_j and g = (m/ρ0)·∇W: adds
+/// (m·W, g, m⁻¹·|g|²) to i's sums and (m·W, −g, m⁻¹·|g|²) to j's. `offsets`: the pairs' as
+/// PairsWithin left them. `lanes`: 1 for one pair at a time, else the widest the processor
+/// has. Where that is four lanes, each full four pairs' ∇W and artificial pressure are left in
+/// `terms` (3 doubles a pair) for AddMovesOfPairs.
+void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                       const PairOffsets& offsets, DensitySums* own, DensitySums* spill, double* terms,
+                       int lanes = 0);
+
+/// For each pair (i, j) in order, with s the artificial pressure and λ/ρ0 of each particle in
+/// `lambda_over_rest`: adds ((λ_i + s)·m/ρ0 + m·λ_j/ρ0)·∇W to i's move and
+/// ((λ_j + s)·m/ρ0 + m·λ_i/ρ0)·(−∇W) to j's. `terms`: AddDensityOfPairs', for the same pairs
+/// where they are, with the same `lanes`.
+void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
+                     const double* lambda, const double* lambda_over_rest, const double* terms, Vec2* own,
+                     Vec2* spill, int lanes = 0);
+
+/// XSPH's pulls (ApplyViscosity), for any fluid (of `fluid` only the kernel and own_end count):
+/// for each pair (i, j) in order, with W at x_i − x_j, adds (m_j/ρ_j·W)·(v_j − v_i) to i's pull
+/// and (m_i/ρ_i·W)·(v_i − v_j) to j's, `mass_over_density` holding each particle's m/ρ.
+/// `offsets` and `lanes` as for AddDensityOfPairs.
+void AddPullsOfPairs(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
+                     std::span<const ParticlePair> pairs, const PairOffsets& offsets, Vec2* own, Vec2* spill,
+                     int lanes = 0);
+
+}  // namespace engine::detail

@@ -1,0 +1,106 @@
+// Pairs within a distance: four at a time with AVX2 where the processor has it (chosen at run
+// time), else one at a time. Both keep the same pairs, in the same order.
+#include "particles/near_pairs.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define BALLBOX_AVX2_AT_RUN_TIME 1
+#endif
+
+namespace engine::detail {
+
+namespace {
+
+std::uint32_t PairsWithinBy1(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
+                             const PairOffsets& offsets) {
+  // Every pair is written and kept or overwritten by the next: whether a pair is near is a
+  // coin toss a branch would mispredict.
+  double* const dxs = offsets.dx;
+  double* const dys = offsets.dy;
+  double* const r2s = offsets.r2;
+  std::uint32_t m = 0;
+  for (const ParticlePair& p : pairs) {
+    const Vec2 d = x[p.first] - x[p.second];
+    const double d2 = LengthSquared(d);
+    out[m] = p;
+    dxs[m] = d.x, dys[m] = d.y, r2s[m] = d2;
+    m += d2 < r2;
+  }
+  return m;
+}
+
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+// For each 4-bit mask of lanes kept, the 32-bit lanes that move the kept pairs to the front.
+struct KeepTable {
+  alignas(32) std::int32_t lanes[16][8];
+  constexpr KeepTable() : lanes{} {
+    for (int mask = 0; mask < 16; ++mask) {
+      int at = 0;
+      for (int q = 0; q < 4; ++q) {
+        if (mask & (1 << q)) lanes[mask][2 * at] = 2 * q, lanes[mask][2 * at + 1] = 2 * q + 1, ++at;
+      }
+    }
+  }
+};
+constexpr KeepTable kKeep;
+
+// The x and y of particles a, b, c, d as two vectors (lanes in that order).
+__attribute__((target("avx2"))) inline void Gather4(const Vec2* x, std::uint32_t a, std::uint32_t b,
+                                                    std::uint32_t c, std::uint32_t d, __m256d* xs, __m256d* ys) {
+  const __m256d ab = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[a].x)), _mm_loadu_pd(&x[b].x), 1);
+  const __m256d cd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[c].x)), _mm_loadu_pd(&x[d].x), 1);
+  // unpack gives (a, c, b, d); the permute puts them back in order.
+  *xs = _mm256_permute4x64_pd(_mm256_unpacklo_pd(ab, cd), 0xd8);
+  *ys = _mm256_permute4x64_pd(_mm256_unpackhi_pd(ab, cd), 0xd8);
+}
+
+// The kept doubles moved to the front by the same 32-bit lanes (two halves each).
+__attribute__((target("avx2"))) inline __m256d KeepLanes(__m256d v, __m256i lanes) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), lanes));
+}
+
+__attribute__((target("avx2"))) std::uint32_t PairsWithinBy4(const Vec2* x, std::span<const ParticlePair> pairs,
+                                                             double r2, ParticlePair* out,
+                                                             const PairOffsets& offsets) {
+  static_assert(sizeof(ParticlePair) == 8);
+  const __m256d limit = _mm256_set1_pd(r2);
+  const std::size_t count = pairs.size();
+  // In locals: the stores could otherwise alias the pointers and make them be read again.
+  double* const dxs = offsets.dx;
+  double* const dys = offsets.dy;
+  double* const r2s = offsets.r2;
+  std::uint32_t m = 0;
+  std::size_t p = 0;
+  for (; p + 4 <= count; p += 4) {
+    const ParticlePair* const q = pairs.data() + p;
+    __m256d xi, yi, xj, yj;
+    Gather4(x, q[0].first, q[1].first, q[2].first, q[3].first, &xi, &yi);
+    Gather4(x, q[0].second, q[1].second, q[2].second, q[3].second, &xj, &yj);
+    // LengthSquared(x[i] − x[j]) lane by lane: the same IEEE operations in the same order.
+    const __m256d dx = _mm256_sub_pd(xi, xj), dy = _mm256_sub_pd(yi, yj);
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const int keep = _mm256_movemask_pd(_mm256_cmp_pd(d2, limit, _CMP_LT_OQ));
+    const __m256i four = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q));
+    const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kKeep.lanes[keep]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m), _mm256_permutevar8x32_epi32(four, lanes));
+    _mm256_storeu_pd(dxs + m, KeepLanes(dx, lanes));
+    _mm256_storeu_pd(dys + m, KeepLanes(dy, lanes));
+    _mm256_storeu_pd(r2s + m, KeepLanes(d2, lanes));
+    m += static_cast<std::uint32_t>(__builtin_popcount(static_cast<unsigned>(keep)));
+  }
+  return m + PairsWithinBy1(x, pairs.subspan(p), r2, out + m, {dxs + m, dys + m, r2s + m});
+}
+#endif
+
+}  // namespace
+
+std::uint32_t PairsWithin(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
+                          const PairOffsets& offsets) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return PairsWithinBy4(x, pairs, r2, out, offsets);
+#endif
+  return PairsWithinBy1(x, pairs, r2, out, offsets);
+}
+
+}  // namespace engine::detail
