@@ -44,8 +44,9 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 /// step, so h·v is where it leaves the body. The higher-order drift would move a body held at
 /// rest by its contacts by −½·a·h² a step (Verlet, midpoint, RK4; −a·h² for explicit Euler):
 /// hovering over the floor and creeping against a push that friction holds.
+/// `pool`: threads to share the bodies among (each body's move is its own).
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
-                bool rotation, const FreeMotion& motion, double h);
+                bool rotation, const FreeMotion& motion, double h, WorkerPool* pool = nullptr);
 
 }  // namespace engine::detail

@@ -83,6 +83,18 @@ namespace {
 // Fewer contacts than this are prepared or stored on one thread.
 constexpr std::uint32_t kMinSharedContacts = 4096;
 
+// Calls body(i) for each body, on the pool's threads from 2 048 bodies.
+template <typename Body>
+void ForEachBody(WorkerPool* pool, std::size_t count, Body&& body) {
+  constexpr std::uint32_t kMinSharedBodies = 2048;
+  const auto n = static_cast<std::uint32_t>(count);
+  if (pool) {
+    pool->ParallelFor(n, kMinSharedBodies, body);
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) body(i);
+  }
+}
+
 // Calls body(i) for each contact, on the pool's threads when there is one.
 template <typename Body>
 void ForEachContact(WorkerPool* pool, std::size_t count, Body&& body) {
@@ -550,16 +562,18 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states, const 
   }
 }
 
-void ClearPush(PushVelocities push) {
-  for (Vec2& v : push.linear) v = {};
-  for (double& w : push.angular) w = 0.0;
+void ClearPush(PushVelocities push, WorkerPool* pool) {
+  ForEachBody(pool, std::max(push.linear.size(), push.angular.size()), [&](std::uint32_t i) {
+    if (i < push.linear.size()) push.linear[i] = {};
+    if (i < push.angular.size()) push.angular[i] = 0.0;
+  });
 }
 
-void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h) {
-  for (std::size_t i = 0; i < states.size(); ++i) {
+void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
+  ForEachBody(pool, states.size(), [&](std::uint32_t i) {
     states[i].position += push.linear[i] * h;
     if (rotation) states[i].angle += push.angular[i] * h;
-  }
+  });
 }
 
 template <typename C>

@@ -118,7 +118,7 @@ struct PushVelocities {
 };
 
 /// Sets every push velocity to zero, before the substep's PushOut.
-void ClearPush(PushVelocities push);
+void ClearPush(PushVelocities push, WorkerPool* pool = nullptr);
 
 /// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
 /// out through separate push velocities at `push_out_rate` per second of overlap, at most
@@ -131,7 +131,9 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states,
              double max_push_out_speed, double linear_slop);
 
 /// Moves every body by its push velocity for one substep.
-void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h);
+/// `pool`: threads to share the bodies among.
+void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h,
+                WorkerPool* pool = nullptr);
 
 /// Moves each pair of bodies apart by what the impact pass asked for: `lags[i]` for contact i,
 /// whose constraint is at `slot[i]`.

@@ -186,7 +186,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     if constexpr (kCanTurn<C>) {
       wide_turning_.UnpackImpulses(constraints);
     } else {
-      wide_.UnpackImpulses(constraints);
+      wide_.UnpackImpulses(constraints, &context.pool);
     }
   }
   if (context.joints) {
@@ -242,9 +242,9 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   }
   if (joints) joints->MarkBodies(&pushed_);
-  MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h);
+  MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
-  ClearPush(push);
+  ClearPush(push, &context.pool);
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
@@ -253,7 +253,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     }
   }
   if (joints) joints->PushOut(states, push, inv_h, def.velocity_iterations);
-  MoveByPush(states, push, def.rotation, h);
+  MoveByPush(states, push, def.rotation, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
 }
 

@@ -148,12 +148,19 @@ void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const 
   }
 }
 
-void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints) const {
-  for (std::size_t j = 0; j < constraints.size(); ++j) {
+void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool) const {
+  const auto unpack = [&](std::uint32_t j) {
     const LinearBlock& block = blocks[lane_of[j] / kBlockLanes];
     const std::uint32_t lane = lane_of[j] % kBlockLanes;
     constraints[j].normal_impulse = block.normal_impulse[lane];
     constraints[j].tangent_impulse = block.tangent_impulse[lane];
+  };
+  constexpr std::uint32_t kMinShared = 4096;
+  const auto n = static_cast<std::uint32_t>(constraints.size());
+  if (pool) {
+    pool->ParallelFor(n, kMinShared, unpack);
+  } else {
+    for (std::uint32_t j = 0; j < n; ++j) unpack(j);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "parallel/worker_pool.h"
 #include "solver/contact_order.h"
 #include "solver/substep_constraint.h"
 
@@ -46,7 +47,8 @@ struct WideConstraints {
   /// Lays out `constraints`, stored in `colours`' order, in blocks.
   void Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours);
   /// Copies the impulses back to the constraints Pack read, for the passes after the substeps.
-  void UnpackImpulses(std::span<LinearConstraint> constraints) const;
+  /// `pool`: threads to share the constraints among.
+  void UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool = nullptr) const;
 };
 
 /// One point of four turning contacts, field by field (SubstepPoint's fields).
