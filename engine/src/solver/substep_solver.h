@@ -62,8 +62,10 @@ class SubstepSolver {
   /// 2.7 cm of overlap; one 72 deep (10 000 in a square box) ended with 6.8 mm.
   static constexpr double kDeepPile = 64.0;
   /// From this many constraints on, the shock rows are built on a second thread while the first
-  /// resolves impacts and packs the lanes: below, the hand-off costs more than it saves.
-  static constexpr std::size_t kMinSideBySideConstraints = 2048;
+  /// resolves impacts and packs the lanes: below, the hand-off and fetching the rows from the
+  /// other core cost more than it saves (at 2 048, a pour of 1 000 circles, 2 074 contacts, took
+  /// 0.98-1.41 of one thread's time on two).
+  static constexpr std::size_t kMinSideBySideConstraints = 4096;
   /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
   /// with rotation (turning stacks couple their contacts, docs/solver.md).
   static void FillAutomaticSettings(WorldDef* def);
