@@ -8,19 +8,9 @@ namespace engine::detail {
 
 namespace {
 
-// Calls body(i) for each body, shared among the pool's threads from 2 048 bodies.
-template <typename Body>
-void ForEachBody(WorkerPool* pool, std::size_t count, Body&& body) {
-  constexpr std::uint32_t kMinSharedBodies = 2048;
-  const auto n = static_cast<std::uint32_t>(count);
-  if (pool) {
-    pool->ParallelFor(n, kMinSharedBodies, body);
-  } else {
-    for (std::uint32_t i = 0; i < n; ++i) body(i);
-  }
-}
+// Bodies are shared among threads from this many: fewer cost more to hand out than they save.
+constexpr std::uint32_t kMinSharedBodies = 2048;
 
-// stage = base + c·(velocity k, acceleration k) for every moving body.
 void Offset(std::span<const BodyState> base, std::span<const std::uint8_t> moving, bool rotation, double c,
             std::span<const Vec2> k_velocity, std::span<const double> k_angular_velocity,
             std::span<const Vec2> k_linear, std::span<const double> k_angular,
@@ -157,7 +147,7 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
     states[i].velocity = m->velocity[i];
     if (forces.rotation) states[i].angular_velocity = m->angular_velocity[i];
   };
-  ForEachBody(pool, n, step);
+  ForEachIndex(pool, n, kMinSharedBodies, step);
 }
 
 void DampStiffDrag(const ForceModel& forces, std::span<const BodyState> states, double h, FreeMotion* m) {
@@ -214,7 +204,7 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
                 bool rotation, const FreeMotion& m, double h, WorkerPool* pool) {
-  ForEachBody(pool, states.size(), [&](std::uint32_t i) {
+  ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
     if (!moving[i]) return;
     BodyState& s = states[i];
     if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {

@@ -74,4 +74,16 @@ class WorkerPool {
   bool stopping_ = false;
 };
 
+/// body(i) for every i in [0, count): shared among `pool`'s threads from `min_count` indices
+/// (WorkerPool::ParallelFor), on the calling thread alone where there is no pool.
+template <typename Body>
+void ForEachIndex(WorkerPool* pool, std::size_t count, std::uint32_t min_count, Body&& body) {
+  const auto n = static_cast<std::uint32_t>(count);
+  if (pool) {
+    pool->ParallelFor(n, min_count, body);
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) body(i);
+  }
+}
+
 }  // namespace engine::detail

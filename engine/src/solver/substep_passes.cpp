@@ -80,31 +80,10 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 
 namespace {
 
-// Fewer contacts than this are prepared or stored on one thread.
+// Bodies and contacts are shared among threads from these many: fewer cost more to hand out
+// than they save.
+constexpr std::uint32_t kMinSharedBodies = 2048;
 constexpr std::uint32_t kMinSharedContacts = 4096;
-
-// Calls body(i) for each body, on the pool's threads from 2 048 bodies.
-template <typename Body>
-void ForEachBody(WorkerPool* pool, std::size_t count, Body&& body) {
-  constexpr std::uint32_t kMinSharedBodies = 2048;
-  const auto n = static_cast<std::uint32_t>(count);
-  if (pool) {
-    pool->ParallelFor(n, kMinSharedBodies, body);
-  } else {
-    for (std::uint32_t i = 0; i < n; ++i) body(i);
-  }
-}
-
-// Calls body(i) for each contact, on the pool's threads when there is one.
-template <typename Body>
-void ForEachContact(WorkerPool* pool, std::size_t count, Body&& body) {
-  const auto n = static_cast<std::uint32_t>(count);
-  if (pool) {
-    pool->ParallelFor(n, kMinSharedContacts, body);
-  } else {
-    for (std::uint32_t i = 0; i < n; ++i) body(i);
-  }
-}
 
 }  // namespace
 
@@ -113,7 +92,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
                                std::span<const BodyInfo> infos, std::span<const BodyState>,
                                std::vector<LinearConstraint>* constraints, WorkerPool* pool) {
   constraints->resize(contacts.size());
-  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
     const Contact& c = contacts[i];
     LinearConstraint& lc = (*constraints)[slot[i]];
     FillPair(c, infos, &lc);
@@ -128,7 +107,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
   // Filled in place, every field a constraint reads set (a point past point_count is never read):
   // copying each one in would cost a call to memcpy apiece.
   constraints->resize(contacts.size());
-  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
     const Contact& c = contacts[i];
     SubstepConstraint& sc = (*constraints)[slot[i]];
     FillPair(c, infos, &sc);
@@ -563,14 +542,14 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states, const 
 }
 
 void ClearPush(PushVelocities push, WorkerPool* pool) {
-  ForEachBody(pool, std::max(push.linear.size(), push.angular.size()), [&](std::uint32_t i) {
+  ForEachIndex(pool, std::max(push.linear.size(), push.angular.size()), kMinSharedBodies, [&](std::uint32_t i) {
     if (i < push.linear.size()) push.linear[i] = {};
     if (i < push.angular.size()) push.angular[i] = 0.0;
   });
 }
 
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
-  ForEachBody(pool, states.size(), [&](std::uint32_t i) {
+  ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
     states[i].position += push.linear[i] * h;
     if (rotation) states[i].angle += push.angular[i] * h;
   });
@@ -591,7 +570,7 @@ void ApplyImpactLags(std::span<const C> constraints, std::span<const std::uint32
 template <typename C>
 void StoreImpulses(std::span<const C> constraints, std::span<const std::uint32_t> slot,
                    std::span<Contact> contacts, WorkerPool* pool) {
-  ForEachContact(pool, contacts.size(), [&](std::uint32_t i) {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
     const C& sc = constraints[slot[i]];
     Contact& c = contacts[i];
     for (int k = 0; k < 2; ++k) {

@@ -156,12 +156,7 @@ void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, Wo
     constraints[j].tangent_impulse = block.tangent_impulse[lane];
   };
   constexpr std::uint32_t kMinShared = 4096;
-  const auto n = static_cast<std::uint32_t>(constraints.size());
-  if (pool) {
-    pool->ParallelFor(n, kMinShared, unpack);
-  } else {
-    for (std::uint32_t j = 0; j < n; ++j) unpack(j);
-  }
+  ForEachIndex(pool, constraints.size(), kMinShared, unpack);
 }
 
 void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,
