@@ -24,6 +24,7 @@ void SubstepSolver::Step(StepContext& context) {
   // a turning pyramid of base 40 drifts 6.7 mm in 10 s in contact order against 2.2 cm by colour.
   // Contact order is one chain, which neither lanes nor threads can share; piles keep it within
   // upright strips, which they can (StripContacts).
+  shock_levels_built_ = false;  // this step's, below, or else BuildShockRows finds them
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
       order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity);
