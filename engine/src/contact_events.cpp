@@ -40,6 +40,11 @@ bool Touching(const Contact& c, Approach approach, std::span<const BodyState> st
   return gap <= reach && ApproachSpeed(c, states[c.a], states[c.b]) < 0.0;
 }
 
+// Past every pair: where the last run stops.
+constexpr BodyPair kEndOfPairs{kNoBody, kNoBody};
+
+BodyPair PairOf(const Contact& c) { return {c.a, c.b}; }
+
 ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodies) {
   Vec2 point;
   for (int i = 0; i < c.manifold.point_count; ++i) point += c.manifold.points[i].point;
@@ -65,48 +70,92 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
   touching_.clear();
   events->contact_end.insert(events->contact_end.end(), removed_.begin(), removed_.end());
   removed_.clear();
+  touches_.resize(contacts.size());
+  pool.ParallelFor(static_cast<std::uint32_t>(contacts.size()), kMinSharedContacts, [&](std::uint32_t i) {
+    touches_[i] = Touching(contacts[i], [&] { return StartApproach(contacts[i], bodies); }, bodies.states, def);
+  });
+  const int threads = pool.Threads();
+  if (threads == 1 || contacts.size() < kMinSharedContacts) {
+    Merge(contacts, 0, contacts.size(), previous_, kEndOfPairs, bodies, awake, def, &touching_, events);
+    return;
+  }
+  // Shared: each thread merges a run of the contacts against the last step's pairs below the
+  // next run's first, into lists of its own; the runs' lists then go one after another. A run
+  // never splits a pair's contacts (bodies made of parts have several), so every pair is seen
+  // whole, and the lists come out as one thread's.
+  const auto cut = [&](int t) {
+    std::size_t i = contacts.size() * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+    while (i > 0 && i < contacts.size() && PairOf(contacts[i]) == PairOf(contacts[i - 1])) ++i;
+    return i;
+  };
+  const auto first_pair = [&](std::size_t i) { return i < contacts.size() ? PairOf(contacts[i]) : kEndOfPairs; };
+  const auto previous_below = [&](BodyPair pair) {
+    return static_cast<std::size_t>(std::lower_bound(previous_.begin(), previous_.end(), pair) - previous_.begin());
+  };
+  runs_.resize(static_cast<std::size_t>(threads));
+  pool.RunOnAll([&](int t) {
+    const std::size_t begin = cut(t), end = cut(t + 1);
+    const BodyPair stop = first_pair(end);
+    const std::size_t old_begin = t == 0 ? 0 : previous_below(first_pair(begin));
+    const std::size_t old_end = previous_below(stop);
+    MergeRun& run = runs_[static_cast<std::size_t>(t)].value;
+    run.touching.clear();
+    run.events.Clear();
+    Merge(contacts, begin, end, std::span<const BodyPair>(previous_).subspan(old_begin, old_end - old_begin), stop,
+          bodies, awake, def, &run.touching, &run.events);
+  });
+  for (const PerThread<MergeRun>& part : runs_) {
+    const MergeRun& run = part.value;
+    touching_.insert(touching_.end(), run.touching.begin(), run.touching.end());
+    events->contact_end.insert(events->contact_end.end(), run.events.contact_end.begin(), run.events.contact_end.end());
+    events->contact_begin.insert(events->contact_begin.end(), run.events.contact_begin.begin(),
+                                 run.events.contact_begin.end());
+    events->hits.insert(events->hits.end(), run.events.hits.begin(), run.events.hits.end());
+  }
+}
+
+double ContactEvents::StartApproach(const Contact& c, const Bodies& bodies) const {
+  auto start = [&](BodyIndex i) {
+    return BodyState{bodies.start_positions[i], start_velocities_[i], 0.0, start_angular_velocities_[i]};
+  };
+  return ApproachSpeed(c, start(c.a), start(c.b));
+}
+
+void ContactEvents::Merge(std::span<const Contact> contacts, std::size_t begin, std::size_t end,
+                          std::span<const BodyPair> previous, BodyPair stop, const Bodies& bodies,
+                          std::span<const std::uint8_t> awake, const WorldDef& def,
+                          std::vector<BodyPair>* touching, StepEvents* events) const {
   std::size_t j = 0;  // walks the last step's touching pairs, in the same order
   // A pair gone from the contacts ended, unless neither body moved: sleeping bodies keep
   // touching without a contact.
   auto end_before = [&](BodyPair pair) {
-    for (; j < previous_.size() && previous_[j] < pair; ++j) {
-      const BodyPair old = previous_[j];
+    for (; j < previous.size() && previous[j] < pair; ++j) {
+      const BodyPair old = previous[j];
       if (!awake[old.a] && !awake[old.b]) {
-        touching_.push_back(old);
+        touching->push_back(old);
       } else {
         events->contact_end.push_back({bodies.IdOf(old.a), bodies.IdOf(old.b)});
       }
     }
   };
-  // How fast the contact closed when the step began.
-  auto approach = [&](const Contact& c) {
-    auto start = [&](BodyIndex i) {
-      return BodyState{bodies.start_positions[i], start_velocities_[i], 0.0, start_angular_velocities_[i]};
-    };
-    return ApproachSpeed(c, start(c.a), start(c.b));
-  };
   const bool parts = bodies.with_parts > 0;
-  touches_.resize(contacts.size());
-  pool.ParallelFor(static_cast<std::uint32_t>(contacts.size()), kMinSharedContacts, [&](std::uint32_t i) {
-    touches_[i] = Touching(contacts[i], [&] { return approach(contacts[i]); }, bodies.states, def);
-  });
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     if (!touches_[i]) continue;
     const Contact& c = contacts[i];
-    const BodyPair pair{c.a, c.b};
+    const BodyPair pair = PairOf(c);
     // Bodies made of parts can touch at several pieces: one pair, one begin.
-    if (parts && !touching_.empty() && touching_.back() == pair) continue;
+    if (parts && !touching->empty() && touching->back() == pair) continue;
     end_before(pair);
-    touching_.push_back(pair);
-    if (j < previous_.size() && previous_[j] == pair) {
+    touching->push_back(pair);
+    if (j < previous.size() && previous[j] == pair) {
       ++j;
       continue;
     }
-    const ContactBeginEvent begin = BeginOf(c, approach(c), bodies);
-    events->contact_begin.push_back(begin);
-    if (begin.approach_speed >= def.hit_speed) events->hits.push_back(begin);
+    const ContactBeginEvent begin_event = BeginOf(c, StartApproach(c, bodies), bodies);
+    events->contact_begin.push_back(begin_event);
+    if (begin_event.approach_speed >= def.hit_speed) events->hits.push_back(begin_event);
   }
-  end_before({kNoBody, kNoBody});
+  end_before(stop);
 }
 
 void ContactEvents::RemoveBody(BodyIndex index, const Bodies& bodies) {

@@ -11,6 +11,7 @@
 #include "engine/contact.h"
 #include "engine/events.h"
 #include "engine/world_def.h"
+#include "parallel/per_thread.h"
 #include "parallel/worker_pool.h"
 #include "snapshot/byte_stream.h"
 
@@ -26,7 +27,8 @@ class ContactEvents {
   /// the linear slop; the touching pairs that are new begin, the ones gone end (`awake`: per
   /// body, whether it moved this step; a pair of bodies at rest stays touching). The approach
   /// speed is measured at the step's start (`bodies.start_positions`, the recorded velocities).
-  /// Whether each contact touches is found on the pool's threads, the merge on the caller's.
+  /// Whether each contact touches, and the merge with the last step's pairs (in runs of the
+  /// contacts), are found on the pool's threads.
   void Update(std::span<const Contact> contacts, const Bodies& bodies, std::span<const std::uint8_t> awake,
               const WorldDef& def, WorkerPool& pool, StepEvents* events);
   /// The body was destroyed or disabled: its touching contacts end, reported after the next step.
@@ -36,12 +38,28 @@ class ContactEvents {
   bool Load(ByteReader& in, const Bodies& bodies);
 
  private:
+  /// One thread's share of the merge.
+  struct MergeRun {
+    std::vector<BodyPair> touching;
+    StepEvents events;
+  };
+  /// How fast contact c closed when the step began.
+  double StartApproach(const Contact& c, const Bodies& bodies) const;
+  /// Merges contacts [begin, end) against `previous`, the last step's touching pairs from the
+  /// first of these contacts' pairs up to `stop` (the next run's first pair), into `touching`
+  /// and `events`.
+  void Merge(std::span<const Contact> contacts, std::size_t begin, std::size_t end,
+             std::span<const BodyPair> previous, BodyPair stop, const Bodies& bodies,
+             std::span<const std::uint8_t> awake, const WorldDef& def, std::vector<BodyPair>* touching,
+             StepEvents* events) const;
+
   std::vector<Vec2> start_velocities_;   ///< per body, at the step's start
   std::vector<double> start_angular_velocities_;
   std::vector<BodyPair> touching_;       ///< after the last step, sorted
   std::vector<BodyPair> previous_;
   std::vector<ContactEndEvent> removed_;
   std::vector<std::uint8_t> touches_;    ///< per contact this step
+  std::vector<PerThread<MergeRun>> runs_;
 };
 
 }  // namespace engine::detail
