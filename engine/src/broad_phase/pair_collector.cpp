@@ -96,7 +96,8 @@ void PairCollector::Finish() {
     if (!crowd_body_.empty()) KeepCrowdsBest();
     dropped_ = offered - pairs_->size();
   }
-  detail::SortPairs(boxes_.size(), pairs_, &scratch_, &counts_);
+  // The tree finds its pairs in order already (but for a crowded body's, KeepCrowdsBest's).
+  if (!std::is_sorted(pairs_->begin(), pairs_->end())) detail::SortPairs(boxes_.size(), pairs_, &scratch_, &counts_);
 }
 
 }  // namespace engine
