@@ -221,7 +221,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   if (boxes.size() < leaf_of_.size()) Clear();  // bodies went away: start over
   moved_.assign(boxes.size(), 0);
   moved_list_.clear();
-  ReinsertMovedLeaves(boxes);
+  ReinsertMovedLeaves(boxes, pool);
   InsertNewLeaves(boxes);
   last_reinserts_ = moved_list_.size();
   previous_.assign(boxes.begin(), boxes.end());
@@ -232,24 +232,31 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   collector_.Finish();
 }
 
-void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes) {
-  const std::size_t known = leaf_of_.size();
-  for (std::uint32_t i = 0; i < known; ++i) {
-    const std::int32_t leaf = leaf_of_[i];
-    const AABB& previous = forget_motion_ ? boxes[i] : previous_[i];
+// Which leaves go back in is found for all first (on the pool's threads: reinserting one leaf
+// changes only inner nodes, never another leaf's box), then they are reinserted in body order.
+void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  constexpr std::uint32_t kMinSharedLeaves = 2048;
+  const auto known = static_cast<std::uint32_t>(leaf_of_.size());
+  detail::ForEachIndex(pool, known, kMinSharedLeaves, [&](std::uint32_t i) {
+    const Node& node = nodes_[leaf_of_[i]];
     // A body that left its fat box goes back in with a new one; so does one that has slowed down
     // a lot (its box stretched for a motion it no longer has would cost pair tests every step).
-    bool stretched = false;
-    if (Contains(nodes_[leaf].box, boxes[i])) {
-      if (!nodes_[leaf].stretched) continue;
-      const AABB fat = FatBox(boxes[i], previous, &stretched);
-      if (Perimeter(nodes_[leaf].box) <= kLooseFactor * Perimeter(fat)) continue;
+    if (!Contains(node.box, boxes[i])) {
+      moved_[i] = 1;
+    } else if (node.stretched) {
+      bool stretched = false;
+      const AABB fat = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
+      moved_[i] = Perimeter(node.box) > kLooseFactor * Perimeter(fat) ? 1 : 0;
     }
+  });
+  for (std::uint32_t i = 0; i < known; ++i) {
+    if (!moved_[i]) continue;
+    const std::int32_t leaf = leaf_of_[i];
+    bool stretched = false;
     RemoveLeaf(leaf);
-    nodes_[leaf].box = FatBox(boxes[i], previous, &stretched);
+    nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
     InsertLeaf(leaf);
-    moved_[i] = 1;
     moved_list_.push_back(i);
   }
 }

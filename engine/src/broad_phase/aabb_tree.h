@@ -71,7 +71,11 @@ class AabbTree {
   /// Renumbers the nodes in depth-first order, so that a subtree sits together in memory.
   void Relayout();
   /// Reinserts the known bodies that left their fat boxes, in id order, into moved_list_.
-  void ReinsertMovedLeaves(std::span<const AABB> boxes);
+  void ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// Body i's box at the last call (or now, when the motion since is forgotten).
+  const AABB& PreviousBox(std::span<const AABB> boxes, std::uint32_t i) const {
+    return forget_motion_ ? boxes[i] : previous_[i];
+  }
   /// Inserts the bodies the tree has not seen yet, in id order, into moved_list_.
   void InsertNewLeaves(std::span<const AABB> boxes);
   /// Brings the candidate pairs up to date with the moved leaves.
