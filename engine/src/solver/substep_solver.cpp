@@ -2,6 +2,7 @@
 #include "solver/substep_solver.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -175,6 +176,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     angles_before_.resize(n);
     turned_.resize(n);
     for (std::size_t i = 0; i < n; ++i) angles_before_[i] = context.states[i].angle;
+    turns_.assign(n, std::numeric_limits<double>::quiet_NaN());  // no turn worked out yet
     UpdateTurned(context);  // nothing has turned yet this step
   }
   const StepStart start{context.start_positions,
@@ -360,9 +362,18 @@ void SubstepSolver::FindLoadedBodies(const StepContext& context) {
   if (context.joints) context.joints->MarkBodies(&loaded_);
 }
 
+// A body's turn is worked out again only where it changed (after the push-out, most bodies'
+// did not): MakeRot is the most costly part of a turning substep outside the passes.
 void SubstepSolver::UpdateTurned(const StepContext& context) {
   for (std::size_t i = 0; i < context.states.size(); ++i) {
-    turned_[i] = context.infos[i].inv_inertia != 0.0 ? MakeRot(context.states[i].angle - angles_before_[i]) : Rot{};
+    if (context.infos[i].inv_inertia == 0.0) {
+      turned_[i] = Rot{};
+      continue;
+    }
+    const double turn = context.states[i].angle - angles_before_[i];
+    if (std::bit_cast<std::uint64_t>(turn) == std::bit_cast<std::uint64_t>(turns_[i])) continue;
+    turns_[i] = turn;
+    turned_[i] = MakeRot(turn);
   }
 }
 

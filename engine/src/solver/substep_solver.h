@@ -119,7 +119,8 @@ class SubstepSolver {
   std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage
   std::vector<double> warm_free_angular_;
   std::vector<double> angles_before_;
-  std::vector<Rot> turned_;
+  std::vector<Rot> turned_;                             ///< per body: MakeRot(turns_)
+  std::vector<double> turns_;                           ///< per body: its angle less angles_before_, as last seen
   std::vector<Vec2> push_velocities_;                   ///< PushVelocities' storage
   std::vector<double> push_angular_velocities_;
   std::vector<std::uint8_t> pushed_;
