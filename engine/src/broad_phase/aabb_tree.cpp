@@ -227,7 +227,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   previous_.assign(boxes.begin(), boxes.end());
   forget_motion_ = false;
 
-  RefreshCandidates(boxes);
+  RefreshCandidates(boxes, pool);
   if (!crowded_) AddOverlappingCandidates(boxes, pool);  // a crowded tree handed its pairs over already
   collector_.Finish();
 }
@@ -277,7 +277,7 @@ void AabbTree::InsertNewLeaves(std::span<const AABB> boxes) {
 
 // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
 // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
-void AabbTree::RefreshCandidates(std::span<const AABB> boxes) {
+void AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   const std::size_t n = boxes.size();
   reinserts_since_relayout_ += moved_list_.size();
   if (2 * reinserts_since_relayout_ > n) {
@@ -286,7 +286,7 @@ void AabbTree::RefreshCandidates(std::span<const AABB> boxes) {
   }
   // A crowded tree kept no candidates, and an update that would outgrow the limit gives way to
   // a whole traversal, which finds out whether the tree is still crowded.
-  if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates())) {
+  if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates(pool))) {
     FindAllCandidates(boxes);
   }
 }
@@ -376,16 +376,34 @@ void AabbTree::AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AA
   candidates_.shrink_to_fit();
 }
 
-bool AabbTree::UpdateCandidates() {
+bool AabbTree::UpdateCandidates(detail::WorkerPool* pool) {
   // Drop the moved bodies' pairs, query the tree for each moved body's new ones (a pair of two
-  // moved bodies is taken from the smaller id only), then merge the two sorted lists.
+  // moved bodies is taken from the smaller id only), then merge the two sorted lists. The
+  // queries only read the tree: shared, each thread queries a run of the moved bodies.
+  constexpr std::size_t kMinSharedQueries = 64;
   std::erase_if(candidates_, [this](BodyPair p) { return moved_[p.a] || moved_[p.b]; });
-  fresh_.clear();
   const std::size_t limit = CandidateLimit();
-  for (std::uint32_t i : moved_list_) {
-    QueryFreshPairs(i);
-    if (candidates_.size() + fresh_.size() > limit) return false;
+  if (candidates_.size() > limit) return false;
+  const std::size_t room = limit - candidates_.size();  // for fresh pairs, before a whole traversal is cheaper
+  const int threads = pool && moved_list_.size() >= kMinSharedQueries ? pool->Threads() : 1;
+  fresh_runs_.resize(static_cast<std::size_t>(threads));
+  const auto query_run = [&](int t) {
+    const std::size_t n = moved_list_.size();
+    const auto part = static_cast<std::size_t>(t), parts = static_cast<std::size_t>(threads);
+    FreshRun& run = fresh_runs_[part].value;
+    run.pairs.clear();
+    for (std::size_t k = n * part / parts; k < n * (part + 1) / parts && run.pairs.size() <= room; ++k) {
+      QueryFreshPairs(moved_list_[k], &run.stack, &run.pairs);
+    }
+  };
+  if (threads == 1) {
+    query_run(0);
+  } else {
+    pool->RunOnAll(query_run);
   }
+  fresh_.clear();
+  for (const auto& run : fresh_runs_) fresh_.insert(fresh_.end(), run.value.pairs.begin(), run.value.pairs.end());
+  if (fresh_.size() > room) return false;
   std::sort(fresh_.begin(), fresh_.end());
   sorted_scratch_.resize(candidates_.size() + fresh_.size());
   std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin());
@@ -393,21 +411,22 @@ bool AabbTree::UpdateCandidates() {
   return true;
 }
 
-void AabbTree::QueryFreshPairs(std::uint32_t body) {
+void AabbTree::QueryFreshPairs(std::uint32_t body, std::vector<std::int32_t>* stack,
+                               std::vector<BodyPair>* fresh) const {
   const AABB& box = nodes_[leaf_of_[body]].box;
-  query_stack_.clear();
-  query_stack_.push_back(root_);
-  while (!query_stack_.empty()) {
-    const Node& node = nodes_[query_stack_.back()];
-    query_stack_.pop_back();
+  stack->clear();
+  stack->push_back(root_);
+  while (!stack->empty()) {
+    const Node& node = nodes_[stack->back()];
+    stack->pop_back();
     if (!Overlaps(node.box, box)) continue;
     if (!node.IsLeaf()) {
-      query_stack_.push_back(node.child1);
-      query_stack_.push_back(node.child2);
+      stack->push_back(node.child1);
+      stack->push_back(node.child2);
       continue;
     }
     const std::uint32_t other = node.body;
-    if (other != body && (!moved_[other] || body < other)) fresh_.push_back(MakePair(body, other));
+    if (other != body && (!moved_[other] || body < other)) fresh->push_back(MakePair(body, other));
   }
 }
 

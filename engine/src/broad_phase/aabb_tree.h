@@ -79,16 +79,17 @@ class AabbTree {
   /// Inserts the bodies the tree has not seen yet, in id order, into moved_list_.
   void InsertNewLeaves(std::span<const AABB> boxes);
   /// Brings the candidate pairs up to date with the moved leaves.
-  void RefreshCandidates(std::span<const AABB> boxes);
+  void RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself;
   /// past the candidate limit the pairs go straight to the collector and the tree is crowded.
   void FindAllCandidates(std::span<const AABB> boxes);
   void AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AABB> boxes, std::size_t limit);
   /// The same, from last call's list, by querying the tree for the moved leaves only; false when
   /// the list would outgrow the candidate limit (the caller then traverses the whole tree).
-  bool UpdateCandidates();
-  /// Adds to fresh_ the pairs of moved body `body` with the leaves its fat box overlaps.
-  void QueryFreshPairs(std::uint32_t body);
+  bool UpdateCandidates(detail::WorkerPool* pool);
+  /// Adds to `fresh` the pairs of moved body `body` with the leaves its fat box overlaps
+  /// (`stack`: scratch).
+  void QueryFreshPairs(std::uint32_t body, std::vector<std::int32_t>* stack, std::vector<BodyPair>* fresh) const;
   /// The candidates whose bodies' own boxes overlap, to the collector.
   void AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   std::size_t CandidateLimit() const;
@@ -101,11 +102,16 @@ class AabbTree {
   std::vector<std::int32_t> leaf_of_;  ///< per body
   std::vector<AABB> previous_;         ///< each body's box at the last call, for its motion
   std::vector<std::pair<std::int32_t, std::int32_t>> stack_;
-  std::vector<std::int32_t> query_stack_;
   /// Pairs of bodies whose fat boxes overlap, sorted by (a, b): a superset of the overlapping
   /// pairs that changes only where leaves moved.
   std::vector<BodyPair> candidates_;
   std::vector<BodyPair> fresh_;
+  /// A thread's share of UpdateCandidates' queries.
+  struct FreshRun {
+    std::vector<std::int32_t> stack;
+    std::vector<BodyPair> pairs;
+  };
+  std::vector<detail::PerThread<FreshRun>> fresh_runs_;
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
   std::vector<std::uint32_t> moved_list_;
   std::size_t reinserts_since_relayout_ = 0;

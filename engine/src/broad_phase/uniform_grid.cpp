@@ -93,7 +93,7 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
   const std::int64_t entry_count = FindCellRanges(boxes);
   if (!small_.empty()) {
     const std::size_t bucket_count = ChooseBuckets(entry_count);
-    FillBuckets(boxes, entry_count, bucket_count);
+    FillBuckets(boxes, entry_count, bucket_count, pool);
     FindBinnedPairs(bucket_count, pool);
   }
   FindLargePairs(boxes);
@@ -134,27 +134,58 @@ std::size_t UniformGrid::ChooseBuckets(std::int64_t entry_count) {
 }
 
 // A counting sort of the (cell, box) entries into buckets: linear, and into buffers kept from call
-// to call rather than a map of cells.
-void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count) {
-  bucket_start_.assign(bucket_count + 1, 0);
-  for (std::uint32_t i : small_) {
-    const CellRange& r = ranges_[i];
-    for (std::int32_t y = r.y0; y <= r.y1; ++y) {
-      for (std::int32_t x = r.x0; x <= r.x1; ++x) ++bucket_start_[Bucket(x, y) + 1];
-    }
-  }
-  for (std::size_t b = 1; b <= bucket_count; ++b) bucket_start_[b] += bucket_start_[b - 1];
+// to call rather than a map of cells. Shared, each thread counts, then places, the entries of a
+// run of the bodies; a bucket holds the runs' entries run after run, so in body order, as one
+// thread would place them.
+void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,
+                              detail::WorkerPool* pool) {
   entries_.resize(static_cast<std::size_t>(entry_count));
-  for (std::uint32_t i : small_) {
-    const CellRange& r = ranges_[i];
-    for (std::int32_t y = r.y0; y <= r.y1; ++y) {
-      for (std::int32_t x = r.x0; x <= r.x1; ++x) {
-        const auto first = static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0));
-        entries_[bucket_start_[Bucket(x, y)]++] = {boxes[i], x, y, i, first};
+  const int threads = pool && static_cast<std::size_t>(entry_count) >= kMinSharedEntries ? pool->Threads() : 1;
+  const auto for_each_entry = [&](int run, auto&& visit) {
+    const std::size_t n = small_.size();
+    const auto part = static_cast<std::size_t>(run), parts = static_cast<std::size_t>(threads);
+    for (std::size_t k = n * part / parts; k < n * (part + 1) / parts; ++k) {
+      const std::uint32_t i = small_[k];
+      const CellRange& r = ranges_[i];
+      for (std::int32_t y = r.y0; y <= r.y1; ++y) {
+        for (std::int32_t x = r.x0; x <= r.x1; ++x) visit(i, r, x, y);
       }
     }
+  };
+  const auto place = [&](int run, std::vector<std::uint32_t>& next) {
+    for_each_entry(run, [&](std::uint32_t i, const CellRange& r, std::int32_t x, std::int32_t y) {
+      const auto first = static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0));
+      entries_[next[Bucket(x, y)]++] = {boxes[i], x, y, i, first};
+    });
+  };
+  bucket_start_.assign(bucket_count + 1, 0);
+  if (threads == 1) {
+    for_each_entry(0, [&](std::uint32_t, const CellRange&, std::int32_t x, std::int32_t y) {
+      ++bucket_start_[Bucket(x, y) + 1];
+    });
+    for (std::size_t b = 1; b <= bucket_count; ++b) bucket_start_[b] += bucket_start_[b - 1];
+    place(0, bucket_start_);
+    // The placing advanced each start to the next bucket's, which is where bucket b now ends.
+    return;
   }
-  // The scatter advanced each start to the next bucket's, which is where bucket b now ends.
+  run_next_.resize(static_cast<std::size_t>(threads));
+  pool->RunOnAll([&](int t) {
+    std::vector<std::uint32_t>& counts = run_next_[static_cast<std::size_t>(t)].value;
+    counts.assign(bucket_count, 0);
+    for_each_entry(t, [&](std::uint32_t, const CellRange&, std::int32_t x, std::int32_t y) { ++counts[Bucket(x, y)]; });
+  });
+  // Each run's first place in each bucket, and where each bucket ends.
+  std::uint32_t next = 0;
+  for (std::size_t b = 0; b < bucket_count; ++b) {
+    for (auto& run : run_next_) {
+      const std::uint32_t count = run.value[b];
+      run.value[b] = next;
+      next += count;
+    }
+    bucket_start_[b] = next;
+  }
+  bucket_start_[bucket_count] = next;
+  pool->RunOnAll([&](int t) { place(t, run_next_[static_cast<std::size_t>(t)].value); });
 }
 
 // Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower

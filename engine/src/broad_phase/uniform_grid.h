@@ -53,7 +53,8 @@ class UniformGrid {
   std::int64_t FindCellRanges(std::span<const AABB> boxes);
   /// Dense or hashed buckets for the entries; returns how many.
   std::size_t ChooseBuckets(std::int64_t entry_count);
-  void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count);
+  void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,
+                   detail::WorkerPool* pool);
   void FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool);
   /// Calls report(i, j) for the pairs of the buckets [first, last), in bucket order.
   template <typename Report>
@@ -76,6 +77,8 @@ class UniformGrid {
   std::vector<Entry> entries_;
   std::vector<double> extent_scratch_;
   std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's pairs, when shared
+  /// FillBuckets' runs, when shared: each run's count per bucket, then its next place there.
+  std::vector<detail::PerThread<std::vector<std::uint32_t>>> run_next_;
   PairCollector collector_;
 };
 
