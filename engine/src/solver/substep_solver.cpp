@@ -202,6 +202,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
       if (joined[context.contacts[i].a] || joined[context.contacts[i].b]) impact_lags_[i] = 0.0;
     }
   }
+  DropClosingLags<C>(context, constraints, start);
   ApplyImpactLags<C>(constraints, order_.slot, impact_lags_, context.states);
   StoreImpulses<C>(constraints, order_.slot, context.contacts, &context.pool);
 }
@@ -364,6 +365,52 @@ void SubstepSolver::FindLoadedBodies(const StepContext& context) {
 
 // A body's turn is worked out again only where it changed (after the push-out, most bodies'
 // did not): MakeRot is the most costly part of a turning substep outside the passes.
+// A bounce's lag moves the pair after the substeps, where no contact would stop it: moved into a
+// third body, a body stays in it. In a tall rain of circles the lags pressed the pile 44 cm deep
+// into itself (circles 50 cm across), and it took seconds to come apart. A lag that would
+// close another contact of either body past the slop is left out: that bounce keeps its speed
+// and starts where the contact holds it.
+template <typename C>
+void SubstepSolver::DropClosingLags(const StepContext& context, std::span<const C> constraints,
+                                    const StepStart& start) {
+  if (std::none_of(impact_lags_.begin(), impact_lags_.end(), [](double lag) { return lag != 0.0; })) return;
+  const std::size_t n = context.states.size();
+  // Each body's contacts, by index.
+  lag_first_.assign(n + 1, 0);
+  for (const Contact& c : context.contacts) ++lag_first_[c.a + 1], ++lag_first_[c.b + 1];
+  for (std::size_t i = 0; i < n; ++i) lag_first_[i + 1] += lag_first_[i];
+  lag_contacts_.resize(lag_first_[n]);
+  lag_fill_.assign(lag_first_.begin(), lag_first_.end() - 1);
+  for (std::uint32_t i = 0; i < context.contacts.size(); ++i) {
+    lag_contacts_[lag_fill_[context.contacts[i].a]++] = i;
+    lag_contacts_[lag_fill_[context.contacts[i].b]++] = i;
+  }
+  const double slop = context.def.linear_slop;
+  // Whether moving `body` by `shift` takes another of its contacts than `bouncing` past the slop.
+  const auto closes = [&](BodyIndex body, Vec2 shift, std::uint32_t bouncing) {
+    for (std::uint32_t k = lag_first_[body]; k < lag_first_[body + 1]; ++k) {
+      const std::uint32_t j = lag_contacts_[k];
+      if (j == bouncing) continue;
+      const C& c = constraints[order_.slot[j]];
+      const double closing = (c.a == body ? 1.0 : -1.0) * Dot(shift, c.normal);
+      if (!(closing > 0.0)) continue;
+      for (int p = 0; p < PointCount(c); ++p) {
+        if (CurrentSeparation(c, Point(c, p), context.states, start) - closing < -slop) return true;
+      }
+    }
+    return false;
+  };
+  for (std::uint32_t i = 0; i < impact_lags_.size(); ++i) {
+    if (impact_lags_[i] == 0.0) continue;
+    const C& c = constraints[order_.slot[i]];
+    const double share = impact_lags_[i] * (1.0 / (c.inv_mass_a + c.inv_mass_b));
+    if ((c.inv_mass_a != 0.0 && closes(c.a, -(share * c.inv_mass_a) * c.normal, i)) ||
+        (c.inv_mass_b != 0.0 && closes(c.b, (share * c.inv_mass_b) * c.normal, i))) {
+      impact_lags_[i] = 0.0;
+    }
+  }
+}
+
 void SubstepSolver::UpdateTurned(const StepContext& context) {
   for (std::size_t i = 0; i < context.states.size(); ++i) {
     if (context.infos[i].inv_inertia == 0.0) {

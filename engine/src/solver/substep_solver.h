@@ -89,6 +89,9 @@ class SubstepSolver {
   void FindLoadedBodies(const StepContext& context);
   /// How far each body has turned since the step's start, for the contacts' separations.
   void UpdateTurned(const StepContext& context);
+  /// Leaves out a bounce's lag that would press either body into another past the slop.
+  template <typename C>
+  void DropClosingLags(const StepContext& context, std::span<const C> constraints, const StepStart& start);
   template <typename C>
   void Substep(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                const StepStart& start);
@@ -115,6 +118,7 @@ class SubstepSolver {
   WideConstraints wide_;                                ///< linear_constraints_ in blocks (SubstepPlan::wide)
   WideTurningConstraints wide_turning_;                 ///< substep_constraints_ in blocks, a strip to a lane
   std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
+  std::vector<std::uint32_t> lag_first_, lag_fill_, lag_contacts_;  ///< DropClosingLags' contacts by body
   std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts
   std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage
   std::vector<double> warm_free_angular_;
