@@ -94,81 +94,129 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
   return {static_cast<std::size_t>(lo - cell_keys_.begin()), static_cast<std::size_t>(hi - cell_keys_.begin())};
 }
 
-void ParticleGrid::FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                                  std::vector<std::uint32_t>* offsets,
-                                  std::vector<std::uint32_t>* neighbours,
-                                  std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs,
-                                  std::uint32_t ordered_from, std::uint32_t lists_below) const {
+std::span<const std::pair<std::uint32_t, std::uint32_t>> ParticleGrid::FindNeighbours(
+    std::span<const Vec2> positions, double radius, WorkerPool& pool, std::vector<std::uint32_t>* offsets,
+    std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
   // entered in both particles' lists in that order: deterministic, and half the distance tests.
   const auto threads = static_cast<std::uint32_t>(cell_keys_.size() < 64 ? 1 : pool.Threads());
   pairs_.resize(threads);
+  ordered_pairs_.resize(threads);
   pair_counts_.assign(threads, 0);
+  ordered_counts_.assign(threads, 0);
   pool.ParallelFor(threads, 2, [&](std::uint32_t t) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = pairs_[t];
-    std::size_t count = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& ordered = ordered_pairs_[t];
+    std::size_t count = 0, ordered_count = 0;
     const std::size_t first_cell = cell_keys_.size() * t / threads;
     const std::size_t last_cell = cell_keys_.size() * (t + 1) / threads;
     const std::uint32_t* const order = order_.data();
     const Vec2* const x = positions.data();
+    // Every candidate is written and kept or overwritten by the next: whether j > i and whether
+    // it is near are coin tosses a branch would mispredict.
+    const auto reserve = [](std::vector<std::pair<std::uint32_t, std::uint32_t>>& list, std::size_t count,
+                            std::size_t more) {
+      if (list.size() < count + more) list.resize(2 * (count + more));
+    };
     for (std::size_t c = first_cell; c < last_cell; ++c) {
       const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
       const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
+      std::uint32_t b0[3], b1[3];  // the candidates in the rows below, of and above the cell
       for (std::int32_t dr = -1; dr <= 1; ++dr) {
         const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
-        const std::uint32_t a0 = cell_starts_[c], a1 = cell_starts_[c + 1];
-        const std::uint32_t b0 = cell_starts_[first], b1 = cell_starts_[last];
-        // Every candidate is written and kept or overwritten by the next: whether j > i and
-        // whether it is near are coin tosses a branch would mispredict.
-        if (pairs.size() < count + std::size_t{a1 - a0} * (b1 - b0)) {
-          pairs.resize(2 * (count + std::size_t{a1 - a0} * (b1 - b0)));
-        }
+        b0[dr + 1] = cell_starts_[first], b1[dr + 1] = cell_starts_[last];
+      }
+      const std::uint32_t a0 = cell_starts_[c], a1 = cell_starts_[c + 1];
+      // The cell's particles numbered before `ordered_from` come first in it.
+      const std::uint32_t mid = static_cast<std::uint32_t>(
+          std::partition_point(order + a0, order + a1, [&](std::uint32_t i) { return i < ordered_from; }) - order);
+      for (std::int32_t dr = -1; dr <= 1 && mid > a0; ++dr) {
+        reserve(pairs, count, std::size_t{mid - a0} * (b1[dr + 1] - b0[dr + 1]));
         std::pair<std::uint32_t, std::uint32_t>* const out = pairs.data();
-        for (std::uint32_t a = a0; a < a1; ++a) {
+        for (std::uint32_t a = a0; a < mid; ++a) {
           const std::uint32_t i = order[a];
-          // A particle numbered in the grid's order has only lower numbers in the row below
-          // and before it in its own row: none of them can pair with it, so they are skipped.
-          const bool ordered = i >= ordered_from;
-          if (ordered && dr < 0) continue;
           const Vec2 xi = x[i];
-          for (std::uint32_t b = ordered && dr == 0 ? a + 1 : b0; b < b1; ++b) {
+          for (std::uint32_t b = b0[dr + 1]; b < b1[dr + 1]; ++b) {
             const std::uint32_t j = order[b];
             out[count] = {i, j};
             count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
           }
         }
       }
+      // A particle numbered in the grid's order has only lower numbers in the row below and
+      // before it in its own row: none of them can pair with it, so they are skipped. Its pairs
+      // are found together (its own row, then the row above), so that they come sorted by their
+      // lower particle; each particle's pairs are in the order the loop above would find them.
+      if (mid == a1) continue;
+      reserve(ordered, ordered_count, std::size_t{a1 - mid} * (b1[1] - b0[1] + b1[2] - b0[2]));
+      std::pair<std::uint32_t, std::uint32_t>* const out = ordered.data();
+      for (std::uint32_t a = mid; a < a1; ++a) {
+        const std::uint32_t i = order[a];
+        const Vec2 xi = x[i];
+        for (std::uint32_t b = a + 1; b < b1[1]; ++b) {
+          const std::uint32_t j = order[b];
+          out[ordered_count] = {i - ordered_from, j - ordered_from};
+          ordered_count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
+        }
+        for (std::uint32_t b = b0[2]; b < b1[2]; ++b) {
+          const std::uint32_t j = order[b];
+          out[ordered_count] = {i - ordered_from, j - ordered_from};
+          ordered_count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
+        }
+      }
     }
     pair_counts_[t] = count;
+    ordered_counts_[t] = ordered_count;
   });
+  // The lists, from the pairs with a particle numbered before `ordered_from`, then from the
+  // others' where lists are wanted.
+  const std::uint32_t lists_of_ordered = lists_below > ordered_from ? lists_below - ordered_from : 0;
   std::vector<std::uint32_t>& counts = counts_;
   counts.assign(n + 1, 0);
-  std::size_t total = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
       const auto [i, j] = pairs_[t][q];
       counts[i] += i < lists_below;
       counts[j] += j < lists_below;
     }
-    total += pair_counts_[t];
+    for (std::size_t q = 0; q < ordered_counts_[t] && lists_of_ordered > 0; ++q) {
+      const auto [i, j] = ordered_pairs_[t][q];
+      counts[ordered_from + i] += i < lists_of_ordered;
+      counts[ordered_from + j] += j < lists_of_ordered;
+    }
   }
   offsets->assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) (*offsets)[i + 1] = (*offsets)[i] + counts[i];
   neighbours->resize(offsets->back());
-  pairs->resize(total);
   std::vector<std::uint32_t>& fill = counts;
   std::copy(offsets->begin(), offsets->end() - 1, fill.begin());
-  std::uint32_t p = 0;
   for (std::uint32_t t = 0; t < threads; ++t) {
     for (std::size_t q = 0; q < pair_counts_[t]; ++q) {
       const auto [i, j] = pairs_[t][q];
       if (i < lists_below) (*neighbours)[fill[i]++] = j;
       if (j < lists_below) (*neighbours)[fill[j]++] = i;
-      (*pairs)[p++] = {i, j};
     }
   }
+  for (std::uint32_t t = 0; t < threads && lists_of_ordered > 0; ++t) {
+    for (std::size_t q = 0; q < ordered_counts_[t]; ++q) {
+      const auto [i, j] = ordered_pairs_[t][q];
+      if (i < lists_of_ordered) (*neighbours)[fill[ordered_from + i]++] = ordered_from + j;
+      if (j < lists_of_ordered) (*neighbours)[fill[ordered_from + j]++] = ordered_from + i;
+    }
+  }
+  // The pairs of ordered particles, thread by thread (in cell order).
+  if (threads == 1) return std::span(ordered_pairs_[0]).first(ordered_counts_[0]);
+  std::size_t total = 0;
+  for (std::uint32_t t = 0; t < threads; ++t) total += ordered_counts_[t];
+  merged_pairs_.resize(total);
+  std::size_t at = 0;
+  for (std::uint32_t t = 0; t < threads; ++t) {
+    std::copy_n(ordered_pairs_[t].begin(), ordered_counts_[t], merged_pairs_.begin() + static_cast<std::ptrdiff_t>(at));
+    at += ordered_counts_[t];
+  }
+  return merged_pairs_;
 }
 
 }  // namespace engine::detail

@@ -29,16 +29,17 @@ class ParticleGrid {
   /// For each particle, the others within `radius` (≤ the cell size) of it: particle i's are
   /// neighbours[offsets[i] .. offsets[i + 1]).
   /// The pairs are sought on `pool`'s threads, each over its own run of cells, and entered in
-  /// cell order: the same lists with any thread count. Each pair (i < j) is also listed once in
-  /// `pairs`, in the order of the cells of their lower particles, so a quantity of a pair can be
-  /// worked out once for both its particles. The particles from `ordered_from` on are numbered
-  /// in the grid's order (RenumberFrom), which lets their search skip the cells with only lower
-  /// numbers; only the particles below `lists_below` get lists (the others' are empty), the
-  /// pairs being all a fluid needs. Neither changes the lists or the pairs.
-  void FindNeighbours(std::span<const Vec2> positions, double radius, WorkerPool& pool,
-                      std::vector<std::uint32_t>* offsets, std::vector<std::uint32_t>* neighbours,
-                      std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs, std::uint32_t ordered_from,
-                      std::uint32_t lists_below) const;
+  /// cell order: the same lists with any thread count. The particles from `ordered_from` on
+  /// are numbered in the grid's order (RenumberFrom), which lets their search skip the cells
+  /// with only lower numbers; the pairs of two of them are returned, each once (i < j, both
+  /// less ordered_from), sorted by their lower particle and each particle's in the order found,
+  /// so a quantity of a pair can be worked out once for both its particles; valid until the
+  /// next call. Only the particles below `lists_below` get lists (the others' are empty), the
+  /// pairs being all a fluid needs; an ordered particle's list has its neighbours numbered
+  /// before `ordered_from` first, then the others in the order of the pairs.
+  std::span<const std::pair<std::uint32_t, std::uint32_t>> FindNeighbours(
+      std::span<const Vec2> positions, double radius, WorkerPool& pool, std::vector<std::uint32_t>* offsets,
+      std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>
@@ -59,9 +60,11 @@ class ParticleGrid {
   std::vector<std::uint32_t> order_;        ///< particle indices sorted by (cell, index)
   std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch_;
   std::vector<std::int32_t> columns_, rows_;  ///< Build's: each particle's cell
-  /// FindNeighbours' scratch: each thread's pairs, the first pair_counts_[t] of pairs_[t]
-  mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_;
-  mutable std::vector<std::size_t> pair_counts_;
+  /// FindNeighbours' scratch: each thread's pairs, the first pair_counts_[t] of pairs_[t], and
+  /// of ordered particles, ordered_counts_[t] of ordered_pairs_[t] (merged_pairs_ all together)
+  mutable std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs_, ordered_pairs_;
+  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> merged_pairs_;
+  mutable std::vector<std::size_t> pair_counts_, ordered_counts_;
   mutable std::vector<std::uint32_t> counts_;
 };
 

@@ -316,8 +316,8 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
   }
   // The fluid's particles need lists only for vorticity (its other passes go by pairs).
   const bool vorticity = std::any_of(fluid_.vorticity.begin(), fluid_.vorticity.end(), [](double v) { return v > 0.0; });
-  grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, &pairs_, fluid_first_,
-                       vorticity ? static_cast<std::uint32_t>(x_.size()) : fluid_first_);
+  fluid_pairs_ = grid_.FindNeighbours(x_, reach, *pool_, &neighbour_offsets_, &neighbours_, fluid_first_,
+                                      vorticity ? static_cast<std::uint32_t>(x_.size()) : fluid_first_);
   if (FluidCount() > 0) FindChunks();
   planes_.clear();
   std::vector<BodyPlane> found;
@@ -387,21 +387,15 @@ void ParticleSystem::FindChunks() {
     const auto next_row = std::upper_bound(fluid_rows_.begin(), fluid_rows_.end(), begin);
     spill_rows_.push_back({begin, next_row == fluid_rows_.end() ? n : std::min(*next_row, chunk_particles_[c + 1])});
   }
-  // The fluid's pairs by their lower particle (a stable counting sort: each particle's in the
-  // order found), so that a particle's pairs follow each other and its sums can wait in
-  // registers (AddDensityOfPairs); a chunk's pairs are then a run.
-  pair_starts_.assign(n + 1, 0);
-  for (const ParticlePair& p : pairs_) {
-    if (p.first >= first) ++pair_starts_[p.first - first + 1];
-  }
-  for (std::uint32_t f = 0; f < n; ++f) pair_starts_[f + 1] += pair_starts_[f];
-  fluid_pairs_.resize(pair_starts_[n]);
-  for (const ParticlePair& p : pairs_) {
-    if (p.first >= first) fluid_pairs_[pair_starts_[p.first - first]++] = {p.first - first, p.second - first};
-  }
-  // pair_starts_[f] is now where f + 1's pairs begin.
+  // The fluid's pairs come sorted by their lower particle (FindNeighbours), so a chunk's pairs
+  // are a run.
   chunk_pairs_.assign(1, 0);
-  for (std::size_t c = 1; c < chunk_particles_.size(); ++c) chunk_pairs_.push_back(pair_starts_[chunk_particles_[c] - 1]);
+  for (std::size_t c = 1; c < chunk_particles_.size(); ++c) {
+    const auto begin = std::partition_point(fluid_pairs_.begin(), fluid_pairs_.end(), [&](const ParticlePair& p) {
+      return p.first < chunk_particles_[c];
+    });
+    chunk_pairs_.push_back(static_cast<std::uint32_t>(begin - fluid_pairs_.begin()));
+  }
   near_pairs_.resize(fluid_pairs_.size());
   near_dx_.resize(fluid_pairs_.size());
   near_dy_.resize(fluid_pairs_.size());

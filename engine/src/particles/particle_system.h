@@ -178,15 +178,15 @@ class ParticleSystem {
   std::vector<double> lambda_;
   WorkerPool* pool_ = nullptr;  ///< the step's (WorldDef::threads)
   std::vector<double> lambda_over_rest_;  ///< each fluid particle's λ/ρ0, for its neighbours' moves
-  /// Each pair of neighbours once (i < j), in the order of the grid's cells; those of two fluid
-  /// particles, by their lower particle, numbered from fluid_first_.
-  std::vector<ParticlePair> pairs_, fluid_pairs_;
+  /// Each pair of two fluid particles once (i < j), by their lower particle, numbered from
+  /// fluid_first_ (the grid's, until its next search).
+  std::span<const ParticlePair> fluid_pairs_;
   /// The fluid's pairs in chunks, each summed on one thread: chunk c holds the fluid particles
   /// [chunk_particles_[c], chunk_particles_[c + 1]) (less fluid_first_), whole rows of the
   /// grid, and fluid_pairs_[chunk_pairs_[c], chunk_pairs_[c + 1]), whose lower particles are
   /// those. A pair's higher particle lies in the same chunk or in the next one's first row: it
   /// adds into the `spill` sums there, which no other chunk writes (see DensityAndMoves).
-  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_, pair_starts_;
+  std::vector<std::uint32_t> chunk_particles_, chunk_pairs_;
   /// The particles [begin, end) (from fluid_first_) that the chunk before theirs may spill into.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> spill_rows_;
   /// Each chunk's pairs within the kernel this substep: near_counts_[c] of them from
