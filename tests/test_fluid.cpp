@@ -335,15 +335,15 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
         REQUIRE(Bits(wide.denominator) == Bits(one.denominator));
       }
     }
-    std::vector<double> lambda(x.size()), over_rest(x.size());
-    for (std::size_t f = 0; f < x.size(); ++f) lambda[f] = -Uniform(state), over_rest[f] = lambda[f] / 1000.0;
+    std::vector<double> lambda(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f) lambda[f] = -Uniform(state);
     std::vector<Vec2> moves(x.size()), moves_spill(x.size());
     for (std::size_t f = 0; f < x.size(); ++f) moves[f] = {Uniform(state), 0.0}, moves_spill[f] = {0.0, Uniform(state)};
     auto moves_1 = moves, moves_spill_1 = moves_spill;
-    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), over_rest.data(), terms.data(), moves.data(),
+    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), terms.data(), moves.data(),
                                     moves_spill.data());
-    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), over_rest.data(), unused.data(),
-                                    moves_1.data(), moves_spill_1.data(), 1);
+    engine::detail::AddMovesOfPairs(fluid, x.data(), pairs, lambda.data(), unused.data(), moves_1.data(),
+                                    moves_spill_1.data(), 1);
     for (std::size_t f = 0; f < x.size(); ++f) {
       REQUIRE(Bits(moves[f].x) == Bits(moves_1[f].x));
       REQUIRE(Bits(moves[f].y) == Bits(moves_1[f].y));

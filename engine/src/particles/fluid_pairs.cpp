@@ -46,7 +46,7 @@ void DensityBy1(const UniformPairs& fluid, const Vec2* x, std::span<const Partic
 }
 
 void MovesBy1(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs, const double* lambda,
-              const double* lambda_over_rest, Vec2* own, Vec2* spill) {
+              Vec2* own, Vec2* spill) {
   const std::uint32_t own_end = fluid.own_end;
   const SphKernels& k = fluid.kernel;
   const double a = fluid.mass * fluid.inv_rest;
@@ -58,8 +58,8 @@ void MovesBy1(const UniformPairs& fluid, const Vec2* x, std::span<const Particle
     const double ratio2 = ratio * ratio;
     const double clumping = fluid.clumping_strength * (ratio2 * ratio2);
     const Vec2 gradient = k.Gradient(d, r);
-    const double weight_i = (lambda[fi] + clumping) * a + fluid.mass * lambda_over_rest[fj];
-    const double weight_j = (lambda[fj] + clumping) * a + fluid.mass * lambda_over_rest[fi];
+    const double weight_i = (lambda[fi] + clumping) * a + fluid.mass * (lambda[fj] * fluid.inv_rest);
+    const double weight_j = (lambda[fj] + clumping) * a + fluid.mass * (lambda[fi] * fluid.inv_rest);
     own[fi] += weight_i * gradient;
     Target(own_end, fj, own, spill) += weight_j * (-gradient);
   }
@@ -157,12 +157,12 @@ BALLBOX_AVX2 void DensityBy4(const UniformPairs& fluid, const Vec2* x, std::span
 }
 
 BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                           const double* lambda, const double* lambda_over_rest, const double* stored, Vec2* own,
-                           Vec2* spill) {
+                           const double* lambda, const double* stored, Vec2* own, Vec2* spill) {
   const std::uint32_t own_end = fluid.own_end;
   const __m256d a = _mm256_set1_pd(fluid.mass * fluid.inv_rest), mass = _mm256_set1_pd(fluid.mass);
+  const __m256d inv_rest = _mm256_set1_pd(fluid.inv_rest);
   const __m256d minus = _mm256_set1_pd(-0.0);
-  if (pairs.size() < 4) return MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
+  if (pairs.size() < 4) return MovesBy1(fluid, x, pairs, lambda, own, spill);
   std::uint32_t lower_at = pairs[0].first;  // as in DensityBy4
   __m128d lower = _mm_loadu_pd(&own[lower_at].x);
   std::size_t p = 0;
@@ -176,10 +176,8 @@ BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<c
                         j3 = q[3].second;
     const __m256d lambda_i = _mm256_set_pd(lambda[i3], lambda[i2], lambda[i1], lambda[i0]);
     const __m256d lambda_j = _mm256_set_pd(lambda[j3], lambda[j2], lambda[j1], lambda[j0]);
-    const __m256d over_i =
-        _mm256_set_pd(lambda_over_rest[i3], lambda_over_rest[i2], lambda_over_rest[i1], lambda_over_rest[i0]);
-    const __m256d over_j =
-        _mm256_set_pd(lambda_over_rest[j3], lambda_over_rest[j2], lambda_over_rest[j1], lambda_over_rest[j0]);
+    // λ/ρ0 in the lanes rather than gathered: the same product, four fewer loads a side.
+    const __m256d over_i = _mm256_mul_pd(lambda_i, inv_rest), over_j = _mm256_mul_pd(lambda_j, inv_rest);
     const __m256d weight_i = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(lambda_i, clumping), a), _mm256_mul_pd(mass, over_j));
     const __m256d weight_j = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(lambda_j, clumping), a), _mm256_mul_pd(mass, over_i));
     const __m256d xi = _mm256_mul_pd(weight_i, t.gx), yi = _mm256_mul_pd(weight_i, t.gy);
@@ -205,7 +203,7 @@ BALLBOX_AVX2 void MovesBy4(const UniformPairs& fluid, const Vec2* x, std::span<c
     }
   }
   _mm_storeu_pd(&own[lower_at].x, lower);
-  MovesBy1(fluid, x, pairs.subspan(p), lambda, lambda_over_rest, own, spill);
+  MovesBy1(fluid, x, pairs.subspan(p), lambda, own, spill);
 }
 
 BALLBOX_AVX2 void PullsBy4(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const double* mass_over_density,
@@ -274,12 +272,12 @@ void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const
 }
 
 void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                     const double* lambda, const double* lambda_over_rest, [[maybe_unused]] const double* terms,
+                     const double* lambda, [[maybe_unused]] const double* terms,
                      Vec2* own, Vec2* spill, [[maybe_unused]] int lanes) {
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
-  if (lanes != 1 && HasAvx2()) return MovesBy4(fluid, x, pairs, lambda, lambda_over_rest, terms, own, spill);
+  if (lanes != 1 && HasAvx2()) return MovesBy4(fluid, x, pairs, lambda, terms, own, spill);
 #endif
-  MovesBy1(fluid, x, pairs, lambda, lambda_over_rest, own, spill);
+  MovesBy1(fluid, x, pairs, lambda, own, spill);
 }
 
 

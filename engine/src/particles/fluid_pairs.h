@@ -38,13 +38,11 @@ void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const
                        const PairOffsets& offsets, DensitySums* own, DensitySums* spill, double* terms,
                        int lanes = 0);
 
-/// For each pair (i, j) in order, with s the artificial pressure and λ/ρ0 of each particle in
-/// `lambda_over_rest`: adds ((λ_i + s)·m/ρ0 + m·λ_j/ρ0)·∇W to i's move and
-/// ((λ_j + s)·m/ρ0 + m·λ_i/ρ0)·(−∇W) to j's. `terms`: AddDensityOfPairs', for the same pairs
-/// where they are, with the same `lanes`.
+/// For each pair (i, j) in order, with s the artificial pressure: adds
+/// ((λ_i + s)·m/ρ0 + m·(λ_j·ρ0⁻¹))·∇W to i's move and ((λ_j + s)·m/ρ0 + m·(λ_i·ρ0⁻¹))·(−∇W) to
+/// j's. `terms`: AddDensityOfPairs', for the same pairs where they are, with the same `lanes`.
 void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
-                     const double* lambda, const double* lambda_over_rest, const double* terms, Vec2* own,
-                     Vec2* spill, int lanes = 0);
+                     const double* lambda, const double* terms, Vec2* own, Vec2* spill, int lanes = 0);
 
 /// XSPH's pulls (ApplyViscosity), for any fluid (of `fluid` only the kernel and own_end count):
 /// for each pair (i, j) in order, with W at x_i − x_j, adds (m_j/ρ_j·W)·(v_j − v_i) to i's pull

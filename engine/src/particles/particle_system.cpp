@@ -553,8 +553,8 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
     if (uniform) {
       UniformPairs chunk = one_kind;
       chunk.own_end = own_end;
-      AddMovesOfPairs(chunk, x_.data() + first, NearPairs(c), lambda, lambda_over_rest,
-                      pair_terms_.data() + 3 * chunk_pairs_[c], moves, spill_moves);
+      AddMovesOfPairs(chunk, x_.data() + first, NearPairs(c), lambda, pair_terms_.data() + 3 * chunk_pairs_[c], moves,
+                      spill_moves);
       return;
     }
     ForEachNearPair(k, c, true, [&](std::uint32_t i, std::uint32_t j, const PairTerms& t) {
