@@ -216,6 +216,8 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       p.inv_mass = bodies.infos[b].inv_mass;
       p.inv_inertia = bodies.infos[b].inv_inertia;
     }
+    // A sleeping body that can move is pushed for its waking impulse.
+    p.fixed = p.inv_mass == 0.0 && p.inv_inertia == 0.0 && (awake[b] || HasInfiniteMass(bodies.infos[b]));
     touched_.push_back(b);
   };
   for (const PlaneContact& c : planes_) touch(c.body);
@@ -248,6 +250,14 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       p.center = c0 + t * (p.end_center - c0) + p.shift;
       const double angle = a0 + t * (bodies.states[b].angle - a0) + p.turn;
       p.rotation = angle == 0.0 ? Rot{} : MakeRot(angle);
+    }
+    if (step == 0) {
+      for (PlaneContact& c : planes_) {
+        const BodyPush& p = pushes_[c.body];
+        if (!p.fixed) continue;
+        c.world_normal = Rotate(p.rotation, c.normal);
+        c.world_surface = p.center + Rotate(p.rotation, c.surface);
+      }
     }
     for (std::size_t i = 0; i < x_.size(); ++i) {
       previous_[i] = x_[i];
@@ -344,7 +354,8 @@ void ParticleSystem::FindContacts(const WorldDef& def, const Bodies& bodies) {
       AppendBodyPlanes(bodies, b, x_[i], radius_[i], reach_i + travel + Length(moved), &found);
       for (const BodyPlane& plane : found) {
         planes_.push_back({i, b, InvRotate(frame.rotation, plane.normal),
-                           geometry::InvTransformPoint(frame, plane.surface), std::sqrt(plane.friction * OwnFriction(i))});
+                           geometry::InvTransformPoint(frame, plane.surface), std::sqrt(plane.friction * OwnFriction(i)),
+                           Vec2{}, Vec2{}});
       }
     });
   }
@@ -590,8 +601,9 @@ void ParticleSystem::FindWalls(std::vector<BodyPush>& pushes) {
     const PlaneContact& c = planes_[k];
     if (c.particle < first) continue;
     const BodyPush& body = pushes[c.body];
-    wall_distances_[k] = Dot(Rotate(body.rotation, c.normal),
-                             x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
+    wall_distances_[k] = body.fixed ? Dot(c.world_normal, x_[c.particle] - c.world_surface)
+                                    : Dot(Rotate(body.rotation, c.normal),
+                                          x_[c.particle] - (body.center + Rotate(body.rotation, c.surface)));
     if (wall_distances_[k] < wall_->Reach()) ++pushes[c.body].wall_particles;
   }
   for (std::size_t k = 0; k < planes_.size(); ++k) {
@@ -601,10 +613,12 @@ void ParticleSystem::FindWalls(std::vector<BodyPush>& pushes) {
     const double d = wall_distances_[k];
     if (d >= wall_->Reach()) continue;
     const std::uint32_t f = c.particle - first;
-    const Vec2 normal = Rotate(body.rotation, c.normal);
+    const Vec2 normal = body.fixed ? c.world_normal : Rotate(body.rotation, c.normal);
     const double slope = wall_scale_ * wall_->Slope(d);
     wall_share_[f] += wall_scale_ * wall_->Share(d);
     wall_slope_[f] += slope * normal;  // ∂share/∂x: the wall's pull on C
+    // A fixed body's give is +0 (adding it changes no bit: the sum is never −0).
+    if (body.fixed) continue;
     // A body that moves gives way: its generalised inverse mass joins the denominator, times
     // the particles pushing it at once (mass splitting, Tonge, Benevolenskiy and Jehle 2012),
     // so that their pushes together cannot overshoot what a light body needs. Without it a
@@ -624,6 +638,10 @@ void ParticleSystem::PushWalls(double h, std::vector<BodyPush>& pushes) {
     const std::uint32_t f = c.particle - first;
     if (lambda_[f] == 0.0) continue;
     BodyPush& body = pushes[c.body];
+    // A fixed body's pose, velocity and turn would change by ±0 at most, leaving the same
+    // bits: its centre is never −0 (the substep's pose adds +0 shifts), and its velocity and
+    // turn changes start at +0, which adding or taking away a zero keeps.
+    if (body.fixed) continue;
     const Vec2 normal = Rotate(body.rotation, c.normal);
     const Vec2 arm = Rotate(body.rotation, c.surface);
     const double d = Dot(normal, x_[c.particle] - (body.center + arm));
@@ -739,9 +757,11 @@ void ParticleSystem::PushBody(BodyPush& body, Vec2 arm, Vec2 direction, double i
 void ParticleSystem::SolveBodyContacts(double h, double max_push_out_speed, std::vector<BodyPush>& pushes) {
   for (const PlaneContact& c : planes_) {
     BodyPush& body = pushes[c.body];
+    const std::uint32_t i = c.particle;
+    // A fluid particle clear of a fixed body, found without turning its plane each substep.
+    if (body.fixed && i >= fluid_first_ && Dot(c.world_normal, x_[i] - c.world_surface) - radius_[i] >= 0.0) continue;
     const Vec2 n = Rotate(body.rotation, c.normal);
     const Vec2 surface_arm = Rotate(body.rotation, c.surface);
-    const std::uint32_t i = c.particle;
     const double gap = Dot(n, x_[i] - (body.center + surface_arm)) - radius_[i];
     // A soft particle that began the substep inside the body (a body made overlapping a soft
     // one, or slipped between its particles) comes out no faster than max_push_out_speed, as
@@ -762,7 +782,7 @@ void ParticleSystem::SolveBodyContacts(double h, double max_push_out_speed, std:
     const double depth = allowed - gap;
     const double normal = depth / w;
     x_[i] += (wp * normal) * n;
-    PushBody(body, surface_arm, n, normal, h);
+    if (!body.fixed) PushBody(body, surface_arm, n, normal, h);
     if (c.friction == 0.0) continue;
     // Friction: the particle's slide over the surface this substep (the surface moving with
     // the body) is taken away up to μ times the normal correction (Macklin et al. 2014,
@@ -778,7 +798,7 @@ void ParticleSystem::SolveBodyContacts(double h, double max_push_out_speed, std:
     const double wt = wp + body.inv_mass + body.inv_inertia * rt * rt;
     const double tangential = std::min(length, c.friction * depth) / wt;
     x_[i] -= (wp * tangential) * t;
-    PushBody(body, surface_arm, -t, tangential, h);
+    if (!body.fixed) PushBody(body, surface_arm, -t, tangential, h);
   }
 }
 

@@ -91,6 +91,10 @@ class ParticleSystem {
     Vec2 center, last_center;
     Rot rotation, last_rotation;
     bool touched = false;
+    /// Nothing the particles do moves it or is read from it (a static or kinematic body, or an
+    /// awake one of infinite mass): its pose is the same bits every substep, and pushing it
+    /// changes only signs of zeros that are never read (see PushWalls).
+    bool fixed = false;
   };
   /// A body face a particle may touch this step, in the body's centre-of-mass frame.
   struct PlaneContact {
@@ -99,6 +103,9 @@ class ParticleSystem {
     Vec2 normal;   ///< local
     Vec2 surface;  ///< local
     double friction;
+    /// A fixed body's (BodyPush::fixed) normal and surface point in the world, as each substep
+    /// would work them out: once a step.
+    Vec2 world_normal, world_surface;
   };
   void InsertParticles(std::uint32_t at, std::span<const Vec2> positions, Vec2 velocity, double inv_mass,
                        double radius, std::uint32_t group);
