@@ -1,17 +1,19 @@
 // Position-based fluid: Archimedes' principle through the two-way coupling, a dam break that
 // settles incompressible and stays in its tank, the hash and snapshot it joins, and the kernel
 // worked out for pairs lanes at a time giving the scalar kernel's bits (as do the pair sums and
-// the search for pairs within the kernel).
+// the search for pairs within the kernel), and the grid's search against all pairs.
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/world.h"
 #include "particles/fluid_pairs.h"
 #include "particles/near_pairs.h"
+#include "particles/particle_grid.h"
 #include "particles/sph_kernels.h"
 #include "world_builders.h"
 
@@ -368,6 +370,62 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
       REQUIRE(Bits(pulls[f].y) == Bits(pulls_1[f].y));
       REQUIRE(Bits(pulls_spill[f].x) == Bits(pulls_spill_1[f].x));
       REQUIRE(Bits(pulls_spill[f].y) == Bits(pulls_spill_1[f].y));
+    }
+  }
+}
+
+TEST_CASE("the grid's search finds every pair within reach, fluid pairs sorted, on any threads and lanes", "[fluid]") {
+  // Particles of a soft body (numbered first, left in their order) and of a fluid (renumbered in
+  // the grid's order), some at exactly the reach apart (kept) and two at one point: the lists
+  // and the fluid's pairs against every pair tried, four candidates at a time and one at a
+  // time, on one to three threads.
+  using Pair = std::pair<std::uint32_t, std::uint32_t>;
+  std::uint64_t state = 5;
+  const double reach = 0.15;
+  const std::uint32_t first = 60, n = 700;
+  std::vector<Vec2> x(n);
+  for (Vec2& p : x) p = {2.0 * Uniform(state) - 1.0, Uniform(state)};
+  x[first + 1] = x[first] + Vec2{reach, 0.0};
+  x[first + 2] = x[first] + Vec2{0.0, reach};
+  x[first + 3] = x[first];
+  x[4] = x[first + 5] + Vec2{0.0, -reach};
+  engine::detail::ParticleGrid grid;
+  grid.Build(x, reach);
+  std::vector<std::uint32_t> old_of_new, rows;
+  grid.RenumberFrom(first, &old_of_new, &rows);
+  const std::vector<Vec2> before = x;
+  for (std::uint32_t k = 0; k < n - first; ++k) x[first + k] = before[first + old_of_new[k]];
+  std::vector<std::vector<std::uint32_t>> want_lists(n);
+  std::vector<Pair> want_pairs;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t j = i + 1; j < n; ++j) {
+      if (engine::LengthSquared(x[j] - x[i]) > reach * reach) continue;
+      want_lists[i].push_back(j);
+      want_lists[j].push_back(i);
+      if (i >= first) want_pairs.push_back({i - first, j - first});
+    }
+  }
+  REQUIRE(want_pairs.size() > 1000);
+  std::vector<Pair> reference;
+  std::vector<std::uint32_t> reference_lists;
+  for (const int threads : {1, 2, 3}) {
+    for (const int lanes : {0, 1}) {
+      engine::detail::WorkerPool pool(threads);
+      std::vector<std::uint32_t> offsets, neighbours;
+      const auto found = grid.FindNeighbours(x, reach, pool, &offsets, &neighbours, first, n, lanes);
+      const std::vector<Pair> pairs(found.begin(), found.end());
+      INFO("threads " << threads << ", lanes " << lanes);
+      REQUIRE(pairs == want_pairs);
+      for (std::uint32_t i = 0; i < n; ++i) {
+        std::vector<std::uint32_t> list(neighbours.begin() + offsets[i], neighbours.begin() + offsets[i + 1]);
+        std::sort(list.begin(), list.end());
+        std::vector<std::uint32_t> want = want_lists[i];
+        std::sort(want.begin(), want.end());
+        REQUIRE(list == want);
+      }
+      // The same lists in the same order every way.
+      if (reference.empty()) reference = pairs, reference_lists = neighbours;
+      REQUIRE(neighbours == reference_lists);
     }
   }
 }

@@ -5,7 +5,95 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define BALLBOX_AVX2_AT_RUN_TIME 1
+#endif
+
 namespace engine::detail {
+
+namespace {
+
+using Pair = std::pair<std::uint32_t, std::uint32_t>;
+
+// Appends to out[count...] the pairs (i − shift, j − shift) for the candidates j = order[b], b in
+// [begin, end), with j > i and |x[j] − x[i]|² ≤ r2, in that order; returns the new count.
+// Every candidate is written and kept or overwritten by the next: whether j > i and whether it
+// is near are coin tosses a branch would mispredict.
+std::size_t NearRunBy1(const Vec2* x, const std::uint32_t* order, std::uint32_t begin, std::uint32_t end,
+                       std::uint32_t i, double r2, std::uint32_t shift, Pair* out, std::size_t count) {
+  const Vec2 xi = x[i];
+  for (std::uint32_t b = begin; b < end; ++b) {
+    const std::uint32_t j = order[b];
+    out[count] = {i - shift, j - shift};
+    count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
+  }
+  return count;
+}
+
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+// For each 4-bit mask of candidates kept, the 32-bit lanes that move the kept pairs to the front.
+struct KeepTable {
+  alignas(32) std::int32_t lanes[16][8];
+  constexpr KeepTable() : lanes{} {
+    for (int mask = 0; mask < 16; ++mask) {
+      int at = 0;
+      for (int q = 0; q < 4; ++q) {
+        if (mask & (1 << q)) lanes[mask][2 * at] = 2 * q, lanes[mask][2 * at + 1] = 2 * q + 1, ++at;
+      }
+    }
+  }
+};
+constexpr KeepTable kKeep;
+
+// NearRunBy1 four candidates at a time: each lane's distance is the same IEEE operations, and
+// the kept pairs are packed in order, so the same pairs. Candidates numbered one after another
+// (a fluid's, in the grid's order) have their positions loaded together.
+__attribute__((target("avx2"))) std::size_t NearRunBy4(const Vec2* x, const std::uint32_t* order,
+                                                       std::uint32_t begin, std::uint32_t end, std::uint32_t i,
+                                                       double r2, std::uint32_t shift, Pair* out, std::size_t count) {
+  const __m256d limit = _mm256_set1_pd(r2);
+  const __m256d xi = _mm256_set1_pd(x[i].x), yi = _mm256_set1_pd(x[i].y);
+  const __m128i above = _mm_set1_epi32(static_cast<std::int32_t>(i ^ 0x80000000u));
+  const __m128i flip = _mm_set1_epi32(static_cast<std::int32_t>(0x80000000u));
+  const __m128i steps = _mm_setr_epi32(0, 1, 2, 3);
+  const __m128i lower = _mm_set1_epi32(static_cast<std::int32_t>(i - shift));
+  const __m128i shifts = _mm_set1_epi32(static_cast<std::int32_t>(shift));
+  std::uint32_t b = begin;
+  for (; b + 4 <= end; b += 4) {
+    const __m128i js = _mm_loadu_si128(reinterpret_cast<const __m128i*>(order + b));
+    __m256d ab, cd;  // (x, y) of the first two candidates, and of the last two
+    const std::uint32_t j0 = order[b];
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(js, _mm_add_epi32(_mm_set1_epi32(static_cast<std::int32_t>(j0)), steps))) ==
+        0xffff) {
+      ab = _mm256_loadu_pd(&x[j0].x);
+      cd = _mm256_loadu_pd(&x[j0 + 2].x);
+    } else {
+      ab = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[order[b]].x)), _mm_loadu_pd(&x[order[b + 1]].x), 1);
+      cd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[order[b + 2]].x)), _mm_loadu_pd(&x[order[b + 3]].x),
+                                1);
+    }
+    // unpack gives lanes (0, 2, 1, 3); the permute puts them back in order.
+    const __m256d xj = _mm256_permute4x64_pd(_mm256_unpacklo_pd(ab, cd), 0xd8);
+    const __m256d yj = _mm256_permute4x64_pd(_mm256_unpackhi_pd(ab, cd), 0xd8);
+    // LengthSquared(x[j] − x[i]), lane by lane.
+    const __m256d dx = _mm256_sub_pd(xj, xi), dy = _mm256_sub_pd(yj, yi);
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const int near = _mm256_movemask_pd(_mm256_cmp_pd(d2, limit, _CMP_LE_OQ));
+    const int higher = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_xor_si128(js, flip), above)));
+    const int keep = near & higher;
+    // The four pairs (i − shift, j − shift), then the kept ones packed to the front.
+    const __m128i ks = _mm_sub_epi32(js, shifts);
+    const __m256i pairs = _mm256_set_m128i(_mm_unpackhi_epi32(lower, ks), _mm_unpacklo_epi32(lower, ks));
+    const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kKeep.lanes[keep]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count), _mm256_permutevar8x32_epi32(pairs, lanes));
+    count += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(keep)));
+  }
+  return NearRunBy1(x, order, b, end, i, r2, shift, out, count);
+}
+#endif
+
+}  // namespace
 
 std::int32_t ParticleGrid::Cell(double coordinate) const {
   // Clamped so a far-flung particle (or a huge box) cannot overflow the cell index.
@@ -96,12 +184,18 @@ std::pair<std::size_t, std::size_t> ParticleGrid::RowRun(std::int32_t row, std::
 
 std::span<const std::pair<std::uint32_t, std::uint32_t>> ParticleGrid::FindNeighbours(
     std::span<const Vec2> positions, double radius, WorkerPool& pool, std::vector<std::uint32_t>* offsets,
-    std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below) const {
+    std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below,
+    [[maybe_unused]] int lanes) const {
   const std::size_t n = positions.size();
   const double r2 = radius * radius;
   // Each pair once (i < j), found per cell against the 3×3 cells around it in cell order, then
   // entered in both particles' lists in that order: deterministic, and half the distance tests.
   const auto threads = static_cast<std::uint32_t>(cell_keys_.size() < 64 ? 1 : pool.Threads());
+  auto near_run = &NearRunBy1;
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2 && lanes != 1) near_run = &NearRunBy4;
+#endif
   pairs_.resize(threads);
   ordered_pairs_.resize(threads);
   pair_counts_.assign(threads, 0);
@@ -150,21 +244,13 @@ std::span<const std::pair<std::uint32_t, std::uint32_t>> ParticleGrid::FindNeigh
       // are found together (its own row, then the row above), so that they come sorted by their
       // lower particle; each particle's pairs are in the order the loop above would find them.
       if (mid == a1) continue;
-      reserve(ordered, ordered_count, std::size_t{a1 - mid} * (b1[1] - b0[1] + b1[2] - b0[2]));
+      // Four more, as the four-lane loop writes a whole vector of four pairs.
+      reserve(ordered, ordered_count, std::size_t{a1 - mid} * (b1[1] - b0[1] + b1[2] - b0[2]) + 4);
       std::pair<std::uint32_t, std::uint32_t>* const out = ordered.data();
       for (std::uint32_t a = mid; a < a1; ++a) {
         const std::uint32_t i = order[a];
-        const Vec2 xi = x[i];
-        for (std::uint32_t b = a + 1; b < b1[1]; ++b) {
-          const std::uint32_t j = order[b];
-          out[ordered_count] = {i - ordered_from, j - ordered_from};
-          ordered_count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
-        }
-        for (std::uint32_t b = b0[2]; b < b1[2]; ++b) {
-          const std::uint32_t j = order[b];
-          out[ordered_count] = {i - ordered_from, j - ordered_from};
-          ordered_count += (j > i) & (LengthSquared(x[j] - xi) <= r2);
-        }
+        ordered_count = near_run(x, order, a + 1, b1[1], i, r2, ordered_from, out, ordered_count);
+        ordered_count = near_run(x, order, b0[2], b1[2], i, r2, ordered_from, out, ordered_count);
       }
     }
     pair_counts_[t] = count;

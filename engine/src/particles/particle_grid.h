@@ -36,10 +36,13 @@ class ParticleGrid {
   /// so a quantity of a pair can be worked out once for both its particles; valid until the
   /// next call. Only the particles below `lists_below` get lists (the others' are empty), the
   /// pairs being all a fluid needs; an ordered particle's list has its neighbours numbered
-  /// before `ordered_from` first, then the others in the order of the pairs.
+  /// before `ordered_from` first, then the others in the order of the pairs. The ordered
+  /// particles' pairs are sought four candidates at a time with AVX2 where the processor has it
+  /// (`lanes` 1: one at a time), the same pairs either way.
   std::span<const std::pair<std::uint32_t, std::uint32_t>> FindNeighbours(
       std::span<const Vec2> positions, double radius, WorkerPool& pool, std::vector<std::uint32_t>* offsets,
-      std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below) const;
+      std::vector<std::uint32_t>* neighbours, std::uint32_t ordered_from, std::uint32_t lists_below,
+      int lanes = 0) const;
 
   /// Calls visit(i) for every particle in a cell that `box` overlaps, in cell order.
   template <typename Visit>
