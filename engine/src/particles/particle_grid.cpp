@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -214,12 +215,25 @@ std::span<const std::pair<std::uint32_t, std::uint32_t>> ParticleGrid::FindNeigh
                             std::size_t more) {
       if (list.size() < count + more) list.resize(2 * (count + more));
     };
+    // The runs of cells beside each cell in the rows below, of and above it only move on as
+    // the cells go by in order: found once by binary search, then stepped along.
+    std::size_t run_first[3], run_last[3];
+    const std::size_t cells = cell_keys_.size();
     for (std::size_t c = first_cell; c < last_cell; ++c) {
       const auto column = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c]) ^ 0x80000000u);
       const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell_keys_[c] >> 32) ^ 0x80000000u);
       std::uint32_t b0[3], b1[3];  // the candidates in the rows below, of and above the cell
       for (std::int32_t dr = -1; dr <= 1; ++dr) {
-        const auto [first, last] = RowRun(row + dr, column - 1, column + 1);
+        std::size_t& first = run_first[dr + 1];
+        std::size_t& last = run_last[dr + 1];
+        if (c == first_cell) {
+          std::tie(first, last) = RowRun(row + dr, column - 1, column + 1);
+        } else {
+          const std::uint64_t from = Key(column - 1, row + dr), to = Key(column + 1, row + dr);
+          while (first < cells && cell_keys_[first] < from) ++first;
+          last = std::max(last, first);
+          while (last < cells && cell_keys_[last] <= to) ++last;
+        }
         b0[dr + 1] = cell_starts_[first], b1[dr + 1] = cell_starts_[last];
       }
       const std::uint32_t a0 = cell_starts_[c], a1 = cell_starts_[c + 1];
