@@ -296,9 +296,10 @@ TEST_CASE("the pairs within a distance, four at a time, are the plain loop's", "
 }
 
 TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair at a time's bits", "[fluid]") {
-  // AddDensityOfPairs, AddMovesOfPairs and AddPullsOfPairs at the widest lanes against one pair at a time, on the
-  // same pairs (by lower particle, each with runs of pairs and a tail, some adding into the
-  // spill sums), from the same sums: bit for bit.
+  // AddDensityOfPairs (at the widest lanes, and at four), AddMovesOfPairs and AddPullsOfPairs
+  // at the widest lanes against one pair at a time, on the same pairs (by lower particle, each
+  // with runs of pairs and a tail, some adding into the spill sums), from the same sums: bit
+  // for bit.
   const engine::detail::SphKernels k(0.125);
   std::uint64_t state = 7;
   std::vector<Vec2> x(60);
@@ -317,8 +318,8 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
       sums[f] = {Uniform(state), {Uniform(state), Uniform(state)}, Uniform(state)};
       spill[f] = {Uniform(state), {Uniform(state), Uniform(state)}, Uniform(state)};
     }
-    auto sums_1 = sums, spill_1 = spill;
-    std::vector<double> terms(3 * pairs.size()), unused(3 * pairs.size());
+    auto sums_1 = sums, spill_1 = spill, sums_4 = sums, spill_4 = spill;
+    std::vector<double> terms(3 * pairs.size()), terms_4(3 * pairs.size()), unused(3 * pairs.size());
     std::vector<double> dx(pairs.size()), dy(pairs.size()), d2(pairs.size());
     for (std::size_t q = 0; q < pairs.size(); ++q) {
       const Vec2 d = x[pairs[q].first] - x[pairs[q].second];
@@ -327,9 +328,12 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
     const engine::detail::PairOffsets offsets{dx.data(), dy.data(), d2.data()};
     engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums.data(), spill.data(), terms.data());
     engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums_1.data(), spill_1.data(), unused.data(), 1);
+    // Four lanes too, where the widest are eight (AVX-512): both wide loops against one.
+    engine::detail::AddDensityOfPairs(fluid, x.data(), pairs, offsets, sums_4.data(), spill_4.data(), terms_4.data(), 4);
     for (std::size_t f = 0; f < x.size(); ++f) {
-      for (const auto* both : {&sums, &spill}) {
-        const auto& one = both == &sums ? sums_1[f] : spill_1[f];
+      for (const auto* both : {&sums, &spill, &sums_4, &spill_4}) {
+        const bool own = both == &sums || both == &sums_4;
+        const auto& one = own ? sums_1[f] : spill_1[f];
         const auto& wide = (*both)[f];
         REQUIRE(Bits(wide.density) == Bits(one.density));
         REQUIRE(Bits(wide.gradient.x) == Bits(one.gradient.x));
@@ -337,6 +341,8 @@ TEST_CASE("a fluid of one kind's pair sums, four pairs at a time, are one pair a
         REQUIRE(Bits(wide.denominator) == Bits(one.denominator));
       }
     }
+    // The move pass's terms are where the move pass looks for them either way.
+    for (std::size_t q = 0; q < pairs.size() / 4 * 4 * 3; ++q) REQUIRE(Bits(terms[q]) == Bits(terms_4[q]));
     std::vector<double> lambda(x.size());
     for (std::size_t f = 0; f < x.size(); ++f) lambda[f] = -Uniform(state);
     std::vector<Vec2> moves(x.size()), moves_spill(x.size());

@@ -1,7 +1,8 @@
 // The density and move passes' loops over the fluid's pairs within the kernel, for a fluid of
 // one kind (every particle the same mass and rest density, as in one block): each pair's terms
 // worked out once and added into both its particles, four pairs at a time with AVX2 where the
-// processor has it, else one at a time, the same bits either way. Internal.
+// processor has it (the density pass's kernel eight at a time with AVX-512), else one at a
+// time, the same bits every way. Internal.
 #pragma once
 
 #include <cstdint>
@@ -31,8 +32,9 @@ struct UniformPairs {
 
 /// For each pair (i, j) in order, with W and ∇W at x_i − x_j and g = (m/ρ0)·∇W: adds
 /// (m·W, g, m⁻¹·|g|²) to i's sums and (m·W, −g, m⁻¹·|g|²) to j's. `offsets`: the pairs' as
-/// PairsWithin left them. `lanes`: 1 for one pair at a time, else the widest the processor
-/// has. Where that is four lanes, each full four pairs' ∇W and artificial pressure are left in
+/// PairsWithin left them. `lanes`: 1 for one pair at a time, 4 for four (AVX2, where the
+/// processor has it), 0 for the widest it has (the kernel eight pairs at a time with AVX-512).
+/// With four lanes or more, each full four pairs' ∇W and artificial pressure are left in
 /// `terms` (3 doubles a pair) for AddMovesOfPairs.
 void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
                        const PairOffsets& offsets, DensitySums* own, DensitySums* spill, double* terms,
