@@ -262,10 +262,11 @@ TEST_CASE("a light fluid poured under a heavy one rises above it", "[fluid]") {
   REQUIRE(oil_after > water_after);
 }
 
-TEST_CASE("the pairs within a distance, four at a time, are the plain loop's", "[fluid]") {
-  // PairsWithin (four at a time with AVX2 where the processor has it) against a loop over the
-  // pairs: the same pairs kept in the same order, for lists of every length up to 41 (every
-  // tail), with pairs at exactly the distance (not kept) and at one point.
+TEST_CASE("the pairs within a distance, lanes at a time, are the plain loop's", "[fluid]") {
+  // PairsWithin (eight at a time with AVX-512, four with AVX2, where the processor has them,
+  // and one at a time) against a loop over the pairs: the same pairs kept in the same order,
+  // for lists of every length up to 41 (every tail), with pairs at exactly the distance (not
+  // kept) and at one point.
   std::uint64_t state = 99;
   std::vector<Vec2> x(40);
   for (Vec2& p : x) p = {Uniform(state), Uniform(state)};
@@ -282,15 +283,18 @@ TEST_CASE("the pairs within a distance, four at a time, are the plain loop's", "
     for (const auto& p : some) {
       if (engine::LengthSquared(x[p.first] - x[p.second]) < r2) want.push_back(p);
     }
-    std::vector<engine::detail::ParticlePair> got(count);
-    std::vector<double> dx(count), dy(count), d2(count);
-    got.resize(engine::detail::PairsWithin(x.data(), some, r2, got.data(), {dx.data(), dy.data(), d2.data()}));
-    REQUIRE(got == want);
-    for (std::size_t q = 0; q < got.size(); ++q) {
-      const Vec2 d = x[got[q].first] - x[got[q].second];
-      REQUIRE(Bits(dx[q]) == Bits(d.x));
-      REQUIRE(Bits(dy[q]) == Bits(d.y));
-      REQUIRE(Bits(d2[q]) == Bits(engine::LengthSquared(d)));
+    for (const int lanes : {0, 4, 1}) {
+      std::vector<engine::detail::ParticlePair> got(count);
+      std::vector<double> dx(count), dy(count), d2(count);
+      got.resize(engine::detail::PairsWithin(x.data(), some, r2, got.data(), {dx.data(), dy.data(), d2.data()}, lanes));
+      INFO("lanes " << lanes);
+      REQUIRE(got == want);
+      for (std::size_t q = 0; q < got.size(); ++q) {
+        const Vec2 d = x[got[q].first] - x[got[q].second];
+        REQUIRE(Bits(dx[q]) == Bits(d.x));
+        REQUIRE(Bits(dy[q]) == Bits(d.y));
+        REQUIRE(Bits(d2[q]) == Bits(engine::LengthSquared(d)));
+      }
     }
   }
 }

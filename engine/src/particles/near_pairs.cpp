@@ -1,5 +1,5 @@
-// Pairs within a distance: four at a time with AVX2 where the processor has it (chosen at run
-// time), else one at a time. Both keep the same pairs, in the same order.
+// Pairs within a distance: eight at a time with AVX-512 or four with AVX2 where the processor
+// has them (chosen at run time), else one at a time. All keep the same pairs, in the same order.
 #include "particles/near_pairs.h"
 
 #if defined(__x86_64__)
@@ -90,15 +90,60 @@ __attribute__((target("avx2"))) std::uint32_t PairsWithinBy4(const Vec2* x, std:
   }
   return m + PairsWithinBy1(x, pairs.subspan(p), r2, out + m, {dxs + m, dys + m, r2s + m});
 }
+
+#define BALLBOX_AVX512 __attribute__((target("avx512f,avx2")))
+
+// (x, y) of particles a, b, c and d in one vector of eight.
+BALLBOX_AVX512 inline __m512d Load4(const Vec2* x, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                    std::uint32_t d) {
+  const __m256d ab = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[a].x)), _mm_loadu_pd(&x[b].x), 1);
+  const __m256d cd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&x[c].x)), _mm_loadu_pd(&x[d].x), 1);
+  // maskz: GCC 12 warns of the undefined lanes the plain casts and inserts start from.
+  const __m512d low = _mm512_maskz_insertf64x4(0xff, _mm512_setzero_pd(), ab, 0);
+  return _mm512_maskz_insertf64x4(0xff, low, cd, 1);
+}
+
+// PairsWithinBy4 eight pairs at a time (AVX-512), the kept ones packed by compressing stores:
+// the same IEEE operations lane by lane, the same pairs in the same order.
+BALLBOX_AVX512 std::uint32_t PairsWithinBy8(const Vec2* x, std::span<const ParticlePair> pairs, double r2,
+                                            ParticlePair* out, const PairOffsets& offsets) {
+  const __m512d limit = _mm512_set1_pd(r2);
+  const std::size_t count = pairs.size();
+  double* const dxs = offsets.dx;
+  double* const dys = offsets.dy;
+  double* const r2s = offsets.r2;
+  // The x and the y of pairs 0-3 (as (x, y) each) and 4-7 into lanes 0-7.
+  const __m512i xs = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), ys = _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15);
+  std::uint32_t m = 0;
+  std::size_t p = 0;
+  for (; p + 8 <= count; p += 8) {
+    const ParticlePair* const q = pairs.data() + p;
+    const __m512d d03 = _mm512_sub_pd(Load4(x, q[0].first, q[1].first, q[2].first, q[3].first),
+                                      Load4(x, q[0].second, q[1].second, q[2].second, q[3].second));
+    const __m512d d47 = _mm512_sub_pd(Load4(x, q[4].first, q[5].first, q[6].first, q[7].first),
+                                      Load4(x, q[4].second, q[5].second, q[6].second, q[7].second));
+    const __m512d dx = _mm512_permutex2var_pd(d03, xs, d47), dy = _mm512_permutex2var_pd(d03, ys, d47);
+    const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+    const __mmask8 keep = _mm512_cmp_pd_mask(d2, limit, _CMP_LT_OQ);
+    _mm512_mask_compressstoreu_epi64(out + m, keep, _mm512_loadu_si512(q));
+    _mm512_mask_compressstoreu_pd(dxs + m, keep, dx);
+    _mm512_mask_compressstoreu_pd(dys + m, keep, dy);
+    _mm512_mask_compressstoreu_pd(r2s + m, keep, d2);
+    m += static_cast<std::uint32_t>(__builtin_popcount(keep));
+  }
+  return m + PairsWithinBy4(x, pairs.subspan(p), r2, out + m, {dxs + m, dys + m, r2s + m});
+}
 #endif
 
 }  // namespace
 
 std::uint32_t PairsWithin(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
-                          const PairOffsets& offsets) {
+                          const PairOffsets& offsets, [[maybe_unused]] int lanes) {
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return PairsWithinBy4(x, pairs, r2, out, offsets);
+  static const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
+  if (avx512 && lanes == 0) return PairsWithinBy8(x, pairs, r2, out, offsets);
+  if (avx2 && lanes != 1) return PairsWithinBy4(x, pairs, r2, out, offsets);
 #endif
   return PairsWithinBy1(x, pairs, r2, out, offsets);
 }

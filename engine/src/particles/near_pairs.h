@@ -21,8 +21,9 @@ struct PairOffsets {
 
 /// Copies to `out`, in order, the pairs (i, j) of `pairs` with |x[i] − x[j]|² < `r2`, the
 /// squared distance worked out as LengthSquared(x[i] − x[j]), and their offsets to `offsets`;
-/// returns how many. Writes only within [0, pairs.size()) of each.
+/// returns how many. Writes only within [0, pairs.size()) of each. `lanes`: 0 for the widest
+/// the processor has (eight with AVX-512), 4 for four (AVX2), 1 for one at a time.
 std::uint32_t PairsWithin(const Vec2* x, std::span<const ParticlePair> pairs, double r2, ParticlePair* out,
-                          const PairOffsets& offsets);
+                          const PairOffsets& offsets, int lanes = 0);
 
 }  // namespace engine::detail
