@@ -14,7 +14,7 @@
 namespace engine::detail {
 
 namespace {
-constexpr int kTableSize = 256;
+constexpr int kTableSize = WallShare::kTableSize;
 constexpr int kLineSamples = 256;
 
 // Two lanes: SSE2 on x86-64, NEON on arm64.
@@ -110,11 +110,5 @@ WallShare::WallShare(const SphKernels& kernels) : h_(kernels.h) {
   }
 }
 
-double WallShare::Lookup(const std::vector<double>& table, double d) const {
-  const double at = std::clamp(d, 0.0, h_) / h_ * kTableSize;
-  const int k = std::min(static_cast<int>(at), kTableSize - 1);
-  const double f = at - k;
-  return table[k] + f * (table[k + 1] - table[k]);
-}
 
 }  // namespace engine::detail

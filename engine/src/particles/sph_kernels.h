@@ -6,6 +6,7 @@
 // where the consistent pair lets it settle.) Internal.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -69,13 +70,20 @@ void KernelTermsOfPairs(const SphKernels& k, double inv_clumping_w, double clump
 class WallShare {
  public:
   explicit WallShare(const SphKernels& kernels);
+  static constexpr int kTableSize = 256;
   /// d ≥ 0 (a particle at the wall or past it counts as at the wall).
   double Share(double d) const { return Lookup(share_, d); }
   double Slope(double d) const { return -Lookup(line_, d); }
   double Reach() const { return h_; }
 
  private:
-  double Lookup(const std::vector<double>& table, double d) const;
+  // Inline: each fluid particle near a wall looks its share and slope up every substep.
+  double Lookup(const std::vector<double>& table, double d) const {
+    const double at = std::clamp(d, 0.0, h_) / h_ * kTableSize;
+    const int k = std::min(static_cast<int>(at), kTableSize - 1);
+    const double f = at - k;
+    return table[k] + f * (table[k + 1] - table[k]);
+  }
   double h_;
   std::vector<double> share_, line_;
 };
