@@ -439,3 +439,46 @@ TEST_CASE("the grid's search finds every pair within reach, fluid pairs sorted, 
     }
   }
 }
+
+TEST_CASE("a fluid of one kind's multipliers and moves, lanes at a time, are one particle at a time's bits", "[fluid]") {
+  // MultipliersOf and MoveParticles at the widest lanes (eight and four particles with AVX-512)
+  // against one at a time, over ranges with tails: particles squeezed and not and one exactly
+  // at the rest density, from random sums.
+  const engine::detail::SphKernels k(0.125);
+  const engine::detail::UniformPairs fluid{k, 0.9, 1.0 / 0.9, 1.0 / 1000.0, 3.1, -0.004, 0};
+  std::uint64_t state = 11;
+  const std::uint32_t n = 45;
+  std::vector<engine::detail::DensitySums> sums(n);
+  std::vector<double> wall_denominator(n), lambda_wide(n), lambda_one(n), density_wide(n), density_one(n);
+  std::vector<Vec2> moves(n), slope(n), x(n);
+  for (std::uint32_t f = 0; f < n; ++f) {
+    sums[f] = {900.0 + 200.0 * Uniform(state), {Uniform(state) - 0.5, Uniform(state) - 0.5}, Uniform(state)};
+    wall_denominator[f] = f % 3 == 0 ? 0.0 : Uniform(state);
+    moves[f] = {Uniform(state) - 0.5, Uniform(state) - 0.5};
+    slope[f] = f % 2 == 0 ? Vec2{} : Vec2{Uniform(state), Uniform(state)};
+    x[f] = {Uniform(state), Uniform(state)};
+  }
+  sums[3].density = 1000.0;
+  for (const auto& [begin, end] : {std::pair{0u, n}, std::pair{5u, 13u}, std::pair{7u, 8u}}) {
+    engine::detail::MultipliersOf(fluid, sums.data(), wall_denominator.data(), 0.01, begin, end, density_wide.data(),
+                                  lambda_wide.data());
+    engine::detail::MultipliersOf(fluid, sums.data(), wall_denominator.data(), 0.01, begin, end, density_one.data(),
+                                  lambda_one.data(), 1);
+    for (std::uint32_t f = begin; f < end; ++f) {
+      REQUIRE(Bits(density_wide[f]) == Bits(density_one[f]));
+      REQUIRE(Bits(lambda_wide[f]) == Bits(lambda_one[f]));
+    }
+    std::vector<Vec2> x_wide = x, x_one = x;
+    engine::detail::MoveParticles(fluid, moves.data(), lambda_one.data(), slope.data(), 2.0, 0.5, begin, end,
+                                  x_wide.data());
+    engine::detail::MoveParticles(fluid, moves.data(), lambda_one.data(), slope.data(), 2.0, 0.5, begin, end,
+                                  x_one.data(), 1);
+    for (std::uint32_t f = 0; f < n; ++f) {
+      REQUIRE(Bits(x_wide[f].x) == Bits(x_one[f].x));
+      REQUIRE(Bits(x_wide[f].y) == Bits(x_one[f].y));
+    }
+  }
+  // The one at the rest density gets λ = −0, as std::max(0.0, 0.0) negated gives.
+  REQUIRE(std::signbit(lambda_one[3]));
+  REQUIRE(lambda_one[3] == 0.0);
+}

@@ -3,6 +3,7 @@
 // lane, and add into the particles in pair order, so the bits are the one-at-a-time loop's.
 #include "particles/fluid_pairs.h"
 
+#include <algorithm>
 #include <cmath>
 
 #if defined(__x86_64__)
@@ -73,6 +74,27 @@ void PullsBy1(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const dou
     const double w = fluid.kernel.W(r2, std::sqrt(r2));
     own[i] += (mass_over_density[j] * w) * (v[j] - v[i]);
     Target(own_end, j, own, spill) += (mass_over_density[i] * w) * (v[i] - v[j]);
+  }
+}
+
+void MultipliersBy1(const UniformPairs& fluid, const DensitySums* sums, const double* wall_denominator,
+                    double epsilon, std::uint32_t begin, std::uint32_t end, double* density, double* lambda) {
+  for (std::uint32_t f = begin; f < end; ++f) {
+    const DensitySums& sum = sums[f];
+    const double denominator = sum.denominator + (fluid.inv_mass * LengthSquared(sum.gradient) + wall_denominator[f]);
+    density[f] = sum.density;
+    // Only compression is pushed apart: a free surface, below the rest density, is left alone
+    // rather than pulled together.
+    const double c = std::max(0.0, sum.density * fluid.inv_rest - 1.0);
+    lambda[f] = -c / (denominator + epsilon);
+  }
+}
+
+void MoveBy1(const UniformPairs& fluid, const Vec2* moves, const double* lambda, const Vec2* wall_slope,
+             double wall_factor, double share, std::uint32_t begin, std::uint32_t end, Vec2* x) {
+  for (std::uint32_t f = begin; f < end; ++f) {
+    const Vec2 delta = fluid.inv_mass * (moves[f] + wall_factor * lambda[f] * wall_slope[f]);
+    x[f] += share * delta;
   }
 }
 
@@ -313,6 +335,57 @@ BALLBOX_AVX2 void PullsBy4(const UniformPairs& fluid, const Vec2* x, const Vec2*
   PullsBy1(fluid, x, v, mass_over_density, pairs.subspan(full), own, spill);
 }
 
+// MultipliersBy1 eight particles at a time: the sums of eight particles turned into lanes of
+// each quantity, then each lane does the scalar code's IEEE operations (max with +0 as
+// std::max(0.0, e) takes it, −c by its sign bit).
+BALLBOX_AVX512 void MultipliersBy8(const UniformPairs& fluid, const DensitySums* sums, const double* wall_denominator,
+                                   double epsilon, std::uint32_t begin, std::uint32_t end, double* density,
+                                   double* lambda) {
+  const __m512i low = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13), high = _mm512_setr_epi64(2, 6, 10, 14, 3, 7, 11, 15);
+  const __m512i firsts = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11), seconds = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+  const __m512d inv_mass = _mm512_set1_pd(fluid.inv_mass), inv_rest = _mm512_set1_pd(fluid.inv_rest);
+  const __m512d one = _mm512_set1_pd(1.0), eps = _mm512_set1_pd(epsilon);
+  const __m512i sign = _mm512_set1_epi64(static_cast<std::int64_t>(0x8000000000000000ull));
+  std::uint32_t f = begin;
+  for (; f + 8 <= end; f += 8) {
+    const double* const s = &sums[f].density;
+    const __m512d z0 = _mm512_loadu_pd(s), z1 = _mm512_loadu_pd(s + 8);
+    const __m512d z2 = _mm512_loadu_pd(s + 16), z3 = _mm512_loadu_pd(s + 24);
+    // (ρ, gx) and (gy, d) of particles 0-3, then of 4-7; then each quantity's eight.
+    const __m512d a = _mm512_permutex2var_pd(z0, low, z1), b = _mm512_permutex2var_pd(z0, high, z1);
+    const __m512d c = _mm512_permutex2var_pd(z2, low, z3), e = _mm512_permutex2var_pd(z2, high, z3);
+    const __m512d rho = _mm512_permutex2var_pd(a, firsts, c), gx = _mm512_permutex2var_pd(a, seconds, c);
+    const __m512d gy = _mm512_permutex2var_pd(b, firsts, e), d = _mm512_permutex2var_pd(b, seconds, e);
+    const __m512d g2 = _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy));
+    const __m512d denominator =
+        _mm512_add_pd(d, _mm512_add_pd(_mm512_mul_pd(inv_mass, g2), _mm512_loadu_pd(wall_denominator + f)));
+    _mm512_storeu_pd(density + f, rho);
+    // maskz here and below: GCC 12 warns of the undefined lanes the plain forms start from.
+    const __m512d squeeze =
+        _mm512_maskz_max_pd(0xff, _mm512_sub_pd(_mm512_mul_pd(rho, inv_rest), one), _mm512_setzero_pd());
+    const __m512d minus = _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(squeeze), sign));
+    _mm512_storeu_pd(lambda + f, _mm512_div_pd(minus, _mm512_add_pd(denominator, eps)));
+  }
+  MultipliersBy1(fluid, sums, wall_denominator, epsilon, f, end, density, lambda);
+}
+
+// MoveBy1 four particles (eight doubles) at a time.
+BALLBOX_AVX512 void MoveBy4(const UniformPairs& fluid, const Vec2* moves, const double* lambda, const Vec2* wall_slope,
+                            double wall_factor, double share, std::uint32_t begin, std::uint32_t end, Vec2* x) {
+  const __m512i twice = _mm512_setr_epi64(0, 0, 1, 1, 2, 2, 3, 3);
+  const __m512d factor = _mm512_set1_pd(wall_factor), inv_mass = _mm512_set1_pd(fluid.inv_mass);
+  const __m512d half = _mm512_set1_pd(share);
+  std::uint32_t f = begin;
+  for (; f + 4 <= end; f += 4) {
+    // Each particle's λ in both its lanes (x and y).
+    const __m512d l = _mm512_maskz_permutexvar_pd(0xff, twice, _mm512_maskz_loadu_pd(0x0f, lambda + f));
+    const __m512d pull = _mm512_mul_pd(_mm512_mul_pd(factor, l), _mm512_loadu_pd(&wall_slope[f].x));
+    const __m512d delta = _mm512_mul_pd(inv_mass, _mm512_add_pd(_mm512_loadu_pd(&moves[f].x), pull));
+    _mm512_storeu_pd(&x[f].x, _mm512_add_pd(_mm512_loadu_pd(&x[f].x), _mm512_mul_pd(half, delta)));
+  }
+  MoveBy1(fluid, moves, lambda, wall_slope, wall_factor, share, f, end, x);
+}
+
 bool HasAvx2() {
   static const bool avx2 = __builtin_cpu_supports("avx2");
   return avx2;
@@ -353,6 +426,23 @@ void AddPullsOfPairs(const UniformPairs& fluid, const Vec2* x, const Vec2* v, co
   if (lanes != 1 && HasAvx2()) return PullsBy4(fluid, x, v, mass_over_density, pairs, offsets, own, spill);
 #endif
   PullsBy1(fluid, x, v, mass_over_density, pairs, own, spill);
+}
+
+void MultipliersOf(const UniformPairs& fluid, const DensitySums* sums, const double* wall_denominator, double epsilon,
+                   std::uint32_t begin, std::uint32_t end, double* density, double* lambda, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes == 0 && HasAvx512()) return MultipliersBy8(fluid, sums, wall_denominator, epsilon, begin, end, density, lambda);
+#endif
+  MultipliersBy1(fluid, sums, wall_denominator, epsilon, begin, end, density, lambda);
+}
+
+void MoveParticles(const UniformPairs& fluid, const Vec2* moves, const double* lambda, const Vec2* wall_slope,
+                   double wall_factor, double share, std::uint32_t begin, std::uint32_t end, Vec2* x,
+                   [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes == 0 && HasAvx512()) return MoveBy4(fluid, moves, lambda, wall_slope, wall_factor, share, begin, end, x);
+#endif
+  MoveBy1(fluid, moves, lambda, wall_slope, wall_factor, share, begin, end, x);
 }
 
 }  // namespace engine::detail

@@ -46,6 +46,20 @@ void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const
 void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
                      const double* lambda, const double* terms, Vec2* own, Vec2* spill, int lanes = 0);
 
+/// Each particle's density and PBF multiplier from its sums (Macklin and Müller 2013, eq. 11),
+/// for f in [begin, end): density[f] = ρ = sums[f].density and
+/// lambda[f] = −max(0, ρ·ρ0⁻¹ − 1) / ((d + (m⁻¹·|g|² + wall_denominator[f])) + epsilon), d and g
+/// the sums' denominator and gradient. Eight particles at a time with AVX-512 where the processor
+/// has it (`lanes` 0), else one at a time (`lanes` 1), the same bits.
+void MultipliersOf(const UniformPairs& fluid, const DensitySums* sums, const double* wall_denominator, double epsilon,
+                   std::uint32_t begin, std::uint32_t end, double* density, double* lambda, int lanes = 0);
+
+/// The particles moved by their moves, for f in [begin, end):
+/// x[f] += share·(m⁻¹·(moves[f] + (wall_factor·lambda[f])·wall_slope[f])); four particles at a
+/// time with AVX-512 where the processor has it (`lanes` 0), else one (`lanes` 1), the same bits.
+void MoveParticles(const UniformPairs& fluid, const Vec2* moves, const double* lambda, const Vec2* wall_slope,
+                   double wall_factor, double share, std::uint32_t begin, std::uint32_t end, Vec2* x, int lanes = 0);
+
 /// XSPH's pulls (ApplyViscosity), for any fluid (of `fluid` only the kernel and own_end count):
 /// for each pair (i, j) in order, with W at x_i − x_j, adds (m_j/ρ_j·W)·(v_j − v_i) to i's pull
 /// and (m_i/ρ_i·W)·(v_i − v_j) to j's, `mass_over_density` holding each particle's m/ρ.

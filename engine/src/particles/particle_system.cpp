@@ -537,6 +537,16 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
   }
   moves_.resize(n);
   spill_moves_.resize(n);
+  // A fluid of one kind's in blocks of particles, lanes at a time where the processor has them.
+  const std::uint32_t blocks = (n + kMinParallel - 1) / kMinParallel;
+  const auto block_end = [&](std::uint32_t b) { return std::min(n, (b + 1) * kMinParallel); };
+  if (uniform) {
+    pool_->ParallelFor(blocks, 2, [&](std::uint32_t b) {
+      MultipliersOf(one_kind, sums_.data(), wall_denominator_.data(), epsilon, b * kMinParallel, block_end(b),
+                    fluid_.density.data(), lambda_.data());
+    });
+    std::fill(moves_.begin(), moves_.end(), Vec2{});
+  } else {
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const DensitySums& sum = sums_[f];
     const double density = sum.density;
@@ -551,6 +561,7 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
     lambda_[f] = -c / (denominator + epsilon);
     lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
   });
+  }
   // The walls' side (before any particle moves).
   PushWalls(h, pushes);
   // The moves (eq. 14 with unequal masses), with the artificial pressure against clumping.
@@ -582,6 +593,13 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
   // Jacobi: a pair pushes each of its particles from both their constraints, which in a
   // uniformly squeezed fluid moves them twice as far as either needs; half of it converges.
   Vec2* const x = x_.data() + first;
+  if (uniform) {
+    pool_->ParallelFor(blocks, 2, [&](std::uint32_t b) {
+      MoveParticles(one_kind, moves_.data(), lambda_.data(), wall_slope_.data(), kWallFactor, kJacobiShare,
+                    b * kMinParallel, block_end(b), x);
+    });
+    return;
+  }
   pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
     const Vec2 delta = inv_mass[first + f] * (moves_[f] + kWallFactor * lambda_[f] * wall_slope_[f]);
     x[f] += kJacobiShare * delta;
