@@ -482,3 +482,40 @@ TEST_CASE("a fluid of one kind's multipliers and moves, lanes at a time, are one
   REQUIRE(std::signbit(lambda_one[3]));
   REQUIRE(lambda_one[3] == 0.0);
 }
+
+TEST_CASE("a substep's prediction and velocities, particles lanes at a time, are one at a time's bits", "[fluid]") {
+  // PredictParticles and VelocitiesOfMoves at the widest lanes against one at a time, over
+  // ranges with tails, with pinned particles (no inverse mass) among them.
+  std::uint64_t state = 13;
+  const std::uint32_t n = 23;
+  std::vector<Vec2> x(n), v(n);
+  std::vector<double> inv_mass(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    x[i] = {Uniform(state), Uniform(state)};
+    v[i] = {Uniform(state) - 0.5, Uniform(state) - 0.5};
+    inv_mass[i] = i % 5 == 2 ? 0.0 : 1.0 + Uniform(state);
+  }
+  const double h = 1.0 / 480.0;
+  for (const auto& [begin, end] : {std::pair{0u, n}, std::pair{3u, 10u}, std::pair{6u, 7u}}) {
+    std::vector<Vec2> x_wide = x, v_wide = v, previous_wide(n), x_one = x, v_one = v, previous_one(n);
+    engine::detail::PredictParticles({0.0, -9.81}, h, inv_mass.data(), begin, end, x_wide.data(), v_wide.data(),
+                                     previous_wide.data());
+    engine::detail::PredictParticles({0.0, -9.81}, h, inv_mass.data(), begin, end, x_one.data(), v_one.data(),
+                                     previous_one.data(), 1);
+    // A pinned particle stays where it was put, with its velocity.
+    REQUIRE(Bits(x_wide[7].x) == Bits(x[7].x));
+    REQUIRE(Bits(v_wide[7].y) == Bits(v[7].y));
+    for (std::uint32_t i = 0; i < n; ++i) {
+      x_wide[i] += Vec2{1e-3 * Uniform(state), 0.0};
+      x_one[i] = x_wide[i];
+    }
+    engine::detail::VelocitiesOfMoves(h, x_wide.data(), previous_wide.data(), begin, end, v_wide.data());
+    engine::detail::VelocitiesOfMoves(h, x_one.data(), previous_one.data(), begin, end, v_one.data(), 1);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      REQUIRE(Bits(previous_wide[i].x) == Bits(previous_one[i].x));
+      REQUIRE(Bits(previous_wide[i].y) == Bits(previous_one[i].y));
+      REQUIRE(Bits(v_wide[i].x) == Bits(v_one[i].x));
+      REQUIRE(Bits(v_wide[i].y) == Bits(v_one[i].y));
+    }
+  }
+}

@@ -98,6 +98,20 @@ void MoveBy1(const UniformPairs& fluid, const Vec2* moves, const double* lambda,
   }
 }
 
+void PredictBy1(Vec2 gravity, double h, const double* inv_mass, std::uint32_t begin, std::uint32_t end, Vec2* x, Vec2* v,
+                Vec2* previous) {
+  for (std::uint32_t i = begin; i < end; ++i) {
+    previous[i] = x[i];
+    if (inv_mass[i] == 0.0) continue;
+    v[i] += h * gravity;
+    x[i] += h * v[i];
+  }
+}
+
+void VelocitiesBy1(double h, const Vec2* x, const Vec2* previous, std::uint32_t begin, std::uint32_t end, Vec2* v) {
+  for (std::uint32_t i = begin; i < end; ++i) v[i] = (x[i] - previous[i]) / h;
+}
+
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
 #define BALLBOX_AVX2 __attribute__((target("avx2")))
 
@@ -386,6 +400,39 @@ BALLBOX_AVX512 void MoveBy4(const UniformPairs& fluid, const Vec2* moves, const 
   MoveBy1(fluid, moves, lambda, wall_slope, wall_factor, share, f, end, x);
 }
 
+// PredictBy1 four particles (eight doubles) at a time; a particle of no inverse mass keeps its
+// velocity and position (masked lanes).
+BALLBOX_AVX512 void PredictBy4(Vec2 gravity, double h, const double* inv_mass, std::uint32_t begin, std::uint32_t end,
+                               Vec2* x, Vec2* v, Vec2* previous) {
+  const __m512d hs = _mm512_set1_pd(h);
+  const __m512i twice = _mm512_setr_epi64(0, 0, 1, 1, 2, 2, 3, 3);
+  const __m512d fall = _mm512_setr_pd(h * gravity.x, h * gravity.y, h * gravity.x, h * gravity.y, h * gravity.x,
+                                      h * gravity.y, h * gravity.x, h * gravity.y);
+  std::uint32_t i = begin;
+  for (; i + 4 <= end; i += 4) {
+    const __m512d xi = _mm512_loadu_pd(&x[i].x);
+    _mm512_storeu_pd(&previous[i].x, xi);
+    // Each particle's two lanes where its inverse mass is not 0 (maskz: as in Half).
+    const __m512d masses = _mm512_maskz_permutexvar_pd(0xff, twice, _mm512_maskz_loadu_pd(0x0f, inv_mass + i));
+    const __mmask8 moving = _mm512_cmp_pd_mask(masses, _mm512_setzero_pd(), _CMP_NEQ_UQ);
+    const __m512d vi = _mm512_add_pd(_mm512_loadu_pd(&v[i].x), fall);
+    _mm512_mask_storeu_pd(&v[i].x, moving, vi);
+    _mm512_mask_storeu_pd(&x[i].x, moving, _mm512_add_pd(xi, _mm512_mul_pd(hs, vi)));
+  }
+  PredictBy1(gravity, h, inv_mass, i, end, x, v, previous);
+}
+
+// VelocitiesBy1 four particles at a time.
+BALLBOX_AVX512 void VelocitiesBy4(double h, const Vec2* x, const Vec2* previous, std::uint32_t begin, std::uint32_t end,
+                                  Vec2* v) {
+  const __m512d hs = _mm512_set1_pd(h);
+  std::uint32_t i = begin;
+  for (; i + 4 <= end; i += 4) {
+    _mm512_storeu_pd(&v[i].x, _mm512_div_pd(_mm512_sub_pd(_mm512_loadu_pd(&x[i].x), _mm512_loadu_pd(&previous[i].x)), hs));
+  }
+  VelocitiesBy1(h, x, previous, i, end, v);
+}
+
 bool HasAvx2() {
   static const bool avx2 = __builtin_cpu_supports("avx2");
   return avx2;
@@ -443,6 +490,22 @@ void MoveParticles(const UniformPairs& fluid, const Vec2* moves, const double* l
   if (lanes == 0 && HasAvx512()) return MoveBy4(fluid, moves, lambda, wall_slope, wall_factor, share, begin, end, x);
 #endif
   MoveBy1(fluid, moves, lambda, wall_slope, wall_factor, share, begin, end, x);
+}
+
+void PredictParticles(Vec2 gravity, double h, const double* inv_mass, std::uint32_t begin, std::uint32_t end, Vec2* x,
+                      Vec2* v, Vec2* previous, [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes == 0 && HasAvx512()) return PredictBy4(gravity, h, inv_mass, begin, end, x, v, previous);
+#endif
+  PredictBy1(gravity, h, inv_mass, begin, end, x, v, previous);
+}
+
+void VelocitiesOfMoves(double h, const Vec2* x, const Vec2* previous, std::uint32_t begin, std::uint32_t end, Vec2* v,
+                       [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes == 0 && HasAvx512()) return VelocitiesBy4(h, x, previous, begin, end, v);
+#endif
+  VelocitiesBy1(h, x, previous, begin, end, v);
 }
 
 }  // namespace engine::detail

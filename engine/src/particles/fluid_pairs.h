@@ -60,6 +60,17 @@ void MultipliersOf(const UniformPairs& fluid, const DensitySums* sums, const dou
 void MoveParticles(const UniformPairs& fluid, const Vec2* moves, const double* lambda, const Vec2* wall_slope,
                    double wall_factor, double share, std::uint32_t begin, std::uint32_t end, Vec2* x, int lanes = 0);
 
+/// A substep's prediction for particles [begin, end): previous[i] = x[i], then, where
+/// inv_mass[i] ≠ 0, v[i] += h·gravity and x[i] += h·v[i]. Four particles at a time with AVX-512
+/// where the processor has it (`lanes` 0), else one (`lanes` 1), the same bits.
+void PredictParticles(Vec2 gravity, double h, const double* inv_mass, std::uint32_t begin, std::uint32_t end, Vec2* x,
+                      Vec2* v, Vec2* previous, int lanes = 0);
+
+/// A substep's velocities for particles [begin, end): v[i] = (x[i] − previous[i]) / h; lanes
+/// as for PredictParticles.
+void VelocitiesOfMoves(double h, const Vec2* x, const Vec2* previous, std::uint32_t begin, std::uint32_t end, Vec2* v,
+                       int lanes = 0);
+
 /// XSPH's pulls (ApplyViscosity), for any fluid (of `fluid` only the kernel and own_end count):
 /// for each pair (i, j) in order, with W at x_i − x_j, adds (m_j/ρ_j·W)·(v_j − v_i) to i's pull
 /// and (m_i/ρ_i·W)·(v_i − v_j) to j's, `mass_over_density` holding each particle's m/ρ.

@@ -259,12 +259,8 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
         c.world_surface = p.center + Rotate(p.rotation, c.surface);
       }
     }
-    for (std::size_t i = 0; i < x_.size(); ++i) {
-      previous_[i] = x_[i];
-      if (inv_mass_[i] == 0.0) continue;
-      v_[i] += h * def.gravity;
-      x_[i] += h * v_[i];
-    }
+    const auto count = static_cast<std::uint32_t>(x_.size());
+    PredictParticles(def.gravity, h, inv_mass_.data(), 0, count, x_.data(), v_.data(), previous_.data());
     for (int pass = 0; pass < def.particles.iterations; ++pass) {
       // Contacts between particles are swept forward and back on alternate passes (see
       // SolveParticleContacts); a soft body's own constraints go by colour (OrderByColour).
@@ -280,7 +276,7 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       SolveAttachments(h, pushes_);
       SolveBodyContacts(h, def.max_push_out_speed, pushes_);
     }
-    for (std::size_t i = 0; i < x_.size(); ++i) v_[i] = (x_[i] - previous_[i]) / h;
+    VelocitiesOfMoves(h, x_.data(), previous_.data(), 0, count, v_.data());
     for (const SoftBodyId id : soft_live_ids_) DampSoftBody(soft_[id.index], h, x_, v_, inv_mass_);
   }
   if (FluidCount() > 0) {
