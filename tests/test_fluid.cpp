@@ -441,9 +441,9 @@ TEST_CASE("the grid's search finds every pair within reach, fluid pairs sorted, 
 }
 
 TEST_CASE("a fluid of one kind's multipliers and moves, lanes at a time, are one particle at a time's bits", "[fluid]") {
-  // MultipliersOf and MoveParticles at the widest lanes (eight and four particles with AVX-512)
-  // against one at a time, over ranges with tails: particles squeezed and not and one exactly
-  // at the rest density, from random sums.
+  // InitialSums, MultipliersOf and MoveParticles at the widest lanes (eight and four particles
+  // with AVX-512) against one at a time, over ranges with tails: particles squeezed and not and
+  // one exactly at the rest density, from random sums.
   const engine::detail::SphKernels k(0.125);
   const engine::detail::UniformPairs fluid{k, 0.9, 1.0 / 0.9, 1.0 / 1000.0, 3.1, -0.004, 0};
   std::uint64_t state = 11;
@@ -459,6 +459,22 @@ TEST_CASE("a fluid of one kind's multipliers and moves, lanes at a time, are one
     x[f] = {Uniform(state), Uniform(state)};
   }
   sums[3].density = 1000.0;
+  // The sums' starting values, from the walls' shares and slopes.
+  {
+    std::vector<double> share(n);
+    for (double& a : share) a = Uniform(state) < 0.5 ? 0.0 : Uniform(state);
+    std::vector<engine::detail::DensitySums> wide(n), one(n);
+    for (const auto& [begin, end] : {std::pair{0u, n}, std::pair{5u, 13u}, std::pair{9u, 10u}}) {
+      engine::detail::InitialSums(fluid, 0.7, 1000.0, share.data(), slope.data(), begin, end, wide.data());
+      engine::detail::InitialSums(fluid, 0.7, 1000.0, share.data(), slope.data(), begin, end, one.data(), 1);
+      for (std::uint32_t f = 0; f < n; ++f) {
+        REQUIRE(Bits(wide[f].density) == Bits(one[f].density));
+        REQUIRE(Bits(wide[f].gradient.x) == Bits(one[f].gradient.x));
+        REQUIRE(Bits(wide[f].gradient.y) == Bits(one[f].gradient.y));
+        REQUIRE(Bits(wide[f].denominator) == Bits(one[f].denominator));
+      }
+    }
+  }
   for (const auto& [begin, end] : {std::pair{0u, n}, std::pair{5u, 13u}, std::pair{7u, 8u}}) {
     engine::detail::MultipliersOf(fluid, sums.data(), wall_denominator.data(), 0.01, begin, end, density_wide.data(),
                                   lambda_wide.data());

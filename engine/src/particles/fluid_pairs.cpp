@@ -77,6 +77,11 @@ void PullsBy1(const UniformPairs& fluid, const Vec2* x, const Vec2* v, const dou
   }
 }
 
+void InitialSumsBy1(double self, double rest_density, const double* wall_share, const Vec2* wall_slope,
+                    std::uint32_t begin, std::uint32_t end, DensitySums* sums) {
+  for (std::uint32_t f = begin; f < end; ++f) sums[f] = {self + rest_density * wall_share[f], wall_slope[f], 0.0};
+}
+
 void MultipliersBy1(const UniformPairs& fluid, const DensitySums* sums, const double* wall_denominator,
                     double epsilon, std::uint32_t begin, std::uint32_t end, double* density, double* lambda) {
   for (std::uint32_t f = begin; f < end; ++f) {
@@ -349,6 +354,28 @@ BALLBOX_AVX2 void PullsBy4(const UniformPairs& fluid, const Vec2* x, const Vec2*
   PullsBy1(fluid, x, v, mass_over_density, pairs.subspan(full), own, spill);
 }
 
+// InitialSumsBy1 eight particles at a time: each particle's (ρ, slope, 0) put together from
+// the lanes of ρ and the slopes as they lie (x, y).
+BALLBOX_AVX512 void InitialSumsBy8(double self, double rest_density, const double* wall_share, const Vec2* wall_slope,
+                                   std::uint32_t begin, std::uint32_t end, DensitySums* sums) {
+  const __m512d own = _mm512_set1_pd(self), rest = _mm512_set1_pd(rest_density);
+  // Indices into (ρ of eight, then four slopes): two particles' sums a vector, lane 3 and 7
+  // left +0.
+  const __m512i pair01 = _mm512_setr_epi64(0, 8, 9, 0, 1, 10, 11, 0), pair23 = _mm512_setr_epi64(2, 12, 13, 0, 3, 14, 15, 0);
+  const __m512i pair45 = _mm512_setr_epi64(4, 8, 9, 0, 5, 10, 11, 0), pair67 = _mm512_setr_epi64(6, 12, 13, 0, 7, 14, 15, 0);
+  std::uint32_t f = begin;
+  for (; f + 8 <= end; f += 8) {
+    const __m512d rho = _mm512_add_pd(own, _mm512_mul_pd(rest, _mm512_loadu_pd(wall_share + f)));
+    const __m512d slopes03 = _mm512_loadu_pd(&wall_slope[f].x), slopes47 = _mm512_loadu_pd(&wall_slope[f + 4].x);
+    double* const out = &sums[f].density;
+    _mm512_storeu_pd(out, _mm512_maskz_permutex2var_pd(0x77, rho, pair01, slopes03));
+    _mm512_storeu_pd(out + 8, _mm512_maskz_permutex2var_pd(0x77, rho, pair23, slopes03));
+    _mm512_storeu_pd(out + 16, _mm512_maskz_permutex2var_pd(0x77, rho, pair45, slopes47));
+    _mm512_storeu_pd(out + 24, _mm512_maskz_permutex2var_pd(0x77, rho, pair67, slopes47));
+  }
+  InitialSumsBy1(self, rest_density, wall_share, wall_slope, f, end, sums);
+}
+
 // MultipliersBy1 eight particles at a time: the sums of eight particles turned into lanes of
 // each quantity, then each lane does the scalar code's IEEE operations (max with +0 as
 // std::max(0.0, e) takes it, −c by its sign bit).
@@ -506,6 +533,15 @@ void VelocitiesOfMoves(double h, const Vec2* x, const Vec2* previous, std::uint3
   if (lanes == 0 && HasAvx512()) return VelocitiesBy4(h, x, previous, begin, end, v);
 #endif
   VelocitiesBy1(h, x, previous, begin, end, v);
+}
+
+void InitialSums([[maybe_unused]] const UniformPairs& fluid, double self, double rest_density, const double* wall_share,
+                 const Vec2* wall_slope, std::uint32_t begin, std::uint32_t end, DensitySums* sums,
+                 [[maybe_unused]] int lanes) {
+#ifdef BALLBOX_AVX2_AT_RUN_TIME
+  if (lanes == 0 && HasAvx512()) return InitialSumsBy8(self, rest_density, wall_share, wall_slope, begin, end, sums);
+#endif
+  InitialSumsBy1(self, rest_density, wall_share, wall_slope, begin, end, sums);
 }
 
 }  // namespace engine::detail

@@ -46,6 +46,12 @@ void AddDensityOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const
 void AddMovesOfPairs(const UniformPairs& fluid, const Vec2* x, std::span<const ParticlePair> pairs,
                      const double* lambda, const double* terms, Vec2* own, Vec2* spill, int lanes = 0);
 
+/// Each particle's own part of its density sums, for f in [begin, end): sums[f] = (m·W(0) +
+/// ρ0·wall_share[f], wall_slope[f], 0), `self` being m·W(0); eight particles at a time with
+/// AVX-512 where the processor has it (`lanes` 0), else one (`lanes` 1), the same bits.
+void InitialSums(const UniformPairs& fluid, double self, double rest_density, const double* wall_share,
+                 const Vec2* wall_slope, std::uint32_t begin, std::uint32_t end, DensitySums* sums, int lanes = 0);
+
 /// Each particle's density and PBF multiplier from its sums (Macklin and Müller 2013, eq. 11),
 /// for f in [begin, end): density[f] = ρ = sums[f].density and
 /// lambda[f] = −max(0, ρ·ρ0⁻¹ − 1) / ((d + (m⁻¹·|g|² + wall_denominator[f])) + epsilon), d and g

@@ -494,8 +494,13 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
   sums_.resize(n);
   spill_sums_.resize(n);
   for (const auto& [begin, end] : spill_rows_) std::fill(spill_sums_.begin() + begin, spill_sums_.begin() + end, DensitySums{});
-  for (std::uint32_t f = 0; f < n; ++f) {
-    sums_[f] = {fluid_.mass[f] * k.W(0.0, 0.0) + fluid_.rest_density[f] * wall_share_[f], wall_slope_[f], 0.0};
+  if (uniform) {
+    InitialSums(one_kind, mass[0] * k.W(0.0, 0.0), fluid_.rest_density[0], wall_share_.data(), wall_slope_.data(), 0, n,
+                sums_.data());
+  } else {
+    for (std::uint32_t f = 0; f < n; ++f) {
+      sums_[f] = {fluid_.mass[f] * k.W(0.0, 0.0) + fluid_.rest_density[f] * wall_share_[f], wall_slope_[f], 0.0};
+    }
   }
   DensitySums* const sums = sums_.data();
   DensitySums* const spill_sums = spill_sums_.data();
