@@ -216,8 +216,6 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
       p.inv_mass = bodies.infos[b].inv_mass;
       p.inv_inertia = bodies.infos[b].inv_inertia;
     }
-    // A sleeping body that can move is pushed for its waking impulse.
-    p.fixed = p.inv_mass == 0.0 && p.inv_inertia == 0.0 && (awake[b] || HasInfiniteMass(bodies.infos[b]));
     touched_.push_back(b);
   };
   for (const PlaneContact& c : planes_) touch(c.body);
@@ -232,6 +230,11 @@ void ParticleSystem::Step(const WorldDef& def, Bodies& bodies, std::span<const s
     BodyPush& p = pushes_[b];
     p.center = start_center(b);
     p.rotation = MakeRot(start_angle(b));
+    // Fixed: the particles cannot push it (a sleeping body that can move is pushed for its
+    // waking impulse) and it does not move through the step (a kinematic body sweeping through
+    // the water does: its planes turn with it each substep).
+    const bool unpushed = p.inv_mass == 0.0 && p.inv_inertia == 0.0 && (awake[b] || HasInfiniteMass(bodies.infos[b]));
+    p.fixed = unpushed && p.end_center == p.center && start_angle(b) == bodies.states[b].angle;
   }
   previous_.resize(x_.size());
   for (int step = 0; step < substeps; ++step) {

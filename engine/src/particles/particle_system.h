@@ -91,9 +91,10 @@ class ParticleSystem {
     Vec2 center, last_center;
     Rot rotation, last_rotation;
     bool touched = false;
-    /// Nothing the particles do moves it or is read from it (a static or kinematic body, or an
-    /// awake one of infinite mass): its pose is the same bits every substep, and pushing it
-    /// changes only signs of zeros that are never read (see PushWalls).
+    /// It does not move through the step, and nothing the particles do moves it or is read
+    /// from it (a static body, or a kinematic one or an awake one of infinite mass at rest):
+    /// its pose is the same bits every substep, and pushing it changes only signs of zeros that
+    /// are never read (see PushWalls).
     bool fixed = false;
   };
   /// A body face a particle may touch this step, in the body's centre-of-mass frame.
