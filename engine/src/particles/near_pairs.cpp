@@ -4,6 +4,8 @@
 
 #if defined(__x86_64__)
 #include <immintrin.h>
+
+#include "particles/keep_table.h"
 #define BALLBOX_AVX2_AT_RUN_TIME 1
 #endif
 
@@ -30,19 +32,6 @@ std::uint32_t PairsWithinBy1(const Vec2* x, std::span<const ParticlePair> pairs,
 }
 
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
-// For each 4-bit mask of lanes kept, the 32-bit lanes that move the kept pairs to the front.
-struct KeepTable {
-  alignas(32) std::int32_t lanes[16][8];
-  constexpr KeepTable() : lanes{} {
-    for (int mask = 0; mask < 16; ++mask) {
-      int at = 0;
-      for (int q = 0; q < 4; ++q) {
-        if (mask & (1 << q)) lanes[mask][2 * at] = 2 * q, lanes[mask][2 * at + 1] = 2 * q + 1, ++at;
-      }
-    }
-  }
-};
-constexpr KeepTable kKeep;
 
 // The x and y of particles a, b, c, d as two vectors (lanes in that order).
 __attribute__((target("avx2"))) inline void Gather4(const Vec2* x, std::uint32_t a, std::uint32_t b,

@@ -8,6 +8,8 @@
 
 #if defined(__x86_64__)
 #include <immintrin.h>
+
+#include "particles/keep_table.h"
 #define BALLBOX_AVX2_AT_RUN_TIME 1
 #endif
 
@@ -33,19 +35,6 @@ std::size_t NearRunBy1(const Vec2* x, const std::uint32_t* order, std::uint32_t 
 }
 
 #ifdef BALLBOX_AVX2_AT_RUN_TIME
-// For each 4-bit mask of candidates kept, the 32-bit lanes that move the kept pairs to the front.
-struct KeepTable {
-  alignas(32) std::int32_t lanes[16][8];
-  constexpr KeepTable() : lanes{} {
-    for (int mask = 0; mask < 16; ++mask) {
-      int at = 0;
-      for (int q = 0; q < 4; ++q) {
-        if (mask & (1 << q)) lanes[mask][2 * at] = 2 * q, lanes[mask][2 * at + 1] = 2 * q + 1, ++at;
-      }
-    }
-  }
-};
-constexpr KeepTable kKeep;
 
 // NearRunBy1 four candidates at a time: each lane's distance is the same IEEE operations, and
 // the kept pairs are packed in order, so the same pairs. Candidates numbered one after another
