@@ -13,18 +13,6 @@ namespace engine::detail {
 
 namespace {
 
-// The 2×2 effective mass of a point shared by two bodies: K = (mA + mB)·I + iA·[rA]ᵀ[rA] + ….
-struct Mat22 {
-  double k11, k12, k22;
-};
-
-Mat22 PointMass(const JointWork& w) {
-  const double m = w.ma + w.mb;
-  return {m + w.ia * w.ra.y * w.ra.y + w.ib * w.rb.y * w.rb.y,
-          -w.ia * w.ra.x * w.ra.y - w.ib * w.rb.x * w.rb.y,
-          m + w.ia * w.ra.x * w.ra.x + w.ib * w.rb.x * w.rb.x};
-}
-
 // K⁻¹·v, or zero when K is singular (both bodies of infinite mass: nothing to solve).
 Vec2 Solve22(const Mat22& k, Vec2 v) {
   const double det = k.k11 * k.k22 - k.k12 * k.k12;
@@ -146,6 +134,13 @@ double ClampedStep(double* accumulated, double step) {
 bool HasSpring(const Joint& j) { return j.def.spring.has_value(); }
 
 }  // namespace
+
+Mat22 PointMass(const JointWork& w) {
+  const double m = w.ma + w.mb;
+  return {m + w.ia * w.ra.y * w.ra.y + w.ib * w.rb.y * w.rb.y,
+          -w.ia * w.ra.x * w.ra.y - w.ib * w.rb.x * w.rb.y,
+          m + w.ia * w.ra.x * w.ra.x + w.ib * w.rb.x * w.rb.x};
+}
 
 bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
                           std::span<const BodyInfo> infos, std::span<const std::uint8_t> moving,

@@ -55,6 +55,12 @@ struct JointWork {
   double drift_axis;        ///< prismatic: along the axis; distance: of the length
 };
 
+/// The 2×2 effective mass of a point shared by two bodies: K = (mA + mB)·I + iA·[rA]ᵀ[rA] + ….
+struct Mat22 {
+  double k11, k12, k22;
+};
+Mat22 PointMass(const JointWork& w);
+
 class JointSolver {
  public:
   /// Per step: the acting joints with a moving body, in slot order. False when there are none.

@@ -104,12 +104,9 @@ void WideJoints::LoadFrames(std::span<const JointWork> work, WorkerPool& pool) {
       k.arm_b_y[lane] = w.rb.y;
       k.separation_x[lane] = w.separation.x;
       k.separation_y[lane] = w.separation.y;
-      // PointMass and Solve22's determinant, in their order. A joint in lanes has a moving
-      // body, so K ≥ its inverse mass · I and the determinant is positive.
-      const double m = w.ma + w.mb;
-      const double k11 = m + w.ia * w.ra.y * w.ra.y + w.ib * w.rb.y * w.rb.y;
-      const double k12 = -w.ia * w.ra.x * w.ra.y - w.ib * w.rb.x * w.rb.y;
-      const double k22 = m + w.ia * w.ra.x * w.ra.x + w.ib * w.rb.x * w.rb.x;
+      // Solve22's determinant, in its order. A joint in lanes has a moving body, so
+      // K ≥ its inverse mass · I and the determinant is positive.
+      const auto [k11, k12, k22] = PointMass(w);
       const double det = k11 * k22 - k12 * k12;
       k.k11[lane] = k11;
       k.k12[lane] = k12;
