@@ -551,20 +551,20 @@ void ParticleSystem::DensityAndMoves(const SphKernels& k, double h, std::vector<
     });
     std::fill(moves_.begin(), moves_.end(), Vec2{});
   } else {
-  pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
-    const DensitySums& sum = sums_[f];
-    const double density = sum.density;
-    const Vec2 gradient_i = sum.gradient;
-    const double denominator =
-        sum.denominator + (inv_mass[first + f] * LengthSquared(gradient_i) + wall_denominator_[f]);
-    fluid_.density[f] = density;
-    moves_[f] = Vec2{};
-    // Only compression is pushed apart: a free surface, below the rest density, is left alone
-    // rather than pulled together.
-    const double c = std::max(0.0, density * inv_rest[f] - 1.0);
-    lambda_[f] = -c / (denominator + epsilon);
-    lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
-  });
+    pool_->ParallelFor(n, kMinParallel, [&](std::uint32_t f) {
+      const DensitySums& sum = sums_[f];
+      const double density = sum.density;
+      const Vec2 gradient_i = sum.gradient;
+      const double denominator =
+          sum.denominator + (inv_mass[first + f] * LengthSquared(gradient_i) + wall_denominator_[f]);
+      fluid_.density[f] = density;
+      moves_[f] = Vec2{};
+      // Only compression is pushed apart: a free surface, below the rest density, is left alone
+      // rather than pulled together.
+      const double c = std::max(0.0, density * inv_rest[f] - 1.0);
+      lambda_[f] = -c / (denominator + epsilon);
+      lambda_over_rest_[f] = lambda_[f] * inv_rest[f];
+    });
   }
   // The walls' side (before any particle moves).
   PushWalls(h, pushes);

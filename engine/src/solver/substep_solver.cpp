@@ -363,8 +363,6 @@ void SubstepSolver::FindLoadedBodies(const StepContext& context) {
   if (context.joints) context.joints->MarkBodies(&loaded_);
 }
 
-// A body's turn is worked out again only where it changed (after the push-out, most bodies'
-// did not): MakeRot is the most costly part of a turning substep outside the passes.
 // A bounce's lag moves the pair after the substeps, where no contact would stop it: moved into a
 // third body, a body stays in it. In a tall rain of circles the lags pressed the pile 44 cm deep
 // into itself (circles 50 cm across), and it took seconds to come apart. A lag that would
@@ -411,6 +409,8 @@ void SubstepSolver::DropClosingLags(const StepContext& context, std::span<const 
   }
 }
 
+// A body's turn is worked out again only where it changed (after the push-out, most bodies'
+// did not): MakeRot is the most costly part of a turning substep outside the passes.
 void SubstepSolver::UpdateTurned(const StepContext& context) {
   for (std::size_t i = 0; i < context.states.size(); ++i) {
     if (context.infos[i].inv_inertia == 0.0) {
