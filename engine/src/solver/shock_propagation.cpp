@@ -61,40 +61,53 @@ template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built) {
   if (!levels_built) BuildShockLevels(constraints, infos, scratch);
-  const std::size_t reached = scratch->reached;
+  WriteShockRows(constraints, {}, up, scratch);
+  SortShockRows(scratch, rows);
+}
+
+template <typename C>
+void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_t> slot, Vec2 up,
+                    ShockScratch* scratch, WorkerPool* pool) {
   const std::span<const std::uint32_t> level = scratch->level;
   // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
   // static after all levels), or one past that for the rest. A counting sort by bucket is
   // linear and stable, so ties stay in constraint order, and the supporting rows come first.
-  // Every constraint is sorted, without a branch on whether it supports: which ones do is as
+  // Every constraint gets a row, without a branch on whether it supports: which ones do is as
   // good as random, and mispredicted branches cost more than writing the rows.
-  const std::uint32_t unreached_bucket = static_cast<std::uint32_t>(reached);
+  const auto unreached_bucket = static_cast<std::uint32_t>(scratch->reached);
   const std::uint32_t other_bucket = unreached_bucket + 1;
-  std::vector<std::uint32_t>& bucket = scratch->bucket;
-  bucket.resize(constraints.size());
-  std::vector<std::uint32_t>& first = scratch->first;
-  first.assign(other_bucket + 2, 0);
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    const C& c = constraints[i];
+  scratch->bucket.resize(constraints.size());
+  scratch->unsorted.resize(constraints.size());
+  const auto write = [&](std::uint32_t j) {
+    const C& c = constraints[j];
     const std::uint32_t level_a = level[c.a], level_b = level[c.b];
     // Support (the header says why only this): the normal within 45° of up, from the lower
     // body (by level) to the upper one, between bodies that cannot turn.
     const double support = Dot(c.normal, up) * (level_a <= level_b ? 1.0 : -1.0);
     const bool supports = !Turns(c) && support >= 0.70710678118654752;
     const std::uint32_t lower = std::min(level_a, level_b);
-    bucket[i] = !supports ? other_bucket : lower == kUnreached ? unreached_bucket : lower;
-    ++first[bucket[i] + 1];
+    scratch->bucket[j] = !supports ? other_bucket : lower == kUnreached ? unreached_bucket : lower;
+    // Which body gives: the upper one alone, or both by mass on one level.
+    scratch->unsorted[j] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
+                            level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
+  };
+  if (slot.empty()) {
+    for (std::uint32_t j = 0; j < constraints.size(); ++j) write(j);
+  } else {
+    ForEachIndex(pool, slot.size(), kMinSharedContacts, [&](std::uint32_t i) { write(slot[i]); });
   }
+}
+
+void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows) {
+  const std::span<const std::uint32_t> bucket = scratch->bucket;
+  const std::uint32_t other_bucket = static_cast<std::uint32_t>(scratch->reached) + 1;
+  std::vector<std::uint32_t>& first = scratch->first;
+  first.assign(other_bucket + 2, 0);
+  for (const std::uint32_t b : bucket) ++first[b + 1];
   for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
   const std::size_t supporting = first[other_bucket];
-  rows->resize(constraints.size());
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    const C& c = constraints[i];
-    // Which body gives: the upper one alone, or both by mass on one level.
-    const std::uint32_t level_a = level[c.a], level_b = level[c.b];
-    (*rows)[first[bucket[i]]++] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
-                                   level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
-  }
+  rows->resize(bucket.size());
+  for (std::size_t j = 0; j < bucket.size(); ++j) (*rows)[first[bucket[j]]++] = scratch->unsorted[j];
   rows->resize(supporting);
 }
 
@@ -102,6 +115,10 @@ template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const
                              ShockScratch*, std::vector<ShockRow>*, bool);
 template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
                              ShockScratch*, std::vector<ShockRow>*, bool);
+template void WriteShockRows(std::span<const SubstepConstraint>, std::span<const std::uint32_t>, Vec2,
+                             ShockScratch*, WorkerPool*);
+template void WriteShockRows(std::span<const LinearConstraint>, std::span<const std::uint32_t>, Vec2,
+                             ShockScratch*, WorkerPool*);
 
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop) {

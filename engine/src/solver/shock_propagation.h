@@ -12,6 +12,7 @@
 #include "engine/contact.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
+#include "parallel/worker_pool.h"
 #include "solver/substep_passes.h"
 
 namespace engine::detail {
@@ -33,6 +34,7 @@ struct ShockScratch {
   std::vector<std::uint32_t> level;  ///< per body: graph distance from a static body
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
   std::vector<std::uint32_t> bucket;  ///< per constraint: its place in the order's counting sort
+  std::vector<ShockRow> unsorted;     ///< per constraint: its row, in constraint order
   std::size_t reached = 0;            ///< how many bodies the levels reach
 };
 
@@ -53,9 +55,22 @@ void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> 
 /// corner from toppling, and one-sided pushes rectify rocking into a pumping jitter. Their
 /// contacts are solved by more passes instead (World's automatic settings).
 /// `levels_built`: BuildShockLevels already ran on this step's contacts (else it runs first).
+/// BuildShockLevels, WriteShockRows and SortShockRows in one, on one thread.
 template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built = false);
+
+/// Each constraint's row and its bucket in the order (BuildShockRows), in constraint order, into
+/// `scratch`, whose levels are this step's. `slot`: contact i's constraint, as given to
+/// PrepareSubstepConstraints; with a pool the rows are shared among its threads the way the
+/// contacts were there, so that each thread reads the constraints it has just written (the
+/// reads cost most where they came from another core). Empty `slot`: in order, on one thread.
+template <typename C>
+void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_t> slot, Vec2 up,
+                    ShockScratch* scratch, WorkerPool* pool = nullptr);
+
+/// The supporting rows WriteShockRows wrote, in the order BuildShockRows gives.
+void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows);
 
 /// One pass over the rows: no contact within the slop may approach faster than its gap allows
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse

@@ -80,10 +80,8 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 
 namespace {
 
-// Bodies and contacts are shared among threads from these many: fewer cost more to hand out
-// than they save.
+// Bodies are shared among threads from these many: fewer cost more to hand out than they save.
 constexpr std::uint32_t kMinSharedBodies = 2048;
-constexpr std::uint32_t kMinSharedContacts = 4096;
 
 }  // namespace
 

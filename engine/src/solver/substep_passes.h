@@ -36,10 +36,13 @@ inline const SubstepPoint& Point(const SubstepConstraint& c, int k) { return c.p
 inline LinearConstraint& Point(LinearConstraint& c, int) { return c; }
 inline const LinearConstraint& Point(const LinearConstraint& c, int) { return c; }
 
+/// Contacts are shared among threads from these many: fewer cost more to hand out than they save.
+inline constexpr std::uint32_t kMinSharedContacts = 4096;
+
 /// One constraint per contact, with the impulses carried over from the last step; contact i's
 /// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
 /// turn contact points into anchors. `pool`: threads to share the contacts among (each
-/// constraint is written by its contact alone).
+/// constraint is written by its contact alone; from kMinSharedContacts, in ForEachIndex's runs).
 template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,

@@ -25,7 +25,8 @@ void SubstepSolver::Step(StepContext& context) {
   // a turning pyramid of base 40 drifts 6.7 mm in 10 s in contact order against 2.2 cm by colour.
   // Contact order is one chain, which neither lanes nor threads can share; piles keep it within
   // upright strips, which they can (StripContacts).
-  shock_levels_built_ = false;  // this step's, below, or else BuildShockRows finds them
+  shock_levels_built_ = false;  // this step's, below, or else the constraints give them
+  pile_passes_ = context.def.velocity_iterations;  // turning worlds take 4 passes already
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
       order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity);
@@ -40,6 +41,7 @@ void SubstepSolver::Step(StepContext& context) {
       } else {
         order_.AsFound(context.contacts.size());
       }
+      pile_passes_ = PassesForPile(context, pile_passes_);  // reads positions alone
     };
     // Shock propagation's levels need only who touches whom: found beside the colouring.
     shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
@@ -82,7 +84,7 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
   // that times the overlap / h.
   plan.push_out_rate = (1.0 - NthRoot(1.0 - def.position_correction, def.substeps)) * plan.inv_h;
   plan.wide = nullptr;  // known once the constraints are built (Step)
-  plan.passes = def.velocity_iterations;  // at least 2 in a deep pile: PassesForPile
+  plan.passes = pile_passes_;  // at least 2 in a deep pile: PassesForPile
   return plan;
 }
 
@@ -136,16 +138,18 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     // moving body can), it has nothing to do.
     plan.shock_propagation &= std::any_of(constraints.begin(), constraints.end(), [](const C& c) { return !Turns(c); });
   }
-  // Two tasks side by side: the shock rows only read the constraints, the pile's height only
-  // positions, the impacts only write velocities and the lanes only their blocks.
+  if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
+    if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
+    WriteShockRows<C>(constraints, order_.slot, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
+  }
+  // Two tasks side by side: the shock rows only read what WriteShockRows wrote, the impacts
+  // only write velocities and the lanes only their blocks.
   const auto shock_rows = [&] {
-    if (!plan.shock_propagation) return;  // stacks are supported against gravity: its direction is up
-    BuildShockRows<C>(constraints, context.infos, -def.gravity / Length(def.gravity), &shock_scratch_,
-                      &shock_rows_, shock_levels_built_);
+    if (!plan.shock_propagation) return;
+    SortShockRows(&shock_scratch_, &shock_rows_);
     shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
   };
   const auto impacts_and_lanes = [&] {
-    plan.passes = PassesForPile(context, plan.passes);  // reads positions; the impacts write velocities
     impact_lags_.clear();
     if (plan.impact_pass) {  // bounces first
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
@@ -160,7 +164,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
         }
       } else if (def.substep_features.colour_order) {
         plan.wide = &WidePassesFor(def.substep_features.lanes);
-        wide_.Pack(constraints, order_);
+        wide_.Pack(constraints, order_, def.linear_slop);
       }
     }
   };
@@ -264,11 +268,11 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
 // The passes over all contacts go group by group, each large group shared among the threads:
 // `pass` takes a part of the constraints, or of their blocks in the wide solver.
 template <typename C, typename Pass>
-void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass) {
+void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass, std::span<const std::uint8_t> extra_work) {
   const auto runs = [&](auto& wide) {
     ForEachGroup(pool, wide.order, [&](std::uint32_t begin, std::uint32_t end) {
       pass(wide.blocks.data() + begin, std::size_t{end - begin});
-    }, kBlockLanes);
+    }, kBlockLanes, extra_work);
   };
   if constexpr (kCanTurn<C>) {
     runs(wide_turning_);
@@ -334,7 +338,7 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
         plan.wide->push_out(blocks, count, states.data(), start.positions.data(), push.linear.data(),
                             plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       }
-    });
+    }, kCanTurn<C> ? std::span<const std::uint8_t>() : wide_.overlapping_lanes);  // shared out by its work
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

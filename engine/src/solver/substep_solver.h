@@ -106,9 +106,10 @@ class SubstepSolver {
   template <typename C>
   void PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                    const StepStart& start, PushVelocities push);
-  /// Calls pass(blocks, count) on runs of the wide solver's blocks for C, group by group.
+  /// Calls pass(blocks, count) on runs of the wide solver's blocks for C, group by group
+  /// (`extra_work` as ForEachGroup's).
   template <typename C, typename Pass>
-  void ForEachBlockRun(WorkerPool& pool, Pass&& pass);
+  void ForEachBlockRun(WorkerPool& pool, Pass&& pass, std::span<const std::uint8_t> extra_work = {});
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;
@@ -131,6 +132,7 @@ class SubstepSolver {
   DirectSolver direct_solver_;                          ///< islands with a large mass ratio
   ShockScratch shock_scratch_;
   bool shock_levels_built_ = false;                     ///< this step's levels found beside the colouring
+  int pile_passes_ = 1;  ///< this step's velocity passes (PassesForPile), found beside the colouring
   std::vector<ShockRow> shock_rows_;
   ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
 };

@@ -126,9 +126,11 @@ void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constra
   }
 }
 
-void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours) {
+void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
+                           double linear_slop) {
   assert(colours.strips == 0);
   blocks.clear();
+  overlapping_lanes.clear();
   lane_of.resize(constraints.size());
   order.group_ends.clear();
   order.strips = 0;
@@ -139,8 +141,12 @@ void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const 
     const int lanes = g < colours.parallel_groups ? kBlockLanes : 1;
     for (std::uint32_t j = begin; j < end; ++j) {
       const int lane = static_cast<int>((j - begin) % static_cast<std::uint32_t>(lanes));
-      if (lane == 0) blocks.push_back(LinearBlock{});  // zero: padding until filled
+      if (lane == 0) {
+        blocks.push_back(LinearBlock{});  // zero: padding until filled
+        overlapping_lanes.push_back(0);
+      }
       PutLane(constraints[j], &blocks.back(), lane);
+      overlapping_lanes.back() += constraints[j].base_separation < -linear_slop ? 1 : 0;
       lane_of[j] = static_cast<std::uint32_t>((blocks.size() - 1) * kBlockLanes) + static_cast<std::uint32_t>(lane);
     }
     order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));

@@ -43,9 +43,13 @@ struct WideConstraints {
   ContactOrder order;
   /// Where constraint j of the colour order went: block lane_of[j] / 4, lane lane_of[j] % 4.
   std::vector<std::uint32_t> lane_of;
+  /// Per block: how many of its lanes overlap past the slop at the step's start. The push-out
+  /// pass works only on blocks that overlap, mostly at a pile's bottom: ForEachGroup shares it
+  /// out by this.
+  std::vector<std::uint8_t> overlapping_lanes;
 
   /// Lays out `constraints`, stored in `colours`' order, in blocks.
-  void Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours);
+  void Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours, double linear_slop = 0.0);
   /// Copies the impulses back to the constraints Pack read, for the passes after the substeps.
   /// `pool`: threads to share the constraints among.
   void UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool = nullptr) const;
