@@ -549,7 +549,11 @@ void ClearPush(PushVelocities push, WorkerPool* pool) {
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
   ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
     states[i].position += push.linear[i] * h;
-    if (rotation) states[i].angle += push.angular[i] * h;
+    push.linear[i] = {};
+    if (i < push.angular.size()) {
+      if (rotation) states[i].angle += push.angular[i] * h;
+      push.angular[i] = 0.0;
+    }
   });
 }
 

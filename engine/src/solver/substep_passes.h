@@ -120,21 +120,23 @@ struct PushVelocities {
   std::span<double> angular;
 };
 
-/// Sets every push velocity to zero, before the substep's PushOut.
+/// Sets every push velocity to zero, before a step's first PushOut (MoveByPush zeroes them
+/// after each).
 void ClearPush(PushVelocities push, WorkerPool* pool = nullptr);
 
 /// Split impulse (Catto, GDC 2009; Bullet's "split impulse"): overlap beyond the slop is pushed
 /// out through separate push velocities at `push_out_rate` per second of overlap, at most
-/// `max_push_out_speed`, starting from those ClearPush zeroed. They move positions this substep
-/// and are then dropped, so resolving an overlap never launches a body. Like SolveContacts, it
-/// writes only the constraints' moving bodies.
+/// `max_push_out_speed`, starting from zero. They move positions this substep and are then
+/// dropped, so resolving an overlap never launches a body. Like SolveContacts, it writes only
+/// the constraints' moving bodies.
 template <typename C>
 void PushOut(std::span<C> constraints, std::span<const BodyState> states,
              const StepStart& start, PushVelocities push, double push_out_rate,
              double max_push_out_speed, double linear_slop);
 
-/// Moves every body by its push velocity for one substep.
-/// `pool`: threads to share the bodies among.
+/// Moves every body by its push velocity for one substep, and sets the push velocities back to
+/// zero for the next (in the same pass: a pass of its own over every body cost a hand-off to the
+/// threads and back each substep). `pool`: threads to share the bodies among.
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h,
                 WorkerPool* pool = nullptr);
 

@@ -176,6 +176,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
+  ClearPush({push_velocities_, push_angular_velocities_}, &context.pool);  // each MoveByPush clears them after
   if (plan.track_turning) {
     angles_before_.resize(n);
     turned_.resize(n);
@@ -252,7 +253,6 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
-  ClearPush(push, &context.pool);
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
