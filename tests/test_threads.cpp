@@ -140,7 +140,7 @@ std::uint64_t StartsTurningHash(int threads, std::size_t* contacts_before) {
 TEST_CASE("a world that starts turning mid-run steps to the same bits on one and two threads",
           "[parallel][solver]") {
   // On two threads the axis-aligned steps find shock propagation's levels beside the colouring,
-  // the turning steps after in BuildShockRows: the switch must not change the bits. (A stale
+  // the turning steps after from their constraints: the switch must not change the bits. (A stale
   // "levels found" flag carried into the turning steps did not change them here either: the
   // settled pile's levels stay the same step to step.)
   std::size_t contacts = 0;

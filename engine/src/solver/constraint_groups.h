@@ -71,11 +71,12 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std:
                static_cast<std::uint32_t>(begin + size * (thread + 1) / threads));
         } else {
           const auto work = [&](std::uint32_t unit) { return kUnitWork + extra_work[unit]; };
-          std::uint64_t total = 0;
-          for (std::uint32_t unit = begin; unit < end; ++unit) total += work(unit);
-          // The first unit at which the work before it reaches part k of the total.
+          std::uint64_t group_work = 0;
+          for (std::uint32_t unit = begin; unit < end; ++unit) group_work += work(unit);
+          // The first unit at which the work before it reaches part k of the group's.
           const auto cut = [&](int k) {
-            const std::uint64_t target = total * static_cast<std::uint64_t>(k) / static_cast<std::uint64_t>(threads);
+            const std::uint64_t target =
+                group_work * static_cast<std::uint64_t>(k) / static_cast<std::uint64_t>(threads);
             std::uint64_t before = 0;
             std::uint32_t unit = begin;
             for (; unit < end && before < target; ++unit) before += work(unit);

@@ -59,8 +59,8 @@ template void BuildShockLevels(std::span<const LinearConstraint>, std::span<cons
 
 template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
-                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built) {
-  if (!levels_built) BuildShockLevels(constraints, infos, scratch);
+                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows) {
+  BuildShockLevels(constraints, infos, scratch);
   WriteShockRows(constraints, {}, up, scratch);
   SortShockRows(scratch, rows);
 }
@@ -112,9 +112,9 @@ void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows) {
 }
 
 template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const BodyInfo>, Vec2,
-                             ShockScratch*, std::vector<ShockRow>*, bool);
+                             ShockScratch*, std::vector<ShockRow>*);
 template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
-                             ShockScratch*, std::vector<ShockRow>*, bool);
+                             ShockScratch*, std::vector<ShockRow>*);
 template void WriteShockRows(std::span<const SubstepConstraint>, std::span<const std::uint32_t>, Vec2,
                              ShockScratch*, WorkerPool*);
 template void WriteShockRows(std::span<const LinearConstraint>, std::span<const std::uint32_t>, Vec2,

@@ -33,7 +33,7 @@ struct ShockRow {
 struct ShockScratch {
   std::vector<std::uint32_t> level;  ///< per body: graph distance from a static body
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
-  std::vector<std::uint32_t> bucket;  ///< per constraint: its place in the order's counting sort
+  std::vector<std::uint32_t> bucket;  ///< per constraint: its bucket in the rows' counting sort
   std::vector<ShockRow> unsorted;     ///< per constraint: its row, in constraint order
   std::size_t reached = 0;            ///< how many bodies the levels reach
 };
@@ -54,11 +54,11 @@ void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> 
 /// Between turning bodies the pass stays out: holding a centre up would stop a box balanced on a
 /// corner from toppling, and one-sided pushes rectify rocking into a pumping jitter. Their
 /// contacts are solved by more passes instead (World's automatic settings).
-/// `levels_built`: BuildShockLevels already ran on this step's contacts (else it runs first).
-/// BuildShockLevels, WriteShockRows and SortShockRows in one, on one thread.
+/// BuildShockLevels, WriteShockRows and SortShockRows in one, on one thread (the solver calls
+/// the three apart, to share them among its threads).
 template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
-                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows, bool levels_built = false);
+                    Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
 
 /// Each constraint's row and its bucket in the order (BuildShockRows), in constraint order, into
 /// `scratch`, whose levels are this step's. `slot`: contact i's constraint, as given to

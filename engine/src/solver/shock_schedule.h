@@ -24,7 +24,7 @@ inline constexpr int kMaxShockBands = 64;
 
 class ShockSchedule {
  public:
-  /// Once a step, after BuildShockRows: the rows split into `threads` bands (at most
+  /// Once a step, after the rows are built (SortShockRows): the rows split into `threads` bands (at most
   /// kMaxShockBands) of the x of the body each row moves (the upper one) at the step's start, and
   /// the waits between them. With one thread or fewer than kMinSharedShockRows rows, the pass
   /// stays on the calling thread.
