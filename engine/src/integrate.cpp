@@ -128,13 +128,14 @@ void RungeKutta4Step(const ForceModel& forces, std::span<const BodyState> states
 // the copy back), body by body in one loop, the bodies shared among threads. Five passes over
 // the bodies became one.
 void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<BodyState> states, double h,
-                      FreeMotion* m, WorkerPool* pool) {
+                      FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
   const std::size_t n = states.size();
   m->velocity.resize(n);
   m->drift.resize(n);
   m->angular_velocity.resize(n);
   m->angular_drift.resize(n);
   const auto step = [&](std::uint32_t i) {
+    if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
     const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
     const double alpha = 0.0;
     const Vec2 v0 = states[i].velocity;
@@ -171,11 +172,15 @@ void DampStiffDrag(const ForceModel& forces, std::span<const BodyState> states, 
 }  // namespace
 
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* m, WorkerPool* pool) {
+              double h, FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
   const bool euler = integrator == Integrator::kSemiImplicitEuler || integrator == Integrator::kExplicitEuler;
   if (euler && !forces.BeyondGravity()) {
-    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool);
+    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool, carried);
     return;
+  }
+  if (carried) {  // forces read positions: every body moves first
+    ForEachIndex(pool, states.size(), kMinSharedBodies,
+                 [&](std::uint32_t i) { MoveBodyByPush(states, *carried, forces.rotation, h, i); });
   }
   StartFreeStep(forces, states, m);
   switch (integrator) {

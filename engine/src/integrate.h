@@ -31,12 +31,33 @@ struct FreeMotion {
   std::vector<double> angular[4];
 };
 
+/// Push velocities of the split impulse, linear and angular: how fast the contacts' push-out
+/// moves each body, apart from its velocity.
+struct PushVelocities {
+  std::span<Vec2> linear;
+  std::span<double> angular;
+};
+
+/// Moves body i by h times its push velocity and zeroes the push (angles only with rotation).
+inline void MoveBodyByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h,
+                           std::size_t i) {
+  states[i].position += push.linear[i] * h;
+  push.linear[i] = {};
+  if (i < push.angular.size()) {
+    if (rotation) states[i].angle += push.angular[i] * h;
+    push.angular[i] = 0.0;
+  }
+}
+
 /// Computes the free step of length h from `states` and sets each moving body's velocity to its
 /// end-of-step value (positions stay, for the contact solver to see).
 /// `pool`: threads to share the bodies among where gravity alone acts under an Euler step (each
 /// body's step is then its own); the bits are the same either way.
+/// `carried`: push velocities the last substep left to move by (MoveBodyByPush with this h,
+/// `forces.rotation`), applied to every body before the free step: in the same pass over the
+/// bodies where gravity alone acts under an Euler step, which reads no position.
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* motion, WorkerPool* pool = nullptr);
+              double h, FreeMotion* motion, WorkerPool* pool = nullptr, const PushVelocities* carried = nullptr);
 
 /// Moves every moving body: by h·drift, plus h times whatever the contacts changed its velocity
 /// by since FreeStep. Semi-implicit Euler moves by h·v exactly, and so does a body a contact

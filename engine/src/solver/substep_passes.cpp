@@ -547,14 +547,8 @@ void ClearPush(PushVelocities push, WorkerPool* pool) {
 }
 
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
-  ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
-    states[i].position += push.linear[i] * h;
-    push.linear[i] = {};
-    if (i < push.angular.size()) {
-      if (rotation) states[i].angle += push.angular[i] * h;
-      push.angular[i] = 0.0;
-    }
-  });
+  ForEachIndex(pool, states.size(), kMinSharedBodies,
+               [&](std::uint32_t i) { MoveBodyByPush(states, push, rotation, h, i); });
 }
 
 template <typename C>

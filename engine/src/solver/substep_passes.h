@@ -10,6 +10,7 @@
 #include "solver/block_solver.h"
 #include "engine/body.h"
 #include "engine/contact.h"
+#include "integrate.h"
 #include "parallel/worker_pool.h"
 #include "solver/substep_constraint.h"
 
@@ -113,12 +114,6 @@ double LimitContactEnergy(std::span<C> constraints, std::span<BodyState> states,
 template <typename C>
 void SolveContacts(std::span<C> constraints, std::span<BodyState> states,
                    const StepStart& start, double inv_h, bool block_solve);
-
-/// Push velocities of the split impulse, linear and angular.
-struct PushVelocities {
-  std::span<Vec2> linear;
-  std::span<double> angular;
-};
 
 /// Sets every push velocity to zero, before a step's first PushOut (MoveByPush zeroes them
 /// after each).

@@ -186,9 +186,14 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   const StepStart start{context.start_positions,
                         plan.track_turning ? std::span<const Rot>(turned_) : std::span<const Rot>()};
+  // Nothing reads positions between a substep's push-out and the next substep's free step,
+  // except the turns' update.
+  bool push_carried = false;
   for (int substep = 0; substep < def.substeps; ++substep) {
-    Substep(context, constraints, plan, start);
+    const bool carry_push = substep + 1 < def.substeps && !plan.track_turning;
+    Substep(context, constraints, plan, start, push_carried, carry_push);
     if (context.fault) return;
+    push_carried = carry_push;
   }
   if (plan.wide) {
     if constexpr (kCanTurn<C>) {
@@ -214,14 +219,15 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
 
 template <typename C>
 void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
-                            const StepStart& start) {
+                            const StepStart& start, bool push_carried, bool carry_push) {
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
   const double h = plan.h, inv_h = plan.inv_h;
   const WarmStartImpulses warm{warm_free_, warm_free_angular_};
   const PushVelocities push{push_velocities_, push_angular_velocities_};
 
-  FreeStep(def.integrator, context.forces, states, h, &context.free_motion, &context.pool);
+  FreeStep(def.integrator, context.forces, states, h, &context.free_motion, &context.pool,
+           push_carried ? &push : nullptr);
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
@@ -261,7 +267,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     }
   }
   if (joints) joints->PushOut(states, push, inv_h, def.velocity_iterations);
-  MoveByPush(states, push, def.rotation, h, &context.pool);
+  if (!carry_push) MoveByPush(states, push, def.rotation, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
 }
 

@@ -92,9 +92,12 @@ class SubstepSolver {
   /// Leaves out a bounce's lag that would press either body into another past the slop.
   template <typename C>
   void DropClosingLags(const StepContext& context, std::span<const C> constraints, const StepStart& start);
+  /// One substep. The push-out's move ends it, or, with `carry_push`, starts the next
+  /// substep's free step (one pass over the bodies fewer); `push_carried`: the last substep's
+  /// move is still to do.
   template <typename C>
   void Substep(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
-               const StepStart& start);
+               const StepStart& start, bool push_carried, bool carry_push);
   /// The substep's warm start, velocity passes and push-out over the constraints, one at a time
   /// or in SIMD lanes (plan.wide); each pass goes group by group, large groups over the threads.
   template <typename C>
