@@ -2,6 +2,8 @@
 // bits of the one-at-a-time passes, on hand-made contacts with the awkward cases in them, and a
 // world steps to the same state hash at every width and thread count.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -281,6 +283,96 @@ TEST_CASE("wide solver: each width's passes give the bits of the one-at-a-time p
       CHECK(SameBits(wide.push, reference.push));
       CHECK(SameBits(wide.constraints, reference.constraints));
     }
+  }
+}
+
+TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks, hold each constraint in its lane") {
+  using engine::detail::kBlockLanes;
+  const double slop = 0.005;
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const Scene scene = MakeScene(seed);
+    engine::detail::ContactOrder order;
+    order.ByColour(scene.contacts, scene.infos);
+    std::vector<LinearConstraint> constraints;
+    engine::detail::PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
+                                                                &constraints);
+    // A larger scene packed first: the blocks PackBlocks fills hold its numbers.
+    const Scene big = MakeScene(seed + 10);
+    std::vector<Contact> more = big.contacts;
+    more.insert(more.end(), big.contacts.begin(), big.contacts.end());
+    engine::detail::ContactOrder big_order;
+    big_order.ByColour(more, big.infos);
+    std::vector<LinearConstraint> big_constraints;
+    engine::detail::PrepareSubstepConstraints<LinearConstraint>(more, big_order.slot, big.infos, big.states,
+                                                                &big_constraints);
+    engine::detail::WideConstraints parts;
+    parts.Pack(big_constraints, big_order, slop);
+    REQUIRE(parts.blocks.size() > constraints.size() / kBlockLanes);
+
+    parts.Layout(order);
+    const auto blocks = static_cast<std::uint32_t>(parts.blocks.size());
+    std::vector<std::uint32_t> starts;  // runs of 5 blocks, filled last first
+    for (std::uint32_t b = 0; b < blocks; b += 5) starts.push_back(b);
+    std::reverse(starts.begin(), starts.end());
+    for (const std::uint32_t b : starts) parts.PackBlocks(constraints, order, slop, b, std::min(blocks, b + 5));
+
+    engine::detail::WideConstraints whole;
+    whole.Pack(constraints, order, slop);
+    INFO("seed " << seed);
+    REQUIRE(SameBits(parts.blocks, whole.blocks));
+    REQUIRE(parts.lane_of == whole.lane_of);
+    REQUIRE(parts.overlapping_lanes == whole.overlapping_lanes);
+    REQUIRE(parts.order.group_ends == whole.order.group_ends);
+
+    // Each constraint in its lane, the parallel colours four to a block in order, the rest one
+    // to a block; every other lane zero on body 0; the overlapping lanes counted.
+    std::vector<int> filled(blocks * kBlockLanes, 0);
+    std::uint32_t begin = 0;
+    for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
+      const std::uint32_t lanes = g < order.parallel_groups ? kBlockLanes : 1;
+      const std::uint32_t first_block = g == 0 ? 0 : parts.order.group_ends[g - 1];
+      for (std::uint32_t j = begin; j < order.group_ends[g]; ++j) {
+        const std::uint32_t expected = (first_block + (j - begin) / lanes) * kBlockLanes + (j - begin) % lanes;
+        REQUIRE(parts.lane_of[j] == expected);
+        const engine::detail::LinearBlock& block = parts.blocks[expected / kBlockLanes];
+        const std::uint32_t lane = expected % kBlockLanes;
+        const LinearConstraint& c = constraints[j];
+        REQUIRE(block.a[lane] == static_cast<std::int32_t>(c.a));
+        REQUIRE(block.b[lane] == static_cast<std::int32_t>(c.b));
+        REQUIRE(block.normal_x[lane] == c.normal.x);
+        REQUIRE(block.normal_y[lane] == c.normal.y);
+        REQUIRE(block.inv_mass_a[lane] == c.inv_mass_a);
+        REQUIRE(block.inv_mass_b[lane] == c.inv_mass_b);
+        REQUIRE(block.normal_mass[lane] == c.normal_mass);
+        REQUIRE(block.base_separation[lane] == c.base_separation);
+        REQUIRE(block.normal_impulse[lane] == c.normal_impulse);
+        REQUIRE(block.tangent_impulse[lane] == c.tangent_impulse);
+        REQUIRE(block.friction[lane] == c.friction);
+        filled[expected] = 1;
+      }
+      begin = order.group_ends[g];
+    }
+    for (std::uint32_t k = 0; k < blocks; ++k) {
+      const engine::detail::LinearBlock& block = parts.blocks[k];
+      int overlapping = 0;
+      for (std::uint32_t lane = 0; lane < kBlockLanes; ++lane) {
+        if (filled[k * kBlockLanes + lane]) {
+          overlapping += block.base_separation[lane] < -slop ? 1 : 0;
+          continue;
+        }
+        for (const double x : {block.normal_x[lane], block.normal_y[lane], block.inv_mass_a[lane],
+                               block.inv_mass_b[lane], block.normal_mass[lane], block.base_separation[lane],
+                               block.normal_impulse[lane], block.tangent_impulse[lane], block.friction[lane]}) {
+          REQUIRE(std::signbit(x) == false);
+          REQUIRE(x == 0.0);
+        }
+        REQUIRE(block.a[lane] == 0);
+        REQUIRE(block.b[lane] == 0);
+      }
+      REQUIRE(parts.overlapping_lanes[k] == overlapping);
+    }
+    CHECK(std::count(parts.overlapping_lanes.begin(), parts.overlapping_lanes.end(), 0) <
+          static_cast<long>(blocks));  // some overlap past the slop
   }
 }
 

@@ -23,6 +23,34 @@ TEST_CASE("ParallelFor visits every index once, whatever the threads and the cou
   }
 }
 
+TEST_CASE("RunSideBySideThenShare runs each task once and visits every shared index once", "[parallel]") {
+  for (const int threads : {1, 2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    for (const std::uint32_t count : {0u, 1u, 63u, 64u, 65u, 1000u}) {
+      for (const std::uint32_t run : {1u, 7u, 64u}) {
+        for (int repeat = 0; repeat < 3; ++repeat) {  // the pool's threads are reused
+          std::vector<int> visits(count, 0);
+          int firsts = 0, seconds = 0;
+          std::vector<std::uint32_t> bad_runs;
+          pool.RunSideBySideThenShare([&] { ++firsts; }, [&] { ++seconds; },
+                                      count, run, [&](std::uint32_t begin, std::uint32_t end) {
+                                        // Runs start at multiples of `run` and are at most `run` long.
+                                        if (begin % run != 0 || end - begin > run || end > count) {
+                                          bad_runs.push_back(begin);
+                                        }
+                                        for (std::uint32_t i = begin; i < end; ++i) ++visits[i];
+                                      });
+          INFO(threads << " threads, " << count << " indices in runs of " << run);
+          REQUIRE(firsts == 1);
+          REQUIRE(seconds == 1);
+          REQUIRE(bad_runs.empty());
+          REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[parallel][fluid]") {
   const auto run = [](int threads) {
     engine::WorldDef def;

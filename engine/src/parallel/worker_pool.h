@@ -3,6 +3,7 @@
 // so the answer is the same bits with any number of threads. Internal.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -43,6 +44,31 @@ class WorkerPool {
     Run([&](int thread) {
       if (thread == 0) first();
       if (thread == 1) second();
+    });
+  }
+
+  /// As RunSideBySide, then every thread takes runs of `run` indices of [0, count) in turn, the
+  /// next untaken run each time, and calls shared(begin, end) for each, until none is left: a
+  /// thread done with its task takes more of the shared part. Which thread takes a run changes
+  /// from call to call, so each run must write only its own results, whoever computes them.
+  template <typename First, typename Second, typename Shared>
+  void RunSideBySideThenShare(First&& first, Second&& second, std::uint32_t count, std::uint32_t run,
+                              Shared&& shared) {
+    if (workers_.empty()) {
+      first();
+      second();
+      for (std::uint32_t begin = 0; begin < count; begin += run) shared(begin, std::min(count, begin + run));
+      return;
+    }
+    std::atomic<std::uint32_t> next{0};
+    Run([&](int thread) {
+      if (thread == 0) first();
+      if (thread == 1) second();
+      for (;;) {
+        const std::uint32_t begin = next.fetch_add(run, std::memory_order_relaxed);
+        if (begin >= count) break;
+        shared(begin, std::min(count, begin + run));
+      }
     });
   }
 

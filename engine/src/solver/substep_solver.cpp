@@ -142,37 +142,47 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
     WriteShockRows<C>(constraints, order_.slot, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
   }
-  // Two tasks side by side: the shock rows only read what WriteShockRows wrote, the impacts
-  // only write velocities and the lanes only their blocks.
+  // Two tasks side by side, then the blocks' packing shared: the shock rows only read what
+  // WriteShockRows wrote, the impacts only write velocities and the lanes only their blocks.
   const auto shock_rows = [&] {
     if (!plan.shock_propagation) return;
     SortShockRows(&shock_scratch_, &shock_rows_);
     shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
   };
-  const auto impacts_and_lanes = [&] {
+  // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
+  // the direct solve takes its islands whole: one at a time). The axis-aligned blocks are laid
+  // out here and filled by whichever thread is free (PackBlocks).
+  const bool lanes = def.substep_features.lanes != 1 && loaded_.empty();
+  std::uint32_t blocks_to_pack = 0;
+  if constexpr (!kCanTurn<C>) {
+    if (lanes && def.substep_features.colour_order) {
+      plan.wide = &WidePassesFor(def.substep_features.lanes);
+      wide_.Layout(order_);
+      blocks_to_pack = static_cast<std::uint32_t>(wide_.blocks.size());
+    }
+  }
+  const auto pack_blocks = [&](std::uint32_t begin, std::uint32_t end) {
+    if constexpr (!kCanTurn<C>) wide_.PackBlocks(constraints, order_, def.linear_slop, begin, end);
+  };
+  const auto impacts = [&] {
     impact_lags_.clear();
     if (plan.impact_pass) {  // bounces first
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
     }
-    // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
-    // the direct solve takes its islands whole: one at a time).
-    if (def.substep_features.lanes != 1 && loaded_.empty()) {
-      if constexpr (kCanTurn<C>) {
-        if (!plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
-          plan.wide = &WidePassesFor(def.substep_features.lanes);
-          wide_turning_.Pack(constraints, order_);
-        }
-      } else if (def.substep_features.colour_order) {
+    if constexpr (kCanTurn<C>) {
+      if (lanes && !plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
         plan.wide = &WidePassesFor(def.substep_features.lanes);
-        wide_.Pack(constraints, order_, def.linear_slop);
+        wide_turning_.Pack(constraints, order_);
       }
     }
   };
+  constexpr std::uint32_t kBlocksPerRun = 64;
   if (plan.shock_propagation && constraints.size() >= kMinSideBySideConstraints) {
-    context.pool.RunSideBySide(impacts_and_lanes, shock_rows);
+    context.pool.RunSideBySideThenShare(impacts, shock_rows, blocks_to_pack, kBlocksPerRun, pack_blocks);
   } else {
     shock_rows();
-    impacts_and_lanes();
+    impacts();
+    if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);

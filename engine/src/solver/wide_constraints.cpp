@@ -128,29 +128,53 @@ void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constra
 
 void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
                            double linear_slop) {
+  Layout(colours);
+  PackBlocks(constraints, colours, linear_slop, 0, static_cast<std::uint32_t>(blocks.size()));
+}
+
+void WideConstraints::Layout(const ContactOrder& colours) {
   assert(colours.strips == 0);
-  blocks.clear();
-  overlapping_lanes.clear();
-  lane_of.resize(constraints.size());
   order.group_ends.clear();
   order.strips = 0;
   order.parallel_groups = colours.parallel_groups;
-  std::uint32_t begin = 0;
+  std::uint32_t begin = 0, block_count = 0;
   for (std::size_t g = 0; g < colours.group_ends.size(); ++g) {
     const std::uint32_t end = colours.group_ends[g];
-    const int lanes = g < colours.parallel_groups ? kBlockLanes : 1;
-    for (std::uint32_t j = begin; j < end; ++j) {
-      const int lane = static_cast<int>((j - begin) % static_cast<std::uint32_t>(lanes));
-      if (lane == 0) {
-        blocks.push_back(LinearBlock{});  // zero: padding until filled
-        overlapping_lanes.push_back(0);
-      }
-      PutLane(constraints[j], &blocks.back(), lane);
-      overlapping_lanes.back() += constraints[j].base_separation < -linear_slop ? 1 : 0;
-      lane_of[j] = static_cast<std::uint32_t>((blocks.size() - 1) * kBlockLanes) + static_cast<std::uint32_t>(lane);
-    }
-    order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
+    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
+    block_count += (end - begin + lanes - 1) / lanes;
+    order.group_ends.push_back(block_count);
     begin = end;
+  }
+  // Sized without zeroing: PackBlocks writes every lane, padding too.
+  blocks.resize(block_count);
+  overlapping_lanes.resize(block_count);
+  lane_of.resize(colours.group_ends.empty() ? 0 : colours.group_ends.back());
+}
+
+void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
+                                 double linear_slop, std::uint32_t begin, std::uint32_t end) {
+  for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
+    const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
+    const std::uint32_t group_end = order.group_ends[g];
+    if (group_end <= begin) continue;
+    if (group_begin >= end) break;
+    const std::uint32_t first = g == 0 ? 0 : colours.group_ends[g - 1];
+    const std::uint32_t last = colours.group_ends[g];
+    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
+    for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
+      LinearBlock& block = blocks[k];
+      const std::uint32_t j0 = first + (k - group_begin) * lanes;
+      const std::uint32_t filled = std::min(lanes, last - j0);
+      std::uint8_t overlapping = 0;
+      for (std::uint32_t lane = 0; lane < filled; ++lane) {
+        const LinearConstraint& c = constraints[j0 + lane];
+        PutLane(c, &block, static_cast<int>(lane));
+        overlapping += c.base_separation < -linear_slop ? 1 : 0;
+        lane_of[j0 + lane] = k * kBlockLanes + lane;
+      }
+      for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) PutLane(LinearConstraint{}, &block, static_cast<int>(lane));
+      overlapping_lanes[k] = overlapping;
+    }
   }
 }
 

@@ -48,8 +48,14 @@ struct WideConstraints {
   /// out by this.
   std::vector<std::uint8_t> overlapping_lanes;
 
-  /// Lays out `constraints`, stored in `colours`' order, in blocks.
+  /// Lays out `constraints`, stored in `colours`' order, in blocks: Layout, then PackBlocks of all.
   void Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours, double linear_slop = 0.0);
+  /// Sizes the blocks for `colours`' groups (and `order`, `lane_of`, `overlapping_lanes`).
+  void Layout(const ContactOrder& colours);
+  /// Fills blocks [begin, end) of the layout from the constraints: each writes only its own
+  /// block and its constraints' lane_of, so parts may be filled on different threads.
+  void PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours, double linear_slop,
+                  std::uint32_t begin, std::uint32_t end);
   /// Copies the impulses back to the constraints Pack read, for the passes after the substeps.
   /// `pool`: threads to share the constraints among.
   void UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool = nullptr) const;
