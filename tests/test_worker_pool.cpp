@@ -23,6 +23,28 @@ TEST_CASE("ParallelFor visits every index once, whatever the threads and the cou
   }
 }
 
+TEST_CASE("ParallelRuns and ForEachIndexInRuns visit every index once, in runs of the size asked", "[parallel]") {
+  for (const int threads : {1, 2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    for (const std::uint32_t count : {0u, 1u, 63u, 64u, 65u, 5000u}) {
+      for (const std::uint32_t run : {1u, 64u, 1000u}) {
+        std::vector<int> visits(count, 0);
+        std::vector<std::uint32_t> bad_runs;
+        pool.ParallelRuns(count, 1, run, [&](std::uint32_t begin, std::uint32_t end) {
+          if (begin % run != 0 || end <= begin || end - begin > run || end > count) bad_runs.push_back(begin);
+          for (std::uint32_t i = begin; i < end; ++i) ++visits[i];
+        });
+        INFO(threads << " threads, " << count << " indices in runs of " << run);
+        REQUIRE(bad_runs.empty());
+        REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
+      }
+      std::vector<int> visits(count, 0);
+      engine::detail::ForEachIndexInRuns(&pool, count, 1, [&](std::uint32_t i) { ++visits[i]; });
+      REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
+    }
+  }
+}
+
 TEST_CASE("RunSideBySideThenShare runs each task once and visits every shared index once", "[parallel]") {
   for (const int threads : {1, 2, 3}) {
     engine::detail::WorkerPool pool(threads);

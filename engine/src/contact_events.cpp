@@ -71,9 +71,10 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
   events->contact_end.insert(events->contact_end.end(), removed_.begin(), removed_.end());
   removed_.clear();
   touches_.resize(contacts.size());
-  pool.ParallelFor(static_cast<std::uint32_t>(contacts.size()), kMinSharedContacts, [&](std::uint32_t i) {
+  const auto touch = [&](std::uint32_t i) {
     touches_[i] = Touching(contacts[i], [&] { return StartApproach(contacts[i], bodies); }, bodies.states, def);
-  });
+  };
+  ForEachIndexInRuns(&pool, contacts.size(), kMinSharedContacts, touch);  // the start velocities: written on thread 0
   const int threads = pool.Threads();
   if (threads == 1 || contacts.size() < kMinSharedContacts) {
     Merge(contacts, 0, contacts.size(), previous_, kEndOfPairs, bodies, awake, def, &touching_, events);

@@ -237,7 +237,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
 void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::uint32_t kMinSharedLeaves = 2048;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
-  detail::ForEachIndex(pool, known, kMinSharedLeaves, [&](std::uint32_t i) {
+  const auto mark = [&](std::uint32_t i) {
     const Node& node = nodes_[leaf_of_[i]];
     // A body that left its fat box goes back in with a new one; so does one that has slowed down
     // a lot (its box stretched for a motion it no longer has would cost pair tests every step).
@@ -248,7 +248,8 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPo
       const AABB fat = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
       moved_[i] = Perimeter(node.box) > kLooseFactor * Perimeter(fat) ? 1 : 0;
     }
-  });
+  };
+  detail::ForEachIndexInRuns(pool, known, kMinSharedLeaves, mark);  // the tree: last changed on thread 0
   for (std::uint32_t i = 0; i < known; ++i) {
     if (!moved_[i]) continue;
     const std::int32_t leaf = leaf_of_[i];
@@ -291,8 +292,9 @@ void AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool
   }
 }
 
-// Shared, each thread checks a run of the candidates and keeps the overlapping ones; the runs
-// then go to the collector in order, as one thread's would.
+// Shared, the threads check runs of the candidates, each run taken by whichever thread is free
+// (the candidates were merged on thread 0: the other reads them cold), and keep the overlapping
+// ones; the runs then go to the collector in order, as one thread's would.
 void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::size_t kMinSharedCandidates = 4096;
   const int threads = pool ? pool->Threads() : 1;
@@ -302,13 +304,13 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
     }
     return;
   }
-  found_.resize(static_cast<std::size_t>(threads));
-  pool->RunOnAll([&](int t) {
-    const std::size_t n = candidates_.size();
-    const auto part = static_cast<std::size_t>(t);
-    std::vector<BodyPair>& found = found_[part].value;
+  const std::size_t n = candidates_.size();
+  const auto run = static_cast<std::uint32_t>(n / (8 * static_cast<std::size_t>(threads)) + 1);
+  found_.resize((n + run - 1) / run);
+  pool->ParallelRuns(static_cast<std::uint32_t>(n), 0, run, [&](std::uint32_t begin, std::uint32_t end) {
+    std::vector<BodyPair>& found = found_[begin / run].value;
     found.clear();
-    for (std::size_t i = n * part / threads; i < n * (part + 1) / threads; ++i) {
+    for (std::uint32_t i = begin; i < end; ++i) {
       const BodyPair p = candidates_[i];
       if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
     }

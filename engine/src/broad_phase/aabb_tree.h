@@ -121,7 +121,7 @@ class AabbTree {
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
   PairCollector collector_;
-  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's overlapping candidates
+  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each run's overlapping candidates
 };
 
 }  // namespace engine

@@ -64,12 +64,24 @@ class WorkerPool {
     Run([&](int thread) {
       if (thread == 0) first();
       if (thread == 1) second();
-      for (;;) {
-        const std::uint32_t begin = next.fetch_add(run, std::memory_order_relaxed);
-        if (begin >= count) break;
-        shared(begin, std::min(count, begin + run));
-      }
+      TakeRuns(&next, count, run, shared);
     });
+  }
+
+  /// Calls body(begin, end) once for each run of `run` indices (the last may be shorter) that
+  /// covers [0, count): on the calling thread alone when there is one thread or fewer than
+  /// `min_count` indices, else each thread takes the next untaken run until none is left. For
+  /// loops whose halves cost unlike amounts (memory another thread wrote last, work that gathers
+  /// at one end): a thread done early takes more. Which thread takes a run changes from call to
+  /// call, so each run must write only its own results.
+  template <typename Body>
+  void ParallelRuns(std::uint32_t count, std::uint32_t min_count, std::uint32_t run, Body&& body) {
+    if (workers_.empty() || count < min_count) {
+      for (std::uint32_t begin = 0; begin < count; begin += run) body(begin, std::min(count, begin + run));
+      return;
+    }
+    std::atomic<std::uint32_t> next{0};
+    Run([&](int) { TakeRuns(&next, count, run, body); });
   }
 
   /// Calls body(i) for every i in [0, count): on the calling thread alone when there is one
@@ -90,6 +102,15 @@ class WorkerPool {
   }
 
  private:
+  template <typename Body>
+  static void TakeRuns(std::atomic<std::uint32_t>* next, std::uint32_t count, std::uint32_t run, Body& body) {
+    for (;;) {
+      const std::uint32_t begin = next->fetch_add(run, std::memory_order_relaxed);
+      if (begin >= count) return;
+      body(begin, std::min(count, begin + run));
+    }
+  }
+
   void Run(const std::function<void(int chunk)>& job);
   void Work(int chunk);
 
@@ -109,6 +130,22 @@ void ForEachIndex(WorkerPool* pool, std::size_t count, std::uint32_t min_count, 
     pool->ParallelFor(n, min_count, body);
   } else {
     for (std::uint32_t i = 0; i < n; ++i) body(i);
+  }
+}
+
+/// As ForEachIndex, but the indices go out in runs, each to whichever thread is free
+/// (WorkerPool::ParallelRuns): about eight runs a thread.
+template <typename Body>
+void ForEachIndexInRuns(WorkerPool* pool, std::size_t count, std::uint32_t min_count, Body&& body) {
+  const auto n = static_cast<std::uint32_t>(count);
+  const auto each = [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t i = begin; i < end; ++i) body(i);
+  };
+  if (pool) {
+    const auto threads = static_cast<std::uint32_t>(pool->Threads());
+    pool->ParallelRuns(n, min_count, std::max<std::uint32_t>(64, n / (8 * threads) + 1), each);
+  } else {
+    each(0, n);
   }
 }
 
