@@ -305,7 +305,7 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
     return;
   }
   const std::size_t n = candidates_.size();
-  const auto run = static_cast<std::uint32_t>(n / (8 * static_cast<std::size_t>(threads)) + 1);
+  const auto run = static_cast<std::uint32_t>(n / (detail::kRunsPerThread * static_cast<std::size_t>(threads)) + 1);
   found_.resize((n + run - 1) / run);
   pool->ParallelRuns(static_cast<std::uint32_t>(n), 0, run, [&](std::uint32_t begin, std::uint32_t end) {
     std::vector<BodyPair>& found = found_[begin / run].value;

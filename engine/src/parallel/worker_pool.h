@@ -60,7 +60,7 @@ class WorkerPool {
       for (std::uint32_t begin = 0; begin < count; begin += run) shared(begin, std::min(count, begin + run));
       return;
     }
-    std::atomic<std::uint32_t> next{0};
+    alignas(64) std::atomic<std::uint32_t> next{0};  // a line of its own: the caller's stack is busy
     Run([&](int thread) {
       if (thread == 0) first();
       if (thread == 1) second();
@@ -80,7 +80,7 @@ class WorkerPool {
       for (std::uint32_t begin = 0; begin < count; begin += run) body(begin, std::min(count, begin + run));
       return;
     }
-    std::atomic<std::uint32_t> next{0};
+    alignas(64) std::atomic<std::uint32_t> next{0};  // a line of its own: the caller's stack is busy
     Run([&](int) { TakeRuns(&next, count, run, body); });
   }
 
@@ -133,8 +133,13 @@ void ForEachIndex(WorkerPool* pool, std::size_t count, std::uint32_t min_count, 
   }
 }
 
+/// How many runs a thread takes, on average, where the indices go out in runs: fewer runs
+/// balance coarser, more cost more hand-overs of the shared counter between the cores (three
+/// measured faster than eight on the 4 000-circle pour).
+inline constexpr std::uint32_t kRunsPerThread = 3;
+
 /// As ForEachIndex, but the indices go out in runs, each to whichever thread is free
-/// (WorkerPool::ParallelRuns): about eight runs a thread.
+/// (WorkerPool::ParallelRuns), kRunsPerThread a thread.
 template <typename Body>
 void ForEachIndexInRuns(WorkerPool* pool, std::size_t count, std::uint32_t min_count, Body&& body) {
   const auto n = static_cast<std::uint32_t>(count);
@@ -143,7 +148,7 @@ void ForEachIndexInRuns(WorkerPool* pool, std::size_t count, std::uint32_t min_c
   };
   if (pool) {
     const auto threads = static_cast<std::uint32_t>(pool->Threads());
-    pool->ParallelRuns(n, min_count, std::max<std::uint32_t>(64, n / (8 * threads) + 1), each);
+    pool->ParallelRuns(n, min_count, std::max<std::uint32_t>(64, n / (kRunsPerThread * threads) + 1), each);
   } else {
     each(0, n);
   }
