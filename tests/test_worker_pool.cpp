@@ -2,6 +2,7 @@
 // fluid's and the effects' answers the same bits on one thread or several.
 #include <catch2/catch.hpp>
 #include <algorithm>
+#include <atomic>
 #include <vector>
 
 #include "engine/world.h"
@@ -23,20 +24,31 @@ TEST_CASE("ParallelFor visits every index once, whatever the threads and the cou
   }
 }
 
+namespace {
+
+// Calls share(body) with a body(begin, end) that counts its visits, then requires every index of
+// [0, count) visited once, in runs that start at multiples of `run` and are at most that long.
+template <typename Share>
+void RequireRunsCoverOnce(std::uint32_t count, std::uint32_t run, Share&& share) {
+  std::vector<int> visits(count, 0);
+  std::atomic<int> bad_runs{0};
+  share([&](std::uint32_t begin, std::uint32_t end) {
+    if (begin % run != 0 || end <= begin || end - begin > run || end > count) ++bad_runs;
+    for (std::uint32_t i = begin; i < end; ++i) ++visits[i];
+  });
+  REQUIRE(bad_runs == 0);
+  REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
+}
+
+}  // namespace
+
 TEST_CASE("ParallelRuns and ForEachIndexInRuns visit every index once, in runs of the size asked", "[parallel]") {
   for (const int threads : {1, 2, 3}) {
     engine::detail::WorkerPool pool(threads);
     for (const std::uint32_t count : {0u, 1u, 63u, 64u, 65u, 5000u}) {
       for (const std::uint32_t run : {1u, 64u, 1000u}) {
-        std::vector<int> visits(count, 0);
-        std::vector<std::uint32_t> bad_runs;
-        pool.ParallelRuns(count, 1, run, [&](std::uint32_t begin, std::uint32_t end) {
-          if (begin % run != 0 || end <= begin || end - begin > run || end > count) bad_runs.push_back(begin);
-          for (std::uint32_t i = begin; i < end; ++i) ++visits[i];
-        });
         INFO(threads << " threads, " << count << " indices in runs of " << run);
-        REQUIRE(bad_runs.empty());
-        REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
+        RequireRunsCoverOnce(count, run, [&](const auto& body) { pool.ParallelRuns(count, 1, run, body); });
       }
       std::vector<int> visits(count, 0);
       engine::detail::ForEachIndexInRuns(&pool, count, 1, [&](std::uint32_t i) { ++visits[i]; });
@@ -51,22 +63,13 @@ TEST_CASE("RunSideBySideThenShare runs each task once and visits every shared in
     for (const std::uint32_t count : {0u, 1u, 63u, 64u, 65u, 1000u}) {
       for (const std::uint32_t run : {1u, 7u, 64u}) {
         for (int repeat = 0; repeat < 3; ++repeat) {  // the pool's threads are reused
-          std::vector<int> visits(count, 0);
-          int firsts = 0, seconds = 0;
-          std::vector<std::uint32_t> bad_runs;
-          pool.RunSideBySideThenShare([&] { ++firsts; }, [&] { ++seconds; },
-                                      count, run, [&](std::uint32_t begin, std::uint32_t end) {
-                                        // Runs start at multiples of `run` and are at most `run` long.
-                                        if (begin % run != 0 || end - begin > run || end > count) {
-                                          bad_runs.push_back(begin);
-                                        }
-                                        for (std::uint32_t i = begin; i < end; ++i) ++visits[i];
-                                      });
           INFO(threads << " threads, " << count << " indices in runs of " << run);
+          int firsts = 0, seconds = 0;
+          RequireRunsCoverOnce(count, run, [&](const auto& body) {
+            pool.RunSideBySideThenShare([&] { ++firsts; }, [&] { ++seconds; }, count, run, body);
+          });
           REQUIRE(firsts == 1);
           REQUIRE(seconds == 1);
-          REQUIRE(bad_runs.empty());
-          REQUIRE(std::count(visits.begin(), visits.end(), 1) == static_cast<long>(count));
         }
       }
     }
