@@ -1,6 +1,7 @@
-// A fixed set of threads that run one loop at a time, each on its own contiguous chunk of the
-// indices. A chunk always holds the same indices and each index writes only its own results,
-// so the answer is the same bits with any number of threads. Internal.
+// A fixed set of threads that run one loop at a time: each on its own contiguous chunk of the
+// indices, or in runs that go to whichever thread is free. Each index (or run) writes only its
+// own results, so the answer is the same bits with any number of threads and whichever thread
+// takes a run. Internal.
 #pragma once
 
 #include <algorithm>
