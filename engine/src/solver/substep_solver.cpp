@@ -186,7 +186,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
-  ClearPush({push_velocities_, push_angular_velocities_}, &context.pool);  // each MoveByPush clears them after
+  ClearPush({push_velocities_, push_angular_velocities_}, &context.pool);  // each move by push clears them after
   if (plan.track_turning) {
     angles_before_.resize(n);
     turned_.resize(n);

@@ -172,7 +172,9 @@ void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, 
         overlapping += c.base_separation < -linear_slop ? 1 : 0;
         lane_of[j0 + lane] = k * kBlockLanes + lane;
       }
-      for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) PutLane(LinearConstraint{}, &block, static_cast<int>(lane));
+      for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
+        PutLane(LinearConstraint{}, &block, static_cast<int>(lane));  // padding: zero, on body 0
+      }
       overlapping_lanes[k] = overlapping;
     }
   }
