@@ -391,6 +391,35 @@ TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pair
   }
 }
 
+TEST_CASE("AABB tree: most bodies moving, the tree built anew, balanced, its pairs as all pairs on 1-3 threads",
+          "[broadphase][parallel]") {
+  // Every box jumps each call, so more than a quarter leave their fat boxes and the tree is built
+  // anew by median splits: of height ceil(log2 n) exactly. The traversal of the new tree, shared
+  // out on two and three threads, must find exactly the overlapping pairs.
+  for (const int threads : {1, 2, 3}) {
+    std::mt19937_64 rng(13);
+    auto boxes = RandomBoxes(rng, 3000, 110);
+    std::uniform_int_distribution<int> jump(-3, 3);
+    engine::detail::WorkerPool pool(threads);
+    engine::AabbTree tree;
+    std::vector<BodyPair> all, pairs;
+    for (int step = 0; step < 5; ++step) {
+      INFO("threads " << threads << ", step " << step);
+      engine::FindPairsAllPairs(boxes, &all);
+      tree.FindPairs(boxes, &pairs, {}, &pool);
+      REQUIRE(pairs == all);
+      CHECK(4 * tree.LastReinsertCount() > boxes.size());
+      CHECK(tree.IsValid());
+      CHECK(tree.Height() == 12);  // 2^11 < 3000 <= 2^12
+      for (auto& b : boxes) {
+        const Vec2 d{static_cast<double>(jump(rng)), static_cast<double>(jump(rng)) + 4.0};
+        b.lower += d;
+        b.upper += d;
+      }
+    }
+  }
+}
+
 TEST_CASE("pair budget: the collector's account of a pile", "[broadphase]") {
   // 100 equal boxes at one point: body i is charged with the i pairs to lower ids, so bodies 33
   // and up (quota 32) are crowded and keep 4 each.

@@ -219,10 +219,20 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
                          std::span<const PairQuota> quotas, detail::WorkerPool* pool) {
   collector_.Begin(boxes, quotas, pairs);
   if (boxes.size() < leaf_of_.size()) Clear();  // bodies went away: start over
-  moved_.assign(boxes.size(), 0);
+  const std::size_t n = boxes.size();
+  moved_.assign(n, 0);
   moved_list_.clear();
-  ReinsertMovedLeaves(boxes, pool);
-  InsertNewLeaves(boxes);
+  MarkMovedLeaves(boxes, pool);
+  if (4 * moved_list_.size() > n) {
+    Rebuild(boxes, pool);
+  } else {
+    ReinsertMovedLeaves(boxes);
+    reinserts_since_relayout_ += moved_list_.size();
+    if (2 * reinserts_since_relayout_ > n) {
+      Relayout();
+      reinserts_since_relayout_ = 0;
+    }
+  }
   last_reinserts_ = moved_list_.size();
   previous_.assign(boxes.begin(), boxes.end());
   forget_motion_ = false;
@@ -232,9 +242,9 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   collector_.Finish();
 }
 
-// Which leaves go back in is found for all first (on the pool's threads: reinserting one leaf
-// changes only inner nodes, never another leaf's box), then they are reinserted in body order.
-void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+// Which leaves go back in is found for all first (on the pool's threads: marks are per body), in
+// id order into moved_list_, the bodies the tree has not seen yet among them.
+void AabbTree::MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::uint32_t kMinSharedLeaves = 2048;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
   const auto mark = [&](std::uint32_t i) {
@@ -250,45 +260,115 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPo
     }
   };
   detail::ForEachIndexInRuns(pool, known, kMinSharedLeaves, mark);  // the tree: last changed on thread 0
-  for (std::uint32_t i = 0; i < known; ++i) {
-    if (!moved_[i]) continue;
-    const std::int32_t leaf = leaf_of_[i];
+  for (std::uint32_t i = known; i < boxes.size(); ++i) moved_[i] = 1;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    if (moved_[i]) moved_list_.push_back(i);
+  }
+}
+
+// Few moved: each goes back in alone, in id order (reinserting one leaf changes only inner nodes,
+// never another leaf's box), and new bodies get leaves of their own.
+void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes) {
+  const auto known = static_cast<std::uint32_t>(leaf_of_.size());
+  for (const std::uint32_t i : moved_list_) {
     bool stretched = false;
+    if (i >= known) {
+      const std::int32_t leaf = Allocate();
+      nodes_[leaf].body = i;
+      nodes_[leaf].box = FatBox(boxes[i], boxes[i], &stretched);
+      InsertLeaf(leaf);
+      leaf_of_.push_back(leaf);
+      continue;
+    }
+    const std::int32_t leaf = leaf_of_[i];
     RemoveLeaf(leaf);
     nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
     InsertLeaf(leaf);
-    moved_list_.push_back(i);
   }
 }
 
-void AabbTree::InsertNewLeaves(std::span<const AABB> boxes) {
-  const std::size_t n = boxes.size();
-  for (auto i = static_cast<std::uint32_t>(leaf_of_.size()); i < n; ++i) {
-    const std::int32_t leaf = Allocate();
-    nodes_[leaf].body = i;
-    bool stretched = false;
-    nodes_[leaf].box = FatBox(boxes[i], boxes[i], &stretched);
-    InsertLeaf(leaf);
-    leaf_of_.push_back(leaf);
-    moved_[i] = 1;
-    moved_list_.push_back(i);
+// Many moved (a quarter or more: a pile in motion, the first call): a new tree over all the fat
+// boxes costs less than reinserting them one by one, and comes out balanced and in depth-first
+// order. Its shape never shows in the pairs, which are those of overlapping fat boxes.
+void AabbTree::Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  constexpr std::uint32_t kMinSharedLeaves = 2048;
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  const auto known = static_cast<std::uint32_t>(leaf_of_.size());
+  leaves_.resize(n);
+  build_items_.resize(n);
+  detail::ForEachIndexInRuns(pool, n, kMinSharedLeaves, [&](std::uint32_t i) {
+    Node& leaf = leaves_[i];
+    if (i < known && !moved_[i]) {
+      leaf = nodes_[leaf_of_[i]];
+    } else {
+      leaf = Node{};
+      leaf.body = i;
+      leaf.box = FatBox(boxes[i], i < known ? PreviousBox(boxes, i) : boxes[i], &leaf.stretched);
+    }
+    build_items_[i] = {leaf.box.lower + leaf.box.upper, i};
+  });
+  nodes_.assign(n == 0 ? 0 : 2 * std::size_t{n} - 1, Node{});
+  leaf_of_.resize(n);
+  free_list_ = kNull;
+  root_ = n == 0 ? kNull : 0;
+  reinserts_since_relayout_ = 0;
+  if (n > 0) BuildSubtree(0, n, 0, kNull, n >= kMinSharedLeaves ? pool : nullptr);
+}
+
+// The subtree over build_items_[first, last) at node `index`, its first child's subtree right
+// after it and the second's after that (a subtree of k leaves takes 2k − 1 nodes). Split at the
+// median of the wider axis of the centres, ties by body: the shape depends on the boxes alone.
+// With a pool, the two halves are built side by side (they write apart).
+void AabbTree::BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
+                            detail::WorkerPool* pool) {
+  Node& node = nodes_[index];
+  if (last - first == 1) {
+    const std::uint32_t body = build_items_[first].body;
+    node = leaves_[body];
+    node.parent = parent;
+    node.child1 = node.child2 = kNull;
+    node.height = 0;
+    leaf_of_[body] = index;
+    return;
   }
+  Vec2 lo = build_items_[first].centre, hi = lo;
+  for (std::uint32_t k = first + 1; k < last; ++k) {
+    const Vec2 c = build_items_[k].centre;
+    lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
+    hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
+  }
+  const bool along_x = hi.x - lo.x >= hi.y - lo.y;
+  const std::uint32_t middle = first + (last - first) / 2;
+  std::nth_element(build_items_.begin() + first, build_items_.begin() + middle, build_items_.begin() + last,
+                   [along_x](const BuildItem& p, const BuildItem& q) {
+                     const double a = along_x ? p.centre.x : p.centre.y, b = along_x ? q.centre.x : q.centre.y;
+                     return a < b || (a == b && p.body < q.body);
+                   });
+  const std::int32_t child1 = index + 1;
+  const auto child2 = static_cast<std::int32_t>(index + 2 * (middle - first));
+  if (pool) {
+    pool->RunSideBySide([&] { BuildSubtree(first, middle, child1, index, nullptr); },
+                        [&] { BuildSubtree(middle, last, child2, index, nullptr); });
+  } else {
+    BuildSubtree(first, middle, child1, index, nullptr);
+    BuildSubtree(middle, last, child2, index, nullptr);
+  }
+  node.parent = parent;
+  node.child1 = child1;
+  node.child2 = child2;
+  node.box = Union(nodes_[child1].box, nodes_[child2].box);
+  node.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
 }
 
 // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
 // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
 void AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   const std::size_t n = boxes.size();
-  reinserts_since_relayout_ += moved_list_.size();
-  if (2 * reinserts_since_relayout_ > n) {
-    Relayout();
-    reinserts_since_relayout_ = 0;
-  }
   // A crowded tree kept no candidates, and an update that would outgrow the limit gives way to
   // a whole traversal, which finds out whether the tree is still crowded.
   if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates(pool))) {
-    FindAllCandidates(boxes);
+    FindAllCandidates(boxes, pool);
   }
 }
 
@@ -322,45 +402,102 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
 
 std::size_t AabbTree::CandidateLimit() const { return kCandidatesPerBody * leaf_of_.size() + 1024; }
 
-void AabbTree::FindAllCandidates(std::span<const AABB> boxes) {
-  // The tree against itself: each subtree against itself, and the two children of every node
-  // against each other, descending only where fat boxes overlap. A pair of nodes goes on the
-  // stack only once their boxes are known to overlap. Candidates beyond the limit (bodies piled
-  // up) are not kept: every overlapping pair goes to the collector instead, which bounds them.
+// One step of the tree's traversal against itself: the node pair (a, b), a node with itself or
+// two whose boxes overlap, hands on its children's pairs that overlap, or is a candidate when both
+// are leaves. Each subtree is met against itself and the two children of every node against each
+// other, descending only where fat boxes overlap.
+template <typename Push, typename Found>
+void AabbTree::VisitNodePair(std::int32_t a, std::int32_t b, Push&& push, Found&& found) const {
+  const Node& na = nodes_[a];
+  auto push_if_overlapping = [&](std::int32_t p, std::int32_t q) {
+    if (Overlaps(nodes_[p].box, nodes_[q].box)) push(p, q);
+  };
+  if (a == b) {
+    if (na.IsLeaf()) return;
+    push(na.child1, na.child1);
+    push(na.child2, na.child2);
+    push_if_overlapping(na.child1, na.child2);
+    return;
+  }
+  const Node& nb = nodes_[b];
+  if (na.IsLeaf() && nb.IsLeaf()) {
+    found(na.body, nb.body);
+    return;
+  }
+  // Split the bigger side, so the two stay of similar size as they descend.
+  if (nb.IsLeaf() || (!na.IsLeaf() && Perimeter(na.box) >= Perimeter(nb.box))) {
+    push_if_overlapping(na.child1, b);
+    push_if_overlapping(na.child2, b);
+  } else {
+    push_if_overlapping(a, nb.child1);
+    push_if_overlapping(a, nb.child2);
+  }
+}
+
+void AabbTree::FindAllCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  // Candidates beyond the limit (bodies piled up) are not kept: every overlapping pair goes to
+  // the collector instead, which bounds them. A tree crowded last call is traversed on one thread.
+  constexpr std::size_t kMinSharedLeaves = 2048;
   candidates_.clear();
+  const bool was_crowded = crowded_;
   crowded_ = false;
+  if (!was_crowded && pool && pool->Threads() > 1 && leaf_of_.size() >= kMinSharedLeaves &&
+      FindAllCandidatesShared(*pool)) {
+    detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
+    return;
+  }
+  candidates_.clear();
   const std::size_t limit = CandidateLimit();
   stack_.clear();
-  auto push_if_overlapping = [this](std::int32_t a, std::int32_t b) {
-    if (Overlaps(nodes_[a].box, nodes_[b].box)) stack_.push_back({a, b});
-  };
   if (root_ != kNull) stack_.push_back({root_, root_});
   while (!stack_.empty()) {
     const auto [a, b] = stack_.back();
     stack_.pop_back();
-    const Node& na = nodes_[a];
-    if (a == b) {
-      if (na.IsLeaf()) continue;
-      stack_.push_back({na.child1, na.child1});
-      stack_.push_back({na.child2, na.child2});
-      push_if_overlapping(na.child1, na.child2);
-      continue;
-    }
-    const Node& nb = nodes_[b];
-    if (na.IsLeaf() && nb.IsLeaf()) {
-      AddCandidate(na.body, nb.body, boxes, limit);
-      continue;
-    }
-    // Split the bigger side, so the two stay of similar size as they descend.
-    if (nb.IsLeaf() || (!na.IsLeaf() && Perimeter(na.box) >= Perimeter(nb.box))) {
-      push_if_overlapping(na.child1, b);
-      push_if_overlapping(na.child2, b);
-    } else {
-      push_if_overlapping(a, nb.child1);
-      push_if_overlapping(a, nb.child2);
-    }
+    VisitNodePair(
+        a, b, [this](std::int32_t p, std::int32_t q) { stack_.push_back({p, q}); },
+        [&](std::uint32_t p, std::uint32_t q) { AddCandidate(p, q, boxes, limit); });
   }
   if (!crowded_) detail::SortPairs(leaf_of_.size(), &candidates_, &sorted_scratch_, &counts_);
+}
+
+// The traversal is split level by level from the root's pair with itself until there are node
+// pairs enough for every thread to take several, each with its own list, whichever thread is free.
+// False, with the lists together past the candidate limit: the tree is crowded, and the caller
+// traverses it alone, the way that bounds what the pairs cost.
+bool AabbTree::FindAllCandidatesShared(detail::WorkerPool& pool) {
+  constexpr std::size_t kNodePairsPerThread = 16;
+  const std::size_t limit = CandidateLimit();
+  const std::size_t enough = kNodePairsPerThread * static_cast<std::size_t>(pool.Threads());
+  const auto found = [this](std::uint32_t p, std::uint32_t q) { candidates_.push_back(MakePair(p, q)); };
+  node_pairs_.assign(1, {root_, root_});
+  while (!node_pairs_.empty() && node_pairs_.size() < enough) {
+    stack_.clear();
+    for (const auto& [a, b] : node_pairs_) {
+      VisitNodePair(a, b, [this](std::int32_t p, std::int32_t q) { stack_.push_back({p, q}); }, found);
+    }
+    node_pairs_.swap(stack_);
+  }
+  const auto count = static_cast<std::uint32_t>(node_pairs_.size());
+  traversal_runs_.resize(count);
+  pool.ParallelRuns(count, 0, 1, [&](std::uint32_t begin, std::uint32_t end) {
+    TraversalRun& run = traversal_runs_[begin].value;
+    run.pairs.clear();
+    for (std::uint32_t k = begin; k < end; ++k) {
+      run.stack.assign(1, node_pairs_[k]);
+      while (!run.stack.empty() && run.pairs.size() <= limit) {
+        const auto [a, b] = run.stack.back();
+        run.stack.pop_back();
+        VisitNodePair(
+            a, b, [&run](std::int32_t p, std::int32_t q) { run.stack.push_back({p, q}); },
+            [&run](std::uint32_t p, std::uint32_t q) { run.pairs.push_back(MakePair(p, q)); });
+      }
+    }
+  });
+  std::size_t total = candidates_.size();
+  for (const auto& run : traversal_runs_) total += run.value.pairs.size();
+  if (total > limit) return false;
+  for (const auto& run : traversal_runs_) candidates_.insert(candidates_.end(), run.value.pairs.begin(), run.value.pairs.end());
+  return true;
 }
 
 // Past the limit the tree is crowded: the pairs kept so far and all that follow go straight to the

@@ -18,11 +18,14 @@ namespace engine {
 /// A dynamic AABB tree (after Box2D's b2DynamicTree, Erin Catto): one leaf per body holding a
 /// fattened box, internal nodes holding the union of their children, improved by rotations.
 /// A body is removed and reinserted only when its box leaves its fat box, so a step of small
-/// motions touches few nodes. The pairs of overlapping fat boxes are kept from step to step and
-/// found again only for reinserted bodies (by a query each, or one traversal of the tree against
-/// itself when many moved); an exact test of the bodies' own boxes picks the pairs. Deterministic:
-/// node slots come from a free list, new bodies are inserted and moved ones reinserted in id
-/// order. Pairs come out sorted by (a, b).
+/// motions touches few nodes; when a quarter of the bodies or more moved, the tree is built anew
+/// over all the fat boxes instead (median splits; Box2D v3 rebuilds what moved of its tree in the
+/// same spirit). The pairs of overlapping fat boxes are kept from step to step and found again
+/// only for reinserted bodies (by a query each, or one traversal of the tree against itself when
+/// many moved); an exact test of the bodies' own boxes picks the pairs. Deterministic: node slots
+/// come from a free list, new bodies are inserted and moved ones reinserted in id order, a new
+/// tree's splits depend on the boxes alone. Pairs come out sorted by (a, b), and never depend on
+/// the tree's shape.
 class AabbTree {
  public:
   /// `pool`: threads to share the check of the kept candidates among (the pairs and the
@@ -70,19 +73,28 @@ class AabbTree {
   void Clear();
   /// Renumbers the nodes in depth-first order, so that a subtree sits together in memory.
   void Relayout();
-  /// Reinserts the known bodies that left their fat boxes, in id order, into moved_list_.
-  void ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// Marks the bodies that left their fat boxes (or shed their motion), and the new ones, into
+  /// moved_ and, in id order, moved_list_.
+  void MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// Body i's box at the last call (or now, when the motion since is forgotten).
   const AABB& PreviousBox(std::span<const AABB> boxes, std::uint32_t i) const {
     return forget_motion_ ? boxes[i] : previous_[i];
   }
-  /// Inserts the bodies the tree has not seen yet, in id order, into moved_list_.
-  void InsertNewLeaves(std::span<const AABB> boxes);
+  /// Reinserts the marked bodies one by one, in id order, new ones with leaves of their own.
+  void ReinsertMovedLeaves(std::span<const AABB> boxes);
+  /// A new tree over every body's fat box, the marked ones' made anew.
+  void Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  void BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
+                    detail::WorkerPool* pool);
   /// Brings the candidate pairs up to date with the moved leaves.
   void RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself;
   /// past the candidate limit the pairs go straight to the collector and the tree is crowded.
-  void FindAllCandidates(std::span<const AABB> boxes);
+  void FindAllCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// The same traversal shared among the pool's threads; false when past the candidate limit.
+  bool FindAllCandidatesShared(detail::WorkerPool& pool);
+  template <typename Push, typename Found>
+  void VisitNodePair(std::int32_t a, std::int32_t b, Push&& push, Found&& found) const;
   void AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AABB> boxes, std::size_t limit);
   /// The same, from last call's list, by querying the tree for the moved leaves only; false when
   /// the list would outgrow the candidate limit (the caller then traverses the whole tree).
@@ -102,6 +114,20 @@ class AabbTree {
   std::vector<std::int32_t> leaf_of_;  ///< per body
   std::vector<AABB> previous_;         ///< each body's box at the last call, for its motion
   std::vector<std::pair<std::int32_t, std::int32_t>> stack_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> node_pairs_;  ///< the shared traversal's starts
+  /// A run of the shared traversal: its stack and the candidates it found.
+  struct TraversalRun {
+    std::vector<std::pair<std::int32_t, std::int32_t>> stack;
+    std::vector<BodyPair> pairs;
+  };
+  std::vector<detail::PerThread<TraversalRun>> traversal_runs_;
+  /// Rebuild's scratch: each body's leaf, and its box's centre (doubled) to split by.
+  std::vector<Node> leaves_;
+  struct BuildItem {
+    Vec2 centre;
+    std::uint32_t body;
+  };
+  std::vector<BuildItem> build_items_;
   /// Pairs of bodies whose fat boxes overlap, sorted by (a, b): a superset of the overlapping
   /// pairs that changes only where leaves moved.
   std::vector<BodyPair> candidates_;
