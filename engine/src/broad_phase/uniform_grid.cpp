@@ -17,24 +17,38 @@ constexpr double kCellLimit = 1 << 29;
 // A box touching more cells than this is "large": binning it would cost more than testing it
 // alone. With cells twice the median extent, a typical box touches one to four.
 constexpr std::int64_t kMaxCellsPerBox = 16;
-// Fewer entries than this are scanned on one thread: the hand-off would cost more.
+// Fewer entries than this are scanned on one thread, and fewer boxes measured and placed in cells
+// on one: the hand-off would cost more.
 constexpr std::size_t kMinSharedEntries = 4096;
+constexpr std::uint32_t kMinSharedBoxes = 2048;
 
 double Extent(const AABB& box) { return std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y); }
 
 }  // namespace
 
 // The size is kept while the median extent stays within a factor of two of the one it was chosen
-// for; the test costs a pass of comparisons, a new choice a selection (nth_element).
-bool UniformGrid::CellSizeFits(std::span<const AABB> boxes) const {
+// for; the test costs a pass of comparisons (shared out in runs), a new choice a selection
+// (nth_element).
+bool UniformGrid::CellSizeFits(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   if (cell_size_ == 0.0) return false;
   const double median = 0.5 * cell_size_;
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  const std::uint32_t run = RunLength(n, pool);
+  size_runs_.resize((n + run - 1) / run);
+  RunsOf(pool, n, run, [&](std::uint32_t begin, std::uint32_t end) {
+    SizeRun& counts = size_runs_[begin / run].value;
+    counts = {};
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const double e = Extent(boxes[i]);
+      counts.bigger += e > 2.0 * median;
+      counts.smaller += e < 0.5 * median;
+    }
+  });
   std::size_t bigger = 0;
   std::size_t smaller = 0;
-  for (const AABB& box : boxes) {
-    const double e = Extent(box);
-    bigger += e > 2.0 * median;
-    smaller += e < 0.5 * median;
+  for (const auto& counts : size_runs_) {
+    bigger += counts.value.bigger;
+    smaller += counts.value.smaller;
   }
   return 2 * bigger <= boxes.size() && 2 * smaller <= boxes.size();
 }
@@ -89,8 +103,8 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
     collector_.Finish();
     return;
   }
-  if (!CellSizeFits(boxes)) ChooseCellSize(boxes);
-  const std::int64_t entry_count = FindCellRanges(boxes);
+  if (!CellSizeFits(boxes, pool)) ChooseCellSize(boxes);
+  const std::int64_t entry_count = FindCellRanges(boxes, pool);
   if (!small_.empty()) {
     const std::size_t bucket_count = ChooseBuckets(entry_count);
     FillBuckets(boxes, entry_count, bucket_count, pool);
@@ -100,26 +114,62 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
   collector_.Finish();
 }
 
-std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes) {
-  const std::size_t n = boxes.size();
+// Shared, each run of the bodies finds its boxes' cells into lists of its own, joined in run order
+// (so in id order, as one thread's).
+std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  const auto n = static_cast<std::uint32_t>(boxes.size());
   ranges_.resize(n);
-  std::int64_t entry_count = 0;
-  occupied_ = {std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
-               std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const CellRange r = Cells(boxes[i]);
-    ranges_[i] = r;
-    const std::int64_t cells = r.Count();
-    if (cells > kMaxCellsPerBox) {
-      large_.push_back(i);
-      continue;
+  const std::uint32_t run = RunLength(n, pool);
+  range_runs_.resize((n + run - 1) / run);
+  RunsOf(pool, n, run, [&](std::uint32_t begin, std::uint32_t end) {
+    RangeRun& part = range_runs_[begin / run].value;
+    part.small.clear();
+    part.large.clear();
+    part.entries = 0;
+    part.occupied = {std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+                     std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const CellRange r = Cells(boxes[i]);
+      ranges_[i] = r;
+      const std::int64_t cells = r.Count();
+      if (cells > kMaxCellsPerBox) {
+        part.large.push_back(i);
+        continue;
+      }
+      part.small.push_back(i);
+      part.entries += cells;
+      part.occupied = Cover(part.occupied, r);
     }
-    small_.push_back(i);
-    entry_count += cells;
-    occupied_ = {std::min(occupied_.x0, r.x0), std::min(occupied_.y0, r.y0), std::max(occupied_.x1, r.x1),
-                 std::max(occupied_.y1, r.y1)};
+  });
+  std::int64_t entry_count = 0;
+  occupied_ = range_runs_.front().value.occupied;
+  for (const auto& run_part : range_runs_) {
+    const RangeRun& part = run_part.value;
+    small_.insert(small_.end(), part.small.begin(), part.small.end());
+    large_.insert(large_.end(), part.large.begin(), part.large.end());
+    entry_count += part.entries;
+    occupied_ = Cover(occupied_, part.occupied);
   }
   return entry_count;
+}
+
+UniformGrid::CellRange UniformGrid::Cover(const CellRange& a, const CellRange& b) {
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+// Runs of the bodies: a few a thread when shared (on one thread, all of them in one run).
+std::uint32_t UniformGrid::RunLength(std::uint32_t count, const detail::WorkerPool* pool) {
+  const std::uint32_t threads = pool && count >= kMinSharedBoxes ? static_cast<std::uint32_t>(pool->Threads()) : 1;
+  return threads == 1 ? std::max<std::uint32_t>(count, 1) : count / (detail::kRunsPerThread * threads) + 1;
+}
+
+template <typename Body>
+void UniformGrid::RunsOf(detail::WorkerPool* pool, std::uint32_t count, std::uint32_t run, Body&& body) {
+  if (pool) {
+    pool->ParallelRuns(count, kMinSharedBoxes, run, body);
+  } else {
+    body(0, count);
+  }
 }
 
 // The cells themselves when the occupied area is compact, else a hash table at load one or less,

@@ -44,13 +44,19 @@ class UniformGrid {
     std::uint32_t body;
     std::uint8_t first;  ///< bit 0: the box's leftmost column of cells; bit 1: its bottom row
   };
-  bool CellSizeFits(std::span<const AABB> boxes) const;
+  bool CellSizeFits(std::span<const AABB> boxes, detail::WorkerPool* pool);
   void ChooseCellSize(std::span<const AABB> boxes);
   CellRange Cells(const AABB& box) const;
   std::uint32_t Bucket(std::int32_t x, std::int32_t y) const;
   /// Which cells each box touches, the large boxes set apart and the occupied cells' bounds;
   /// returns how many (cell, box) entries the other boxes make.
-  std::int64_t FindCellRanges(std::span<const AABB> boxes);
+  std::int64_t FindCellRanges(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  static CellRange Cover(const CellRange& a, const CellRange& b);
+  /// How many bodies a run of the two passes above takes.
+  static std::uint32_t RunLength(std::uint32_t count, const detail::WorkerPool* pool);
+  /// Calls body(begin, end) for runs of `run` bodies covering [0, count), shared on the pool.
+  template <typename Body>
+  static void RunsOf(detail::WorkerPool* pool, std::uint32_t count, std::uint32_t run, Body&& body);
   /// Dense or hashed buckets for the entries; returns how many.
   std::size_t ChooseBuckets(std::int64_t entry_count);
   void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,
@@ -76,6 +82,17 @@ class UniformGrid {
   std::vector<std::uint32_t> bucket_start_;
   std::vector<Entry> entries_;
   std::vector<double> extent_scratch_;
+  /// A run's share of CellSizeFits' count and of FindCellRanges' lists, when shared.
+  struct SizeRun {
+    std::size_t bigger = 0, smaller = 0;
+  };
+  struct RangeRun {
+    std::vector<std::uint32_t> small, large;
+    std::int64_t entries = 0;
+    CellRange occupied{};
+  };
+  std::vector<detail::PerThread<SizeRun>> size_runs_;
+  std::vector<detail::PerThread<RangeRun>> range_runs_;
   std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's pairs, when shared
   /// FillBuckets' runs, when shared: each run's count per bucket, then its next place there.
   std::vector<detail::PerThread<std::vector<std::uint32_t>>> run_next_;

@@ -99,16 +99,45 @@ void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_
   }
 }
 
-void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows) {
+// A counting sort by bucket in runs of the constraints: each run counts its rows per bucket, then
+// places them from its own first place in each bucket, runs in order within a bucket, so ties
+// stay in constraint order however the runs are shared out.
+void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPool* pool) {
   const std::span<const std::uint32_t> bucket = scratch->bucket;
-  const std::uint32_t other_bucket = static_cast<std::uint32_t>(scratch->reached) + 1;
-  std::vector<std::uint32_t>& first = scratch->first;
-  first.assign(other_bucket + 2, 0);
-  for (const std::uint32_t b : bucket) ++first[b + 1];
-  for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
-  const std::size_t supporting = first[other_bucket];
-  rows->resize(bucket.size());
-  for (std::size_t j = 0; j < bucket.size(); ++j) (*rows)[first[bucket[j]]++] = scratch->unsorted[j];
+  const auto n = static_cast<std::uint32_t>(bucket.size());
+  const auto buckets = static_cast<std::uint32_t>(scratch->reached) + 2;  // levels, unreached, the rest
+  const std::uint32_t threads = pool && n >= kMinSharedContacts ? static_cast<std::uint32_t>(pool->Threads()) : 1;
+  const std::uint32_t run = threads == 1 ? std::max<std::uint32_t>(n, 1) : n / (kRunsPerThread * threads) + 1;
+  const std::uint32_t runs = (n + run - 1) / run;
+  std::vector<std::uint32_t>& next = scratch->first;  // runs × buckets: a run's count, then its next place
+  next.assign(std::size_t{runs} * buckets, 0);
+  const auto in_runs = [&](auto&& body) {
+    if (pool) {
+      pool->ParallelRuns(n, kMinSharedContacts, run, body);
+    } else if (n > 0) {
+      body(0, n);
+    }
+  };
+  in_runs([&](std::uint32_t begin, std::uint32_t end) {
+    std::uint32_t* count = next.data() + std::size_t{begin / run} * buckets;
+    for (std::uint32_t j = begin; j < end; ++j) ++count[bucket[j]];
+  });
+  std::uint32_t place = 0;
+  std::uint32_t supporting = 0;
+  for (std::uint32_t b = 0; b < buckets; ++b) {
+    if (b + 1 == buckets) supporting = place;
+    for (std::uint32_t r = 0; r < runs; ++r) {
+      std::uint32_t& at = next[std::size_t{r} * buckets + b];
+      const std::uint32_t count = at;
+      at = place;
+      place += count;
+    }
+  }
+  rows->resize(n);
+  in_runs([&](std::uint32_t begin, std::uint32_t end) {
+    std::uint32_t* at = next.data() + std::size_t{begin / run} * buckets;
+    for (std::uint32_t j = begin; j < end; ++j) (*rows)[at[bucket[j]]++] = scratch->unsorted[j];
+  });
   rows->resize(supporting);
 }
 

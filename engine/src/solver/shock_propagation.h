@@ -69,8 +69,9 @@ template <typename C>
 void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_t> slot, Vec2 up,
                     ShockScratch* scratch, WorkerPool* pool = nullptr);
 
-/// The supporting rows WriteShockRows wrote, in the order BuildShockRows gives.
-void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows);
+/// The supporting rows WriteShockRows wrote, in the order BuildShockRows gives; with a pool,
+/// sorted in runs shared among its threads (the same rows).
+void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPool* pool = nullptr);
 
 /// One pass over the rows: no contact within the slop may approach faster than its gap allows
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse

@@ -141,13 +141,14 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
     if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
     WriteShockRows<C>(constraints, order_.slot, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
+    SortShockRows(&shock_scratch_, &shock_rows_, &context.pool);
   }
-  // Two tasks side by side, then the blocks' packing shared: the shock rows only read what
-  // WriteShockRows wrote, the impacts only write velocities and the lanes only their blocks.
-  const auto shock_rows = [&] {
-    if (!plan.shock_propagation) return;
-    SortShockRows(&shock_scratch_, &shock_rows_);
-    shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
+  // Two tasks side by side, then the blocks' packing shared: the shock schedule only reads the
+  // rows, the impacts only write velocities and the lanes only their blocks.
+  const auto shock_plan = [&] {
+    if (plan.shock_propagation) {
+      shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
+    }
   };
   // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
   // the direct solve takes its islands whole: one at a time). The axis-aligned blocks are laid
@@ -178,9 +179,9 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   };
   constexpr std::uint32_t kBlocksPerRun = 64;
   if (plan.shock_propagation && constraints.size() >= kMinSideBySideConstraints) {
-    context.pool.RunSideBySideThenShare(impacts, shock_rows, blocks_to_pack, kBlocksPerRun, pack_blocks);
+    context.pool.RunSideBySideThenShare(impacts, shock_plan, blocks_to_pack, kBlocksPerRun, pack_blocks);
   } else {
-    shock_rows();
+    shock_plan();
     impacts();
     if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
   }
