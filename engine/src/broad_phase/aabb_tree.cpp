@@ -15,6 +15,9 @@ namespace engine {
 
 namespace {
 
+// Fewer candidates than this are checked on one thread: the hand-off would cost more.
+constexpr std::uint32_t kMinSharedCandidates = 4096;
+
 // A leaf's box is the body's grown by this fraction of its larger side, so that small motions
 // (a pile settling, a contact jittering) stay inside it and cost nothing.
 constexpr double kMarginFraction = 0.1;
@@ -237,8 +240,14 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   previous_.assign(boxes.begin(), boxes.end());
   forget_motion_ = false;
 
-  RefreshCandidates(boxes, pool);
-  if (!crowded_) AddOverlappingCandidates(boxes, pool);  // a crowded tree handed its pairs over already
+  const bool found = RefreshCandidates(boxes, pool);
+  if (!crowded_) {  // a crowded tree handed its pairs over already
+    if (found) {
+      CollectFound();
+    } else {
+      AddOverlappingCandidates(boxes, pool);
+    }
+  }
   collector_.Finish();
 }
 
@@ -363,20 +372,19 @@ void AabbTree::BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_
 
 // The candidates are the pairs whose fat boxes overlap. Only a moved leaf's fat box changed, so
 // only its pairs need finding again; when many moved, one traversal of the whole tree is cheaper.
-void AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+bool AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   const std::size_t n = boxes.size();
   // A crowded tree kept no candidates, and an update that would outgrow the limit gives way to
   // a whole traversal, which finds out whether the tree is still crowded.
-  if (crowded_ || 4 * moved_list_.size() > n || (!moved_list_.empty() && !UpdateCandidates(pool))) {
-    FindAllCandidates(boxes, pool);
-  }
+  if (!crowded_ && 4 * moved_list_.size() <= n && !moved_list_.empty() && UpdateCandidates(boxes, pool)) return true;
+  if (crowded_ || !moved_list_.empty()) FindAllCandidates(boxes, pool);
+  return false;
 }
 
 // Shared, the threads check runs of the candidates, each run taken by whichever thread is free
 // (the candidates were merged on thread 0: the other reads them cold), and keep the overlapping
 // ones; the runs then go to the collector in order, as one thread's would.
 void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
-  constexpr std::size_t kMinSharedCandidates = 4096;
   const int threads = pool ? pool->Threads() : 1;
   if (threads == 1 || candidates_.size() < kMinSharedCandidates) {
     for (const BodyPair& p : candidates_) {
@@ -395,6 +403,10 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
       if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
     }
   });
+  CollectFound();
+}
+
+void AabbTree::CollectFound() {
   for (const auto& part : found_) {
     for (const BodyPair& p : part.value) collector_.Add(p.a, p.b);
   }
@@ -515,15 +527,15 @@ void AabbTree::AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AA
   candidates_.shrink_to_fit();
 }
 
-bool AabbTree::UpdateCandidates(detail::WorkerPool* pool) {
-  // Drop the moved bodies' pairs, query the tree for each moved body's new ones (a pair of two
-  // moved bodies is taken from the smaller id only), then merge the two sorted lists. The
-  // queries only read the tree: shared, each thread queries a run of the moved bodies.
+// Each moved body's new pairs from a query of the tree (a pair of two moved bodies is taken from
+// the smaller id only): the queries only read the tree, so shared, each thread queries a run of
+// the moved bodies and sorts what it found. Then, in runs of last call's candidates, each run
+// drops its pairs with a moved body, merges in the fresh pairs that sort within its stretch and
+// tests the bodies' own boxes of what it keeps (into found_): the runs, joined in order, are the
+// sorted candidates and the overlapping ones, as one thread would find them.
+bool AabbTree::UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::size_t kMinSharedQueries = 64;
-  std::erase_if(candidates_, [this](BodyPair p) { return moved_[p.a] || moved_[p.b]; });
   const std::size_t limit = CandidateLimit();
-  if (candidates_.size() > limit) return false;
-  const std::size_t room = limit - candidates_.size();  // for fresh pairs, before a whole traversal is cheaper
   const int threads = pool && moved_list_.size() >= kMinSharedQueries ? pool->Threads() : 1;
   fresh_runs_.resize(static_cast<std::size_t>(threads));
   const auto query_run = [&](int t) {
@@ -531,9 +543,10 @@ bool AabbTree::UpdateCandidates(detail::WorkerPool* pool) {
     const auto part = static_cast<std::size_t>(t), parts = static_cast<std::size_t>(threads);
     FreshRun& run = fresh_runs_[part].value;
     run.pairs.clear();
-    for (std::size_t k = n * part / parts; k < n * (part + 1) / parts && run.pairs.size() <= room; ++k) {
+    for (std::size_t k = n * part / parts; k < n * (part + 1) / parts && run.pairs.size() <= limit; ++k) {
       QueryFreshPairs(moved_list_[k], &run.stack, &run.pairs);
     }
+    std::sort(run.pairs.begin(), run.pairs.end());
   };
   if (threads == 1) {
     query_run(0);
@@ -541,12 +554,53 @@ bool AabbTree::UpdateCandidates(detail::WorkerPool* pool) {
     pool->RunOnAll(query_run);
   }
   fresh_.clear();
-  for (const auto& run : fresh_runs_) fresh_.insert(fresh_.end(), run.value.pairs.begin(), run.value.pairs.end());
-  if (fresh_.size() > room) return false;
-  std::sort(fresh_.begin(), fresh_.end());
-  sorted_scratch_.resize(candidates_.size() + fresh_.size());
-  std::merge(candidates_.begin(), candidates_.end(), fresh_.begin(), fresh_.end(), sorted_scratch_.begin());
-  candidates_.swap(sorted_scratch_);
+  for (const auto& run : fresh_runs_) {
+    const auto middle = static_cast<std::ptrdiff_t>(fresh_.size());
+    fresh_.insert(fresh_.end(), run.value.pairs.begin(), run.value.pairs.end());
+    std::inplace_merge(fresh_.begin(), fresh_.begin() + middle, fresh_.end());
+  }
+  if (fresh_.size() > limit) return false;
+
+  const auto n = static_cast<std::uint32_t>(candidates_.size());
+  const std::uint32_t count = std::max<std::uint32_t>(n, 1);  // a run even with no candidates: the fresh pairs
+  const int sharing = pool && count >= kMinSharedCandidates ? pool->Threads() : 1;
+  const std::uint32_t run =
+      sharing == 1 ? count : count / (detail::kRunsPerThread * static_cast<std::uint32_t>(sharing)) + 1;
+  const std::size_t runs = (count + run - 1) / run;
+  found_.resize(runs);
+  merged_.resize(runs);
+  const auto fresh_from = [&](std::uint32_t i) {
+    return i == 0 ? fresh_.cbegin() : i >= n ? fresh_.cend() : std::lower_bound(fresh_.cbegin(), fresh_.cend(), candidates_[i]);
+  };
+  const auto merge_run = [&](std::uint32_t begin, std::uint32_t end) {
+    std::vector<BodyPair>& merged = merged_[begin / run].value;
+    std::vector<BodyPair>& found = found_[begin / run].value;
+    merged.clear();
+    found.clear();
+    const auto keep = [&](BodyPair p) {
+      merged.push_back(p);
+      if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
+    };
+    auto fresh = fresh_from(begin);
+    const auto fresh_end = end >= count ? fresh_.cend() : fresh_from(end);
+    for (std::uint32_t i = begin; i < std::min(end, n); ++i) {
+      const BodyPair p = candidates_[i];
+      if (moved_[p.a] || moved_[p.b]) continue;
+      for (; fresh != fresh_end && *fresh < p; ++fresh) keep(*fresh);
+      keep(p);
+    }
+    for (; fresh != fresh_end; ++fresh) keep(*fresh);
+  };
+  if (pool) {
+    pool->ParallelRuns(count, kMinSharedCandidates, run, merge_run);
+  } else {
+    merge_run(0, count);
+  }
+  std::size_t total = 0;
+  for (const auto& part : merged_) total += part.value.size();
+  if (total > limit) return false;
+  candidates_.clear();
+  for (const auto& part : merged_) candidates_.insert(candidates_.end(), part.value.begin(), part.value.end());
   return true;
 }
 

@@ -87,7 +87,8 @@ class AabbTree {
   void BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
                     detail::WorkerPool* pool);
   /// Brings the candidate pairs up to date with the moved leaves.
-  void RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// True when it found the overlapping ones too (into found_, for CollectFound).
+  bool RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// All pairs of leaves whose fat boxes overlap, by one traversal of the tree against itself;
   /// past the candidate limit the pairs go straight to the collector and the tree is crowded.
   void FindAllCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
@@ -96,14 +97,17 @@ class AabbTree {
   template <typename Push, typename Found>
   void VisitNodePair(std::int32_t a, std::int32_t b, Push&& push, Found&& found) const;
   void AddCandidate(std::uint32_t a, std::uint32_t b, std::span<const AABB> boxes, std::size_t limit);
-  /// The same, from last call's list, by querying the tree for the moved leaves only; false when
-  /// the list would outgrow the candidate limit (the caller then traverses the whole tree).
-  bool UpdateCandidates(detail::WorkerPool* pool);
+  /// The same, from last call's list, by querying the tree for the moved leaves only, with the
+  /// overlapping ones into found_; false when the list would outgrow the candidate limit (the
+  /// caller then traverses the whole tree).
+  bool UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// Adds to `fresh` the pairs of moved body `body` with the leaves its fat box overlaps
   /// (`stack`: scratch).
   void QueryFreshPairs(std::uint32_t body, std::vector<std::int32_t>* stack, std::vector<BodyPair>* fresh) const;
   /// The candidates whose bodies' own boxes overlap, to the collector.
   void AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// found_'s runs to the collector, in order.
+  void CollectFound();
   std::size_t CandidateLimit() const;
 
   std::vector<Node> nodes_;
@@ -148,6 +152,7 @@ class AabbTree {
   std::vector<std::uint32_t> counts_;
   PairCollector collector_;
   std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each run's overlapping candidates
+  std::vector<detail::PerThread<std::vector<BodyPair>>> merged_;  ///< UpdateCandidates' runs' candidates
 };
 
 }  // namespace engine

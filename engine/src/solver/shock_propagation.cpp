@@ -50,7 +50,7 @@ void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> 
       tail += was == kUnreached;
     }
   }
-  s->reached = tail;
+  s->levels = tail == 0 ? 0 : level[queue[tail - 1]] + 1;  // the queue holds the bodies by level
 }
 
 template void BuildShockLevels(std::span<const Contact>, std::span<const BodyInfo>, ShockScratch*);
@@ -74,7 +74,7 @@ void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_
   // linear and stable, so ties stay in constraint order, and the supporting rows come first.
   // Every constraint gets a row, without a branch on whether it supports: which ones do is as
   // good as random, and mispredicted branches cost more than writing the rows.
-  const auto unreached_bucket = static_cast<std::uint32_t>(scratch->reached);
+  const auto unreached_bucket = static_cast<std::uint32_t>(scratch->levels);
   const std::uint32_t other_bucket = unreached_bucket + 1;
   scratch->bucket.resize(constraints.size());
   scratch->unsorted.resize(constraints.size());
@@ -105,7 +105,7 @@ void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_
 void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPool* pool) {
   const std::span<const std::uint32_t> bucket = scratch->bucket;
   const auto n = static_cast<std::uint32_t>(bucket.size());
-  const auto buckets = static_cast<std::uint32_t>(scratch->reached) + 2;  // levels, unreached, the rest
+  const auto buckets = static_cast<std::uint32_t>(scratch->levels) + 2;  // levels, unreached, the rest
   const std::uint32_t threads = pool && n >= kMinSharedContacts ? static_cast<std::uint32_t>(pool->Threads()) : 1;
   const std::uint32_t run = threads == 1 ? std::max<std::uint32_t>(n, 1) : n / (kRunsPerThread * threads) + 1;
   const std::uint32_t runs = (n + run - 1) / run;

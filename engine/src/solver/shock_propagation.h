@@ -35,11 +35,11 @@ struct ShockScratch {
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
   std::vector<std::uint32_t> bucket;  ///< per constraint: its bucket in the rows' counting sort
   std::vector<ShockRow> unsorted;     ///< per constraint: its row, in constraint order
-  std::size_t reached = 0;            ///< how many bodies the levels reach
+  std::size_t levels = 0;             ///< how many levels there are (the highest one's, plus one)
 };
 
-/// Each body's level (graph distance through the contacts from a static body), and how many are
-/// reached. `constraints`: anything with bodies a and b, one per contact, in any order: the
+/// Each body's level (graph distance through the contacts from a static body), and how many
+/// levels there are. `constraints`: anything with bodies a and b, one per contact, in any order: the
 /// levels are distances, the same whatever order the search meets the contacts in.
 template <typename C>
 void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> infos, ShockScratch* scratch);
