@@ -363,9 +363,9 @@ TEMPLATE_TEST_CASE("grid and tree shared among threads: all pairs, and the budge
 }
 
 TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pairs as on one", "[broadphase][parallel]") {
-  // Each call moves one box in twenty by a jump: past the 64 that the tree queries on several
-  // threads, short of the quarter past which it traverses itself whole, with candidates enough
-  // that their merge with the fresh pairs is shared out in runs. The pairs found by one, two and
+  // Each call moves one box in twenty by a jump: past the 64 that the tree reinserts and queries
+  // on several threads, short of the quarter past which it is built anew and traversed whole,
+  // with candidates enough that their merge with the fresh pairs is shared out in runs. The pairs found by one, two and
   // three threads must be all the overlapping ones.
   for (const int threads : {1, 2, 3}) {
     std::mt19937_64 rng(11);
@@ -380,6 +380,7 @@ TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pair
       tree.FindPairs(boxes, &pairs, {}, &pool);
       REQUIRE(pairs == all);
       CHECK(all.size() > 4096);  // candidates enough to be merged in runs shared out
+      CHECK(tree.IsValid());     // the moved leaves went back into the root's two sides side by side
       if (step > 0) {
         CHECK(tree.LastReinsertCount() >= 64);
         CHECK(4 * tree.LastReinsertCount() <= boxes.size());

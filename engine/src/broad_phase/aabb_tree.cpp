@@ -89,10 +89,10 @@ void AabbTree::Clear() {
   reinserts_since_relayout_ = 0;
 }
 
-// Branch and bound down from the root: stop at a node when making it the sibling is cheaper than
+// Branch and bound down from `start`: stop at a node when making it the sibling is cheaper than
 // the best each child could offer (every ancestor on the way grows by `inheritance` either way).
-std::int32_t AabbTree::FindBestSibling(const AABB& box) const {
-  std::int32_t index = root_;
+std::int32_t AabbTree::FindBestSibling(const AABB& box, std::int32_t start) const {
+  std::int32_t index = start;
   while (!nodes_[index].IsLeaf()) {
     const Node& node = nodes_[index];
     const double perimeter = Perimeter(node.box);
@@ -118,11 +118,15 @@ void AabbTree::InsertLeaf(std::int32_t leaf) {
     nodes_[leaf].parent = kNull;
     return;
   }
+  AttachLeaf(leaf, Allocate(), root_, kNull);
+}
+
+void AabbTree::AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top) {
   const AABB box = nodes_[leaf].box;
-  const std::int32_t sibling = FindBestSibling(box);
+  const std::int32_t sibling = FindBestSibling(box, start);
   const std::int32_t old_parent = nodes_[sibling].parent;
-  const std::int32_t parent = Allocate();
   Node& p = nodes_[parent];
+  p = Node{};
   p.parent = old_parent;
   p.box = Union(box, nodes_[sibling].box);
   p.height = nodes_[sibling].height + 1;
@@ -137,7 +141,7 @@ void AabbTree::InsertLeaf(std::int32_t leaf) {
   } else {
     nodes_[old_parent].child2 = parent;
   }
-  RefitUpward(old_parent);  // the new parent's box and height are already right
+  RefitUpward(old_parent, top);  // the new parent's box and height are already right
 }
 
 void AabbTree::RemoveLeaf(std::int32_t leaf) {
@@ -145,25 +149,29 @@ void AabbTree::RemoveLeaf(std::int32_t leaf) {
     root_ = kNull;
     return;
   }
+  Free(DetachLeaf(leaf, kNull));
+}
+
+std::int32_t AabbTree::DetachLeaf(std::int32_t leaf, std::int32_t top) {
   const std::int32_t parent = nodes_[leaf].parent;
   const std::int32_t grandparent = nodes_[parent].parent;
   const std::int32_t sibling = nodes_[parent].child1 == leaf ? nodes_[parent].child2 : nodes_[parent].child1;
-  Free(parent);
   nodes_[sibling].parent = grandparent;
   if (grandparent == kNull) {
     root_ = sibling;
-    return;
+    return parent;
   }
   if (nodes_[grandparent].child1 == parent) {
     nodes_[grandparent].child1 = sibling;
   } else {
     nodes_[grandparent].child2 = sibling;
   }
-  RefitUpward(grandparent);
+  RefitUpward(grandparent, top);
+  return parent;
 }
 
-void AabbTree::RefitUpward(std::int32_t node) {
-  while (node != kNull) {
+void AabbTree::RefitUpward(std::int32_t node, std::int32_t top) {
+  while (node != top) {
     Node& n = nodes_[node];
     const AABB old_box = n.box;
     const std::int32_t old_height = n.height;
@@ -229,7 +237,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   if (4 * moved_list_.size() > n) {
     Rebuild(boxes, pool);
   } else {
-    ReinsertMovedLeaves(boxes);
+    ReinsertMovedLeaves(boxes, pool);
     reinserts_since_relayout_ += moved_list_.size();
     if (2 * reinserts_since_relayout_ > n) {
       Relayout();
@@ -276,9 +284,28 @@ void AabbTree::MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* 
 }
 
 // Few moved: each goes back in alone, in id order (reinserting one leaf changes only inner nodes,
-// never another leaf's box), and new bodies get leaves of their own.
-void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes) {
+// never another leaf's box), and new bodies get leaves of their own. Shared, each of the root's
+// two subtrees takes back its own moved leaves on a thread of its own (ReinsertInSubtree).
+void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
+  constexpr std::size_t kMinSharedReinserts = 64;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
+  const bool shared = pool && pool->Threads() > 1 && moved_list_.size() >= kMinSharedReinserts &&
+                      moved_list_.back() < known && root_ != kNull && !nodes_[root_].IsLeaf() &&
+                      !nodes_[nodes_[root_].child1].IsLeaf() && !nodes_[nodes_[root_].child2].IsLeaf();
+  if (shared) {
+    for (auto& side : subtree_moved_) side.clear();
+    const std::int32_t first_side = nodes_[root_].child1;
+    for (const std::uint32_t i : moved_list_) {
+      std::int32_t node = leaf_of_[i];
+      while (nodes_[node].parent != root_) node = nodes_[node].parent;
+      subtree_moved_[node == first_side ? 0 : 1].push_back(i);
+    }
+    pool->RunSideBySide([&] { ReinsertInSubtree(boxes, 0); }, [&] { ReinsertInSubtree(boxes, 1); });
+    Node& root = nodes_[root_];
+    root.box = Union(nodes_[root.child1].box, nodes_[root.child2].box);
+    root.height = 1 + std::max(nodes_[root.child1].height, nodes_[root.child2].height);
+    return;
+  }
   for (const std::uint32_t i : moved_list_) {
     bool stretched = false;
     if (i >= known) {
@@ -294,6 +321,22 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes) {
     nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
     InsertLeaf(leaf);
+  }
+}
+
+// The moved leaves of one of the root's subtrees go back into that subtree, in id order: each
+// leaf's old parent node becomes its new one, and the root is neither read nor refitted, but for
+// this side's child link. The two sides touch apart nodes, so they run side by side; a leaf may
+// stay on a side it has left, which costs a looser tree until the next rebuild, never a pair.
+void AabbTree::ReinsertInSubtree(std::span<const AABB> boxes, int side) {
+  const auto subtree = [&] { return side == 0 ? nodes_[root_].child1 : nodes_[root_].child2; };
+  for (const std::uint32_t i : subtree_moved_[side]) {
+    const std::int32_t leaf = leaf_of_[i];
+    const std::int32_t parent = DetachLeaf(leaf, root_);
+    bool stretched = false;
+    nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
+    nodes_[leaf].stretched = stretched;
+    AttachLeaf(leaf, parent, subtree(), root_);
   }
 }
 

@@ -63,11 +63,18 @@ class AabbTree {
   std::int32_t Allocate();
   void Free(std::int32_t node);
   void InsertLeaf(std::int32_t leaf);
-  /// The node whose pairing with `box` adds the least perimeter over the whole tree.
-  std::int32_t FindBestSibling(const AABB& box) const;
+  /// Puts `leaf` next to its best sibling under `start`, with `parent` (a node out of the tree)
+  /// as their parent; refits below `top`.
+  void AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top);
+  /// The node under `start` whose pairing with `box` adds the least perimeter.
+  std::int32_t FindBestSibling(const AABB& box, std::int32_t start) const;
   void RemoveLeaf(std::int32_t leaf);
-  /// Refits unions and heights from `node` to the root, rotating where that shrinks a box.
-  void RefitUpward(std::int32_t node);
+  /// Takes a leaf (not the root) out of the tree, refits below `top`, and returns its parent
+  /// node, now out of the tree too.
+  std::int32_t DetachLeaf(std::int32_t leaf, std::int32_t top);
+  /// Refits unions and heights from `node` up to `top` (kNull: the root, included), rotating
+  /// where that shrinks a box.
+  void RefitUpward(std::int32_t node, std::int32_t top = kNull);
   void Rotate(std::int32_t node);
   AABB FatBox(const AABB& box, const AABB& previous, bool* stretched) const;
   void Clear();
@@ -81,7 +88,9 @@ class AabbTree {
     return forget_motion_ ? boxes[i] : previous_[i];
   }
   /// Reinserts the marked bodies one by one, in id order, new ones with leaves of their own.
-  void ReinsertMovedLeaves(std::span<const AABB> boxes);
+  void ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
+  /// Reinserts subtree_moved_[side] within the root's child on that side.
+  void ReinsertInSubtree(std::span<const AABB> boxes, int side);
   /// A new tree over every body's fat box, the marked ones' made anew.
   void Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool);
   void BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
@@ -144,6 +153,7 @@ class AabbTree {
   std::vector<detail::PerThread<FreshRun>> fresh_runs_;
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
   std::vector<std::uint32_t> moved_list_;
+  std::vector<std::uint32_t> subtree_moved_[2];  ///< shared reinsertion: the moved bodies by root side
   std::size_t reinserts_since_relayout_ = 0;
   bool forget_motion_ = false;
   std::size_t last_reinserts_ = 0;
