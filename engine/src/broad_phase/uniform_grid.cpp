@@ -240,50 +240,62 @@ void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_co
 
 // Two boxes sharing a cell are a pair there only if it is the cell of their overlap's lower
 // corner: the corner's column is the larger of the two first columns, so one of the boxes must
-// start in this column, and likewise for the row.
-template <typename Report>
-void UniformGrid::ScanBuckets(std::size_t first, std::size_t last, Report&& report) const {
+// start in this column, and likewise for the row. The tests are joined without a branch and
+// every pair is written, the count advancing only past one that passes: in a pile, which pairs
+// pass is as good as random, and mispredicted branches cost most of the scan. The buffer grows
+// ahead by what a bucket could give; returns how many pairs it holds.
+std::size_t UniformGrid::ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found) const {
+  std::size_t count = 0;
   std::uint32_t begin = first == 0 ? 0 : bucket_start_[first - 1];
   for (std::size_t b = first; b < last; ++b) {
     const std::uint32_t end = bucket_start_[b];
+    const std::size_t entries = end - begin;
+    const std::size_t most = entries * (entries - (entries > 0 ? 1 : 0)) / 2;
+    if (found->size() < count + most) found->resize(std::max(count + most, 2 * found->size()));
+    BodyPair* out = found->data();
     for (std::uint32_t i = begin; i + 1 < end; ++i) {
       const Entry& p = entries_[i];
       for (std::uint32_t j = i + 1; j < end; ++j) {
         const Entry& q = entries_[j];
-        if (p.x == q.x && p.y == q.y && (p.first | q.first) == 3 && Overlaps(p.box, q.box)) report(p.body, q.body);
+        const bool pair = (p.x == q.x) & (p.y == q.y) & ((p.first | q.first) == 3) &
+                          (p.box.lower.x <= q.box.upper.x) & (q.box.lower.x <= p.box.upper.x) &
+                          (p.box.lower.y <= q.box.upper.y) & (q.box.lower.y <= p.box.upper.y);
+        out[count] = {p.body, q.body};
+        count += pair ? 1 : 0;
       }
     }
     begin = end;
   }
+  return count;
 }
 
 // Shared, each thread scans a run of buckets holding about as many entries as the others' and
 // keeps its pairs; the runs' pairs then go to the collector in bucket order, as one thread's
 // would, so the budget sees them in the same order.
 void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool) {
-  const int threads = pool ? pool->Threads() : 1;
-  if (threads == 1 || entries_.size() < kMinSharedEntries) {
-    ScanBuckets(0, bucket_count, [this](std::uint32_t a, std::uint32_t b) { collector_.Add(a, b); });
-    return;
-  }
-  // The first bucket beginning at or past entry e: bucket b begins where b − 1 ends.
-  const auto bucket_at = [&](std::size_t e) {
-    const auto ends = std::span<const std::uint32_t>(bucket_start_).first(bucket_count);
-    const auto k = static_cast<std::size_t>(std::lower_bound(ends.begin(), ends.end(), e) - ends.begin());
-    return e == 0 ? std::size_t{0} : std::min(k + 1, bucket_count);
-  };
+  const int threads = pool && entries_.size() >= kMinSharedEntries ? pool->Threads() : 1;
   found_.resize(static_cast<std::size_t>(threads));
-  const std::size_t total = entries_.size();
-  pool->RunOnAll([&](int t) {
-    const auto part = static_cast<std::size_t>(t);
-    const std::size_t first = bucket_at(total * part / threads);
-    const std::size_t last = t + 1 == threads ? bucket_count : bucket_at(total * (part + 1) / threads);
-    std::vector<BodyPair>& found = found_[part].value;
-    found.clear();
-    ScanBuckets(first, last, [&found](std::uint32_t a, std::uint32_t b) { found.push_back({a, b}); });
-  });
+  if (threads == 1) {
+    FoundRun& run = found_[0].value;
+    run.count = ScanBuckets(0, bucket_count, &run.pairs);
+  } else {
+    // The first bucket beginning at or past entry e: bucket b begins where b − 1 ends.
+    const auto bucket_at = [&](std::size_t e) {
+      const auto ends = std::span<const std::uint32_t>(bucket_start_).first(bucket_count);
+      const auto k = static_cast<std::size_t>(std::lower_bound(ends.begin(), ends.end(), e) - ends.begin());
+      return e == 0 ? std::size_t{0} : std::min(k + 1, bucket_count);
+    };
+    const std::size_t total = entries_.size();
+    pool->RunOnAll([&](int t) {
+      const auto part = static_cast<std::size_t>(t);
+      const std::size_t first = bucket_at(total * part / threads);
+      const std::size_t last = t + 1 == threads ? bucket_count : bucket_at(total * (part + 1) / threads);
+      FoundRun& run = found_[part].value;
+      run.count = ScanBuckets(first, last, &run.pairs);
+    });
+  }
   for (const auto& part : found_) {
-    for (const BodyPair& p : part.value) collector_.Add(p.a, p.b);
+    for (std::size_t k = 0; k < part.value.count; ++k) collector_.Add(part.value.pairs[k].a, part.value.pairs[k].b);
   }
 }
 

@@ -62,9 +62,9 @@ class UniformGrid {
   void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,
                    detail::WorkerPool* pool);
   void FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool);
-  /// Calls report(i, j) for the pairs of the buckets [first, last), in bucket order.
-  template <typename Report>
-  void ScanBuckets(std::size_t first, std::size_t last, Report&& report) const;
+  /// The pairs of the buckets [first, last), in bucket order, into the front of `found` (grown
+  /// as needed, never shrunk); returns how many.
+  std::size_t ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found) const;
   void FindLargePairs(std::span<const AABB> boxes);
   void FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes);
 
@@ -93,7 +93,12 @@ class UniformGrid {
   };
   std::vector<detail::PerThread<SizeRun>> size_runs_;
   std::vector<detail::PerThread<RangeRun>> range_runs_;
-  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each thread's pairs, when shared
+  /// A thread's pairs: the first `count` of `pairs`.
+  struct FoundRun {
+    std::vector<BodyPair> pairs;
+    std::size_t count = 0;
+  };
+  std::vector<detail::PerThread<FoundRun>> found_;
   /// FillBuckets' runs, when shared: each run's count per bucket, then its next place there.
   std::vector<detail::PerThread<std::vector<std::uint32_t>>> run_next_;
   PairCollector collector_;
