@@ -362,6 +362,33 @@ TEMPLATE_TEST_CASE("grid and tree shared among threads: all pairs, and the budge
   }
 }
 
+TEST_CASE("grid shared among threads: a cell piled past the pair limit is scanned again on one thread, the "
+          "budget's pairs", "[broadphase][parallel]") {
+  // 2 000 equal boxes at one point put 2 million pairs in one cell, past what a thread may hold
+  // (16 an entry): the shared scan stops and one thread scans again, handing pairs to the budget
+  // as it goes. The pairs must be the budget's, as on one thread.
+  std::mt19937_64 rng(17);
+  auto boxes = RandomBoxes(rng, 3000, 120);
+  for (int i = 0; i < 2000; ++i) boxes.push_back({{60.25, 60.25}, {61.25, 61.25}});
+  std::shuffle(boxes.begin(), boxes.end(), rng);
+  std::vector<engine::PairQuota> quotas(boxes.size(), engine::PairQuota{1.0, 12, 1.0});
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    quotas[i].area = (boxes[i].upper.x - boxes[i].lower.x) * (boxes[i].upper.y - boxes[i].lower.y);
+  }
+  std::size_t crowded = 0;
+  const std::vector<BodyPair> expected = BudgetedPairs(boxes, quotas, &crowded);
+  CHECK(crowded > 1900);
+  for (const int threads : {1, 2, 3}) {
+    INFO("threads " << threads);
+    engine::detail::WorkerPool pool(threads);
+    engine::UniformGrid grid;
+    std::vector<BodyPair> pairs;
+    grid.FindPairs(boxes, &pairs, quotas, &pool);
+    REQUIRE(pairs == expected);
+    CHECK(grid.Collector().CrowdedCount() == crowded);
+  }
+}
+
 TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pairs as on one", "[broadphase][parallel]") {
   // Each call moves one box in twenty by a jump: past the 64 that the tree reinserts and queries
   // on several threads, short of the quarter past which it is built anew and traversed whole,

@@ -21,6 +21,11 @@ constexpr std::int64_t kMaxCellsPerBox = 16;
 // on one: the hand-off would cost more.
 constexpr std::size_t kMinSharedEntries = 4096;
 constexpr std::uint32_t kMinSharedBoxes = 2048;
+// A scan hands its pairs over (or checks them against the limit) once it holds this many.
+constexpr std::size_t kPairsPerHandOff = 4096;
+// Shared, a thread's pairs past this many an entry (and kPairsPerHandOff) stop its scan: solid
+// boxes of one size give a few an entry; only boxes piled in a cell give more.
+constexpr std::size_t kPairsPerEntry = 16;
 
 double Extent(const AABB& box) { return std::max(box.upper.x - box.lower.x, box.upper.y - box.lower.y); }
 
@@ -243,17 +248,19 @@ void UniformGrid::FillBuckets(std::span<const AABB> boxes, std::int64_t entry_co
 // start in this column, and likewise for the row. The tests are joined without a branch and
 // every pair is written, the count advancing only past one that passes: in a pile, which pairs
 // pass is as good as random, and mispredicted branches cost most of the scan. The buffer grows
-// ahead by what a bucket could give; returns how many pairs it holds.
-std::size_t UniformGrid::ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found) const {
+// ahead by what a box's row of tests could give; once it holds kPairsPerHandOff or more, `full`
+// is told the count and returns the count to go on from (kStop: stop the scan).
+template <typename Full>
+std::size_t UniformGrid::ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found,
+                                     Full&& full) const {
   std::size_t count = 0;
   std::uint32_t begin = first == 0 ? 0 : bucket_start_[first - 1];
   for (std::size_t b = first; b < last; ++b) {
     const std::uint32_t end = bucket_start_[b];
-    const std::size_t entries = end - begin;
-    const std::size_t most = entries * (entries - (entries > 0 ? 1 : 0)) / 2;
-    if (found->size() < count + most) found->resize(std::max(count + most, 2 * found->size()));
-    BodyPair* out = found->data();
     for (std::uint32_t i = begin; i + 1 < end; ++i) {
+      const std::size_t most = end - i - 1;
+      if (found->size() < count + most) found->resize(std::max(count + most, 2 * found->size()));
+      BodyPair* out = found->data();
       const Entry& p = entries_[i];
       for (std::uint32_t j = i + 1; j < end; ++j) {
         const Entry& q = entries_[j];
@@ -263,6 +270,10 @@ std::size_t UniformGrid::ScanBuckets(std::size_t first, std::size_t last, std::v
         out[count] = {p.body, q.body};
         count += pair ? 1 : 0;
       }
+      if (count >= kPairsPerHandOff) {
+        count = full(count);
+        if (count == kStop) return kStop;
+      }
     }
     begin = end;
   }
@@ -271,14 +282,17 @@ std::size_t UniformGrid::ScanBuckets(std::size_t first, std::size_t last, std::v
 
 // Shared, each thread scans a run of buckets holding about as many entries as the others' and
 // keeps its pairs; the runs' pairs then go to the collector in bucket order, as one thread's
-// would, so the budget sees them in the same order.
+// would, so the budget sees them in the same order. A run past the pair limit (boxes piled in a
+// cell) stops, and one thread scans again, handing its pairs to the collector as it goes, which
+// bounds them: the memory stays linear in the boxes.
 void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool) {
   const int threads = pool && entries_.size() >= kMinSharedEntries ? pool->Threads() : 1;
   found_.resize(static_cast<std::size_t>(threads));
-  if (threads == 1) {
-    FoundRun& run = found_[0].value;
-    run.count = ScanBuckets(0, bucket_count, &run.pairs);
-  } else {
+  const auto hand_over = [this](const FoundRun& run) {
+    for (std::size_t k = 0; k < run.count; ++k) collector_.Add(run.pairs[k].a, run.pairs[k].b);
+  };
+  bool stopped = false;
+  if (threads > 1) {
     // The first bucket beginning at or past entry e: bucket b begins where b − 1 ends.
     const auto bucket_at = [&](std::size_t e) {
       const auto ends = std::span<const std::uint32_t>(bucket_start_).first(bucket_count);
@@ -286,17 +300,27 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* 
       return e == 0 ? std::size_t{0} : std::min(k + 1, bucket_count);
     };
     const std::size_t total = entries_.size();
+    const std::size_t limit = kPairsPerEntry * total + kPairsPerHandOff;
     pool->RunOnAll([&](int t) {
       const auto part = static_cast<std::size_t>(t);
       const std::size_t first = bucket_at(total * part / threads);
       const std::size_t last = t + 1 == threads ? bucket_count : bucket_at(total * (part + 1) / threads);
       FoundRun& run = found_[part].value;
-      run.count = ScanBuckets(first, last, &run.pairs);
+      run.count = ScanBuckets(first, last, &run.pairs, [limit](std::size_t count) { return count > limit ? kStop : count; });
     });
+    stopped = std::any_of(found_.begin(), found_.end(), [](const auto& run) { return run.value.count == kStop; });
+    if (!stopped) {
+      for (const auto& run : found_) hand_over(run.value);
+      return;
+    }
   }
-  for (const auto& part : found_) {
-    for (std::size_t k = 0; k < part.value.count; ++k) collector_.Add(part.value.pairs[k].a, part.value.pairs[k].b);
-  }
+  FoundRun& run = found_[0].value;
+  run.count = ScanBuckets(0, bucket_count, &run.pairs, [&](std::size_t count) {
+    run.count = count;
+    hand_over(run);
+    return std::size_t{0};
+  });
+  hand_over(run);
 }
 
 void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {

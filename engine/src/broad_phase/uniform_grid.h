@@ -63,8 +63,10 @@ class UniformGrid {
                    detail::WorkerPool* pool);
   void FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool);
   /// The pairs of the buckets [first, last), in bucket order, into the front of `found` (grown
-  /// as needed, never shrunk); returns how many.
-  std::size_t ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found) const;
+  /// as needed, never shrunk); returns how many, or kStop when `full` stopped it.
+  template <typename Full>
+  std::size_t ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found, Full&& full) const;
+  static constexpr std::size_t kStop = static_cast<std::size_t>(-1);
   void FindLargePairs(std::span<const AABB> boxes);
   void FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes);
 
