@@ -397,6 +397,8 @@ TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pair
   for (const int threads : {1, 2, 3}) {
     std::mt19937_64 rng(11);
     auto boxes = RandomBoxes(rng, 4000, 130);
+    // A floor and a wall: the tree's rotations lift wide boxes beside the rest, below the root.
+    boxes.insert(boxes.begin(), {AABB{{-1, -2}, {131, -1}}, AABB{{-2, -1}, {-1, 131}}});
     std::uniform_int_distribution<int> jump(-4, 4);
     engine::detail::WorkerPool pool(threads);
     engine::AabbTree tree;

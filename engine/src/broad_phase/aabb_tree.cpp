@@ -284,29 +284,34 @@ void AabbTree::MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* 
 }
 
 // Few moved: each goes back in alone, in id order (reinserting one leaf changes only inner nodes,
-// never another leaf's box), and new bodies get leaves of their own. Shared, each of the root's
-// two subtrees takes back its own moved leaves on a thread of its own (ReinsertInSubtree).
+// never another leaf's box), and new bodies get leaves of their own. Shared, the two subtrees of
+// the split node take back their own moved leaves side by side (ReinsertInSubtree), then the
+// leaves outside it go back one by one.
 void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::size_t kMinSharedReinserts = 64;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
-  const bool shared = pool && pool->Threads() > 1 && moved_list_.size() >= kMinSharedReinserts &&
-                      moved_list_.back() < known && root_ != kNull && !nodes_[root_].IsLeaf() &&
-                      !nodes_[nodes_[root_].child1].IsLeaf() && !nodes_[nodes_[root_].child2].IsLeaf();
-  if (shared) {
+  const std::int32_t split = pool && pool->Threads() > 1 && moved_list_.size() >= kMinSharedReinserts &&
+                                     moved_list_.back() < known
+                                 ? SplitNode()
+                                 : kNull;
+  std::span<const std::uint32_t> one_by_one = moved_list_;
+  if (split != kNull) {
     for (auto& side : subtree_moved_) side.clear();
-    const std::int32_t first_side = nodes_[root_].child1;
+    outside_moved_.clear();
     for (const std::uint32_t i : moved_list_) {
       std::int32_t node = leaf_of_[i];
-      while (nodes_[node].parent != root_) node = nodes_[node].parent;
-      subtree_moved_[node == first_side ? 0 : 1].push_back(i);
+      while (node != root_ && nodes_[node].parent != split) node = nodes_[node].parent;
+      if (node == root_) {
+        outside_moved_.push_back(i);
+      } else {
+        subtree_moved_[node == nodes_[split].child1 ? 0 : 1].push_back(i);
+      }
     }
-    pool->RunSideBySide([&] { ReinsertInSubtree(boxes, 0); }, [&] { ReinsertInSubtree(boxes, 1); });
-    Node& root = nodes_[root_];
-    root.box = Union(nodes_[root.child1].box, nodes_[root.child2].box);
-    root.height = 1 + std::max(nodes_[root.child1].height, nodes_[root.child2].height);
-    return;
+    pool->RunSideBySide([&] { ReinsertInSubtree(boxes, split, 0); }, [&] { ReinsertInSubtree(boxes, split, 1); });
+    RefitUpward(split);
+    one_by_one = outside_moved_;
   }
-  for (const std::uint32_t i : moved_list_) {
+  for (const std::uint32_t i : one_by_one) {
     bool stretched = false;
     if (i >= known) {
       const std::int32_t leaf = Allocate();
@@ -324,19 +329,35 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPo
   }
 }
 
-// The moved leaves of one of the root's subtrees go back into that subtree, in id order: each
-// leaf's old parent node becomes its new one, and the root is neither read nor refitted, but for
-// this side's child link. The two sides touch apart nodes, so they run side by side; a leaf may
-// stay on a side it has left, which costs a looser tree until the next rebuild, never a pair.
-void AabbTree::ReinsertInSubtree(std::span<const AABB> boxes, int side) {
-  const auto subtree = [&] { return side == 0 ? nodes_[root_].child1 : nodes_[root_].child2; };
+// The node to share reinsertions below: down from the root towards the taller child until the two
+// children are of about one height and both inner nodes (rotations lift wide boxes, a floor or a
+// wall, to the top, beside the rest of the tree); kNull when there is none.
+std::int32_t AabbTree::SplitNode() const {
+  std::int32_t node = root_;
+  while (node != kNull && !nodes_[node].IsLeaf()) {
+    const Node& n = nodes_[node];
+    const Node& c1 = nodes_[n.child1];
+    const Node& c2 = nodes_[n.child2];
+    if (std::abs(c1.height - c2.height) <= 2) return c1.IsLeaf() || c2.IsLeaf() ? kNull : node;
+    node = c1.height > c2.height ? n.child1 : n.child2;
+  }
+  return kNull;
+}
+
+// The moved leaves of one of the split node's subtrees go back into that subtree, in id order:
+// each leaf's old parent node becomes its new one, and nothing from the split node up is read or
+// refitted, but for this side's child link. The two sides touch apart nodes, so they run side by
+// side; a leaf may stay on a side it has left, which costs a looser tree until the next rebuild,
+// never a pair.
+void AabbTree::ReinsertInSubtree(std::span<const AABB> boxes, std::int32_t split, int side) {
+  const auto subtree = [&] { return side == 0 ? nodes_[split].child1 : nodes_[split].child2; };
   for (const std::uint32_t i : subtree_moved_[side]) {
     const std::int32_t leaf = leaf_of_[i];
-    const std::int32_t parent = DetachLeaf(leaf, root_);
+    const std::int32_t parent = DetachLeaf(leaf, split);
     bool stretched = false;
     nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
-    AttachLeaf(leaf, parent, subtree(), root_);
+    AttachLeaf(leaf, parent, subtree(), split);
   }
 }
 

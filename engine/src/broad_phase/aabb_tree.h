@@ -89,8 +89,9 @@ class AabbTree {
   }
   /// Reinserts the marked bodies one by one, in id order, new ones with leaves of their own.
   void ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
-  /// Reinserts subtree_moved_[side] within the root's child on that side.
-  void ReinsertInSubtree(std::span<const AABB> boxes, int side);
+  /// Reinserts subtree_moved_[side] within `split`'s child on that side.
+  void ReinsertInSubtree(std::span<const AABB> boxes, std::int32_t split, int side);
+  std::int32_t SplitNode() const;
   /// A new tree over every body's fat box, the marked ones' made anew.
   void Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool);
   void BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
@@ -153,7 +154,8 @@ class AabbTree {
   std::vector<detail::PerThread<FreshRun>> fresh_runs_;
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
   std::vector<std::uint32_t> moved_list_;
-  std::vector<std::uint32_t> subtree_moved_[2];  ///< shared reinsertion: the moved bodies by root side
+  std::vector<std::uint32_t> subtree_moved_[2];  ///< shared reinsertion: the moved bodies by side
+  std::vector<std::uint32_t> outside_moved_;     ///< and those outside the split node
   std::size_t reinserts_since_relayout_ = 0;
   bool forget_motion_ = false;
   std::size_t last_reinserts_ = 0;
