@@ -389,37 +389,52 @@ TEST_CASE("grid shared among threads: a cell piled past the pair limit is scanne
   }
 }
 
+// Eight calls of a tree on `threads` threads, moving the boxes with move(rng, boxes, step) after
+// each: every call's pairs must be all the overlapping ones and the tree valid; check(tree, all,
+// step) adds the test's own expectations (`all`: the call's overlapping pairs).
+template <typename Check, typename MoveBoxes>
+void RequireTreeFindsAllPairs(std::mt19937_64& rng, std::vector<AABB> boxes, int threads, Check&& check,
+                              MoveBoxes&& move) {
+  engine::detail::WorkerPool pool(threads);
+  engine::AabbTree tree;
+  std::vector<BodyPair> all, pairs;
+  for (int step = 0; step < 8; ++step) {
+    INFO("threads " << threads << ", step " << step);
+    engine::FindPairsAllPairs(boxes, &all);
+    tree.FindPairs(boxes, &pairs, {}, &pool);
+    REQUIRE(pairs == all);
+    CHECK(tree.IsValid());
+    check(tree, all, step);
+    move(rng, boxes, step);
+  }
+}
+
 TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pairs as on one", "[broadphase][parallel]") {
   // Each call moves one box in twenty by a jump: past the 64 that the tree reinserts and queries
   // on several threads, short of the quarter past which it is built anew and traversed whole,
-  // with candidates enough that their merge with the fresh pairs is shared out in runs. The pairs found by one, two and
-  // three threads must be all the overlapping ones.
+  // with candidates enough that their merge with the fresh pairs is shared out in runs. The
+  // moved leaves go back in below the split node on two threads (a floor and a wall sit above it:
+  // the tree's rotations lift wide boxes). The pairs found by one, two and three threads must be
+  // all the overlapping ones.
   for (const int threads : {1, 2, 3}) {
     std::mt19937_64 rng(11);
     auto boxes = RandomBoxes(rng, 4000, 130);
-    // A floor and a wall: the tree's rotations lift wide boxes beside the rest, below the root.
     boxes.insert(boxes.begin(), {AABB{{-1, -2}, {131, -1}}, AABB{{-2, -1}, {-1, 131}}});
-    std::uniform_int_distribution<int> jump(-4, 4);
-    engine::detail::WorkerPool pool(threads);
-    engine::AabbTree tree;
-    std::vector<BodyPair> all, pairs;
-    for (int step = 0; step < 8; ++step) {
-      INFO("threads " << threads << ", step " << step);
-      engine::FindPairsAllPairs(boxes, &all);
-      tree.FindPairs(boxes, &pairs, {}, &pool);
-      REQUIRE(pairs == all);
+    const auto check = [&](const engine::AabbTree& tree, const std::vector<BodyPair>& all, int step) {
       CHECK(all.size() > 4096);  // candidates enough to be merged in runs shared out
-      CHECK(tree.IsValid());     // the moved leaves went back into the root's two sides side by side
       if (step > 0) {
         CHECK(tree.LastReinsertCount() >= 64);
         CHECK(4 * tree.LastReinsertCount() <= boxes.size());
       }
-      for (std::size_t i = static_cast<std::size_t>(step) % 20; i < boxes.size(); i += 20) {
-        const Vec2 d{static_cast<double>(jump(rng)), static_cast<double>(jump(rng)) + 5.0};
-        boxes[i].lower += d;
-        boxes[i].upper += d;
+    };
+    RequireTreeFindsAllPairs(rng, boxes, threads, check, [](std::mt19937_64& r, std::vector<AABB>& b, int step) {
+      std::uniform_int_distribution<int> jump(-4, 4);
+      for (std::size_t i = static_cast<std::size_t>(step) % 20; i < b.size(); i += 20) {
+        const Vec2 d{static_cast<double>(jump(r)), static_cast<double>(jump(r)) + 5.0};
+        b[i].lower += d;
+        b[i].upper += d;
       }
-    }
+    });
   }
 }
 
@@ -430,25 +445,19 @@ TEST_CASE("AABB tree: most bodies moving, the tree built anew, balanced, its pai
   // out on two and three threads, must find exactly the overlapping pairs.
   for (const int threads : {1, 2, 3}) {
     std::mt19937_64 rng(13);
-    auto boxes = RandomBoxes(rng, 3000, 110);
-    std::uniform_int_distribution<int> jump(-3, 3);
-    engine::detail::WorkerPool pool(threads);
-    engine::AabbTree tree;
-    std::vector<BodyPair> all, pairs;
-    for (int step = 0; step < 5; ++step) {
-      INFO("threads " << threads << ", step " << step);
-      engine::FindPairsAllPairs(boxes, &all);
-      tree.FindPairs(boxes, &pairs, {}, &pool);
-      REQUIRE(pairs == all);
+    const auto boxes = RandomBoxes(rng, 3000, 110);
+    const auto check = [&](const engine::AabbTree& tree, const std::vector<BodyPair>&, int) {
       CHECK(4 * tree.LastReinsertCount() > boxes.size());
-      CHECK(tree.IsValid());
       CHECK(tree.Height() == 12);  // 2^11 < 3000 <= 2^12
-      for (auto& b : boxes) {
-        const Vec2 d{static_cast<double>(jump(rng)), static_cast<double>(jump(rng)) + 4.0};
-        b.lower += d;
-        b.upper += d;
+    };
+    RequireTreeFindsAllPairs(rng, boxes, threads, check, [](std::mt19937_64& r, std::vector<AABB>& b, int) {
+      std::uniform_int_distribution<int> jump(-3, 3);
+      for (auto& box : b) {
+        const Vec2 d{static_cast<double>(jump(r)), static_cast<double>(jump(r)) + 4.0};
+        box.lower += d;
+        box.upper += d;
       }
-    }
+    });
   }
 }
 
