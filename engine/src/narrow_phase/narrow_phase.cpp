@@ -152,13 +152,13 @@ void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyS
     }
     Manifold m;
     if (!CollideBodies(ia, states[pair.a], ib, states[pair.b], margin, &m)) continue;
-    Contact contact{.a = pair.a,
-                    .b = pair.b,
-                    .manifold = m,
-                    .restitution = std::max(ia.restitution, ib.restitution),
-                    .friction = std::sqrt(ia.friction * ib.friction)};
+    // Made in place, member by member: built aside and copied in (or value-initialized first), a
+    // contact cost a clear of the whole block and loads of what had just been stored in other
+    // widths; the pyramid of base 40 took 0.240 ms/step that way, 0.216 this way.
+    Contact& contact = contacts.emplace_back(pair.a, pair.b, std::uint16_t{0}, std::uint16_t{0}, false, m,
+                                             std::max(ia.restitution, ib.restitution),
+                                             std::sqrt(ia.friction * ib.friction));
     CarryImpulses<kParts>(previous_contacts_, &contact, &previous);
-    contacts.push_back(contact);
   }
 }
 
