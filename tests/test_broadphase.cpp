@@ -409,7 +409,8 @@ void RequireTreeFindsAllPairs(std::mt19937_64& rng, std::vector<AABB> boxes, int
   }
 }
 
-TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pairs as on one", "[broadphase][parallel]") {
+TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pairs as on one",
+          "[broadphase][parallel]") {
   // Each call moves one box in twenty by a jump: past the 64 that the tree reinserts and queries
   // on several threads, short of the quarter past which it is built anew and traversed whole,
   // with candidates enough that their merge with the fresh pairs is shared out in runs. The

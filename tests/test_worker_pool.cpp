@@ -57,6 +57,31 @@ TEST_CASE("ParallelRuns and ForEachIndexInRuns visit every index once, in runs o
   }
 }
 
+TEST_CASE("ForEachRun deals out runs of RunLength: one run unshared, about three a thread shared", "[parallel]") {
+  // Below the threshold, on one thread or without a pool, a loop is one run (its per-run results
+  // one slot); shared, 2 and 3 threads get 3 runs each (kRunsPerThread), give or take the last.
+  for (const int threads : {1, 2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    for (const std::uint32_t count : {0u, 1u, 99u, 100u, 5000u}) {
+      INFO(threads << " threads, " << count << " indices");
+      const std::uint32_t run = engine::detail::RunLength(&pool, count, 100);
+      const std::uint32_t runs = (count + run - 1) / run;
+      const bool shared = threads > 1 && count >= 100;
+      const std::uint32_t expected_runs =
+          shared ? engine::detail::kRunsPerThread * static_cast<std::uint32_t>(threads) : std::min(count, 1u);
+      CHECK(runs == expected_runs);
+      RequireRunsCoverOnce(count, run, [&](const auto& body) {
+        engine::detail::ForEachRun(&pool, count, 100, run, body);
+      });
+      const std::uint32_t alone = engine::detail::RunLength(nullptr, count, 100);
+      CHECK(alone == std::max(count, 1u));
+      RequireRunsCoverOnce(count, alone, [&](const auto& body) {
+        engine::detail::ForEachRun(nullptr, count, 100, alone, body);
+      });
+    }
+  }
+}
+
 TEST_CASE("RunSideBySideThenShare runs each task once and visits every shared index once", "[parallel]") {
   for (const int threads : {1, 2, 3}) {
     engine::detail::WorkerPool pool(threads);

@@ -15,8 +15,10 @@ namespace engine {
 
 namespace {
 
-// Fewer candidates than this are checked on one thread: the hand-off would cost more.
+// Fewer candidates than this are checked on one thread, and fewer leaves marked, built and
+// traversed on one: the hand-off would cost more.
 constexpr std::uint32_t kMinSharedCandidates = 4096;
+constexpr std::uint32_t kMinSharedLeaves = 2048;
 
 // A leaf's box is the body's grown by this fraction of its larger side, so that small motions
 // (a pile settling, a contact jittering) stay inside it and cost nothing.
@@ -262,7 +264,6 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
 // Which leaves go back in is found for all first (on the pool's threads: marks are per body), in
 // id order into moved_list_, the bodies the tree has not seen yet among them.
 void AabbTree::MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
-  constexpr std::uint32_t kMinSharedLeaves = 2048;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
   const auto mark = [&](std::uint32_t i) {
     const Node& node = nodes_[leaf_of_[i]];
@@ -365,7 +366,6 @@ void AabbTree::ReinsertInSubtree(std::span<const AABB> boxes, std::int32_t split
 // boxes costs less than reinserting them one by one, and comes out balanced and in depth-first
 // order. Its shape never shows in the pairs, which are those of overlapping fat boxes.
 void AabbTree::Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool) {
-  constexpr std::uint32_t kMinSharedLeaves = 2048;
   const auto n = static_cast<std::uint32_t>(boxes.size());
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
   leaves_.resize(n);
@@ -456,10 +456,10 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
     }
     return;
   }
-  const std::size_t n = candidates_.size();
-  const auto run = static_cast<std::uint32_t>(n / (detail::kRunsPerThread * static_cast<std::size_t>(threads)) + 1);
+  const auto n = static_cast<std::uint32_t>(candidates_.size());
+  const std::uint32_t run = detail::RunLength(pool, n, kMinSharedCandidates);
   found_.resize((n + run - 1) / run);
-  pool->ParallelRuns(static_cast<std::uint32_t>(n), 0, run, [&](std::uint32_t begin, std::uint32_t end) {
+  pool->ParallelRuns(n, 0, run, [&](std::uint32_t begin, std::uint32_t end) {
     std::vector<BodyPair>& found = found_[begin / run].value;
     found.clear();
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -513,8 +513,6 @@ void AabbTree::VisitNodePair(std::int32_t a, std::int32_t b, Push&& push, Found&
 void AabbTree::FindAllCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   // Candidates beyond the limit (bodies piled up) are not kept: every overlapping pair goes to
   // the collector instead, which bounds them. A tree crowded last call is traversed on one thread.
-  constexpr std::size_t kMinSharedLeaves = 2048;
-  candidates_.clear();
   const bool was_crowded = crowded_;
   crowded_ = false;
   if (!was_crowded && pool && pool->Threads() > 1 && leaf_of_.size() >= kMinSharedLeaves &&
@@ -545,6 +543,7 @@ bool AabbTree::FindAllCandidatesShared(detail::WorkerPool& pool) {
   const std::size_t limit = CandidateLimit();
   const std::size_t enough = kNodePairsPerThread * static_cast<std::size_t>(pool.Threads());
   const auto found = [this](std::uint32_t p, std::uint32_t q) { candidates_.push_back(MakePair(p, q)); };
+  candidates_.clear();
   node_pairs_.assign(1, {root_, root_});
   while (!node_pairs_.empty() && node_pairs_.size() < enough) {
     stack_.clear();
@@ -572,7 +571,9 @@ bool AabbTree::FindAllCandidatesShared(detail::WorkerPool& pool) {
   std::size_t total = candidates_.size();
   for (const auto& run : traversal_runs_) total += run.value.pairs.size();
   if (total > limit) return false;
-  for (const auto& run : traversal_runs_) candidates_.insert(candidates_.end(), run.value.pairs.begin(), run.value.pairs.end());
+  for (const auto& run : traversal_runs_) {
+    candidates_.insert(candidates_.end(), run.value.pairs.begin(), run.value.pairs.end());
+  }
   return true;
 }
 
@@ -627,14 +628,13 @@ bool AabbTree::UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool*
 
   const auto n = static_cast<std::uint32_t>(candidates_.size());
   const std::uint32_t count = std::max<std::uint32_t>(n, 1);  // a run even with no candidates: the fresh pairs
-  const int sharing = pool && count >= kMinSharedCandidates ? pool->Threads() : 1;
-  const std::uint32_t run =
-      sharing == 1 ? count : count / (detail::kRunsPerThread * static_cast<std::uint32_t>(sharing)) + 1;
+  const std::uint32_t run = detail::RunLength(pool, count, kMinSharedCandidates);
   const std::size_t runs = (count + run - 1) / run;
   found_.resize(runs);
   merged_.resize(runs);
   const auto fresh_from = [&](std::uint32_t i) {
-    return i == 0 ? fresh_.cbegin() : i >= n ? fresh_.cend() : std::lower_bound(fresh_.cbegin(), fresh_.cend(), candidates_[i]);
+    if (i == 0) return fresh_.cbegin();
+    return i >= n ? fresh_.cend() : std::lower_bound(fresh_.cbegin(), fresh_.cend(), candidates_[i]);
   };
   const auto merge_run = [&](std::uint32_t begin, std::uint32_t end) {
     std::vector<BodyPair>& merged = merged_[begin / run].value;
@@ -655,11 +655,7 @@ bool AabbTree::UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool*
     }
     for (; fresh != fresh_end; ++fresh) keep(*fresh);
   };
-  if (pool) {
-    pool->ParallelRuns(count, kMinSharedCandidates, run, merge_run);
-  } else {
-    merge_run(0, count);
-  }
+  detail::ForEachRun(pool, count, kMinSharedCandidates, run, merge_run);
   std::size_t total = 0;
   for (const auto& part : merged_) total += part.value.size();
   if (total > limit) return false;

@@ -38,9 +38,9 @@ bool UniformGrid::CellSizeFits(std::span<const AABB> boxes, detail::WorkerPool* 
   if (cell_size_ == 0.0) return false;
   const double median = 0.5 * cell_size_;
   const auto n = static_cast<std::uint32_t>(boxes.size());
-  const std::uint32_t run = RunLength(n, pool);
+  const std::uint32_t run = detail::RunLength(pool, n, kMinSharedBoxes);
   size_runs_.resize((n + run - 1) / run);
-  RunsOf(pool, n, run, [&](std::uint32_t begin, std::uint32_t end) {
+  detail::ForEachRun(pool, n, kMinSharedBoxes, run, [&](std::uint32_t begin, std::uint32_t end) {
     SizeRun& counts = size_runs_[begin / run].value;
     counts = {};
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -124,9 +124,9 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
 std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   const auto n = static_cast<std::uint32_t>(boxes.size());
   ranges_.resize(n);
-  const std::uint32_t run = RunLength(n, pool);
+  const std::uint32_t run = detail::RunLength(pool, n, kMinSharedBoxes);
   range_runs_.resize((n + run - 1) / run);
-  RunsOf(pool, n, run, [&](std::uint32_t begin, std::uint32_t end) {
+  detail::ForEachRun(pool, n, kMinSharedBoxes, run, [&](std::uint32_t begin, std::uint32_t end) {
     RangeRun& part = range_runs_[begin / run].value;
     part.small.clear();
     part.large.clear();
@@ -160,21 +160,6 @@ std::int64_t UniformGrid::FindCellRanges(std::span<const AABB> boxes, detail::Wo
 
 UniformGrid::CellRange UniformGrid::Cover(const CellRange& a, const CellRange& b) {
   return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
-}
-
-// Runs of the bodies: a few a thread when shared (on one thread, all of them in one run).
-std::uint32_t UniformGrid::RunLength(std::uint32_t count, const detail::WorkerPool* pool) {
-  const std::uint32_t threads = pool && count >= kMinSharedBoxes ? static_cast<std::uint32_t>(pool->Threads()) : 1;
-  return threads == 1 ? std::max<std::uint32_t>(count, 1) : count / (detail::kRunsPerThread * threads) + 1;
-}
-
-template <typename Body>
-void UniformGrid::RunsOf(detail::WorkerPool* pool, std::uint32_t count, std::uint32_t run, Body&& body) {
-  if (pool) {
-    pool->ParallelRuns(count, kMinSharedBoxes, run, body);
-  } else {
-    body(0, count);
-  }
 }
 
 // The cells themselves when the occupied area is compact, else a hash table at load one or less,
@@ -306,7 +291,8 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* 
       const std::size_t first = bucket_at(total * part / threads);
       const std::size_t last = t + 1 == threads ? bucket_count : bucket_at(total * (part + 1) / threads);
       FoundRun& run = found_[part].value;
-      run.count = ScanBuckets(first, last, &run.pairs, [limit](std::size_t count) { return count > limit ? kStop : count; });
+      run.count = ScanBuckets(first, last, &run.pairs,
+                              [limit](std::size_t count) { return count > limit ? kStop : count; });
     });
     stopped = std::any_of(found_.begin(), found_.end(), [](const auto& run) { return run.value.count == kStop; });
     if (!stopped) {

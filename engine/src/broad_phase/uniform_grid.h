@@ -52,11 +52,6 @@ class UniformGrid {
   /// returns how many (cell, box) entries the other boxes make.
   std::int64_t FindCellRanges(std::span<const AABB> boxes, detail::WorkerPool* pool);
   static CellRange Cover(const CellRange& a, const CellRange& b);
-  /// How many bodies a run of the two passes above takes.
-  static std::uint32_t RunLength(std::uint32_t count, const detail::WorkerPool* pool);
-  /// Calls body(begin, end) for runs of `run` bodies covering [0, count), shared on the pool.
-  template <typename Body>
-  static void RunsOf(detail::WorkerPool* pool, std::uint32_t count, std::uint32_t run, Body&& body);
   /// Dense or hashed buckets for the entries; returns how many.
   std::size_t ChooseBuckets(std::int64_t entry_count);
   void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,

@@ -139,6 +139,25 @@ void ForEachIndex(WorkerPool* pool, std::size_t count, std::uint32_t min_count, 
 /// measured faster than eight on the 4 000-circle pour).
 inline constexpr std::uint32_t kRunsPerThread = 3;
 
+/// The length of the runs ForEachRun deals out: about kRunsPerThread a thread when the loop is
+/// shared (a pool of several threads and at least `min_count` indices), else all `count` in one
+/// run. A run's own results go at begin / run.
+inline std::uint32_t RunLength(const WorkerPool* pool, std::uint32_t count, std::uint32_t min_count) {
+  const auto threads = pool && count >= min_count ? static_cast<std::uint32_t>(pool->Threads()) : 1;
+  return threads == 1 ? std::max<std::uint32_t>(count, 1) : count / (kRunsPerThread * threads) + 1;
+}
+
+/// Calls body(begin, end) for each run of `run` indices covering [0, count): on the pool's threads
+/// as WorkerPool::ParallelRuns deals them out, or on the calling thread when there is no pool.
+template <typename Body>
+void ForEachRun(WorkerPool* pool, std::uint32_t count, std::uint32_t min_count, std::uint32_t run, Body&& body) {
+  if (pool) {
+    pool->ParallelRuns(count, min_count, run, body);
+    return;
+  }
+  for (std::uint32_t begin = 0; begin < count; begin += run) body(begin, std::min(count, begin + run));
+}
+
 /// As ForEachIndex, but the indices go out in runs, each to whichever thread is free
 /// (WorkerPool::ParallelRuns), kRunsPerThread a thread.
 template <typename Body>

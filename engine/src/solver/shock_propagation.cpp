@@ -106,19 +106,11 @@ void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPoo
   const std::span<const std::uint32_t> bucket = scratch->bucket;
   const auto n = static_cast<std::uint32_t>(bucket.size());
   const auto buckets = static_cast<std::uint32_t>(scratch->levels) + 2;  // levels, unreached, the rest
-  const std::uint32_t threads = pool && n >= kMinSharedContacts ? static_cast<std::uint32_t>(pool->Threads()) : 1;
-  const std::uint32_t run = threads == 1 ? std::max<std::uint32_t>(n, 1) : n / (kRunsPerThread * threads) + 1;
+  const std::uint32_t run = RunLength(pool, n, kMinSharedContacts);
   const std::uint32_t runs = (n + run - 1) / run;
   std::vector<std::uint32_t>& next = scratch->first;  // runs × buckets: a run's count, then its next place
   next.assign(std::size_t{runs} * buckets, 0);
-  const auto in_runs = [&](auto&& body) {
-    if (pool) {
-      pool->ParallelRuns(n, kMinSharedContacts, run, body);
-    } else if (n > 0) {
-      body(0, n);
-    }
-  };
-  in_runs([&](std::uint32_t begin, std::uint32_t end) {
+  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
     std::uint32_t* count = next.data() + std::size_t{begin / run} * buckets;
     for (std::uint32_t j = begin; j < end; ++j) ++count[bucket[j]];
   });
@@ -134,7 +126,7 @@ void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPoo
     }
   }
   rows->resize(n);
-  in_runs([&](std::uint32_t begin, std::uint32_t end) {
+  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
     std::uint32_t* at = next.data() + std::size_t{begin / run} * buckets;
     for (std::uint32_t j = begin; j < end; ++j) (*rows)[at[bucket[j]]++] = scratch->unsorted[j];
   });
