@@ -70,20 +70,15 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
   touching_.clear();
   events->contact_end.insert(events->contact_end.end(), removed_.begin(), removed_.end());
   removed_.clear();
-  touches_.resize(contacts.size());
-  const auto touch = [&](std::uint32_t i) {
-    touches_[i] = Touching(contacts[i], [&] { return StartApproach(contacts[i], bodies); }, bodies.states, def);
-  };
-  ForEachIndexInRuns(&pool, contacts.size(), kMinSharedContacts, touch);  // the start velocities: written on thread 0
   const int threads = pool.Threads();
   if (threads == 1 || contacts.size() < kMinSharedContacts) {
     Merge(contacts, 0, contacts.size(), previous_, kEndOfPairs, bodies, awake, def, &touching_, events);
     return;
   }
-  // Shared: each thread merges a run of the contacts against the last step's pairs below the
-  // next run's first, into lists of its own; the runs' lists then go one after another. A run
-  // never splits a pair's contacts (bodies made of parts have several), so every pair is seen
-  // whole, and the lists come out as one thread's.
+  // Shared: each thread tests and merges a run of the contacts against the last step's pairs
+  // below the next run's first, into lists of its own; the runs' lists then go one after
+  // another. A run never splits a pair's contacts (bodies made of parts have several), so every
+  // pair is seen whole, and the lists come out as one thread's.
   const auto cut = [&](int t) {
     std::size_t i = contacts.size() * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
     while (i > 0 && i < contacts.size() && PairOf(contacts[i]) == PairOf(contacts[i - 1])) ++i;
@@ -141,8 +136,8 @@ void ContactEvents::Merge(std::span<const Contact> contacts, std::size_t begin, 
   };
   const bool parts = bodies.with_parts > 0;
   for (std::size_t i = begin; i < end; ++i) {
-    if (!touches_[i]) continue;
     const Contact& c = contacts[i];
+    if (!Touching(c, [&] { return StartApproach(c, bodies); }, bodies.states, def)) continue;
     const BodyPair pair = PairOf(c);
     // Bodies made of parts can touch at several pieces: one pair, one begin.
     if (parts && !touching->empty() && touching->back() == pair) continue;

@@ -45,9 +45,9 @@ class ContactEvents {
   };
   /// How fast contact c closed when the step began.
   double StartApproach(const Contact& c, const Bodies& bodies) const;
-  /// Merges contacts [begin, end) against `previous`, the last step's touching pairs from the
-  /// first of these contacts' pairs up to `stop` (the next run's first pair), into `touching`
-  /// and `events`.
+  /// Merges the touching ones of contacts [begin, end) against `previous`, the last step's
+  /// touching pairs from the first of these contacts' pairs up to `stop` (the next run's first
+  /// pair), into `touching` and `events`.
   void Merge(std::span<const Contact> contacts, std::size_t begin, std::size_t end,
              std::span<const BodyPair> previous, BodyPair stop, const Bodies& bodies,
              std::span<const std::uint8_t> awake, const WorldDef& def, std::vector<BodyPair>* touching,
@@ -58,7 +58,6 @@ class ContactEvents {
   std::vector<BodyPair> touching_;       ///< after the last step, sorted
   std::vector<BodyPair> previous_;
   std::vector<ContactEndEvent> removed_;
-  std::vector<std::uint8_t> touches_;    ///< per contact this step
   std::vector<PerThread<MergeRun>> runs_;
 };
 
