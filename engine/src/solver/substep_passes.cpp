@@ -78,13 +78,6 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 
 }  // namespace
 
-namespace {
-
-// Bodies are shared among threads from these many: fewer cost more to hand out than they save.
-constexpr std::uint32_t kMinSharedBodies = 2048;
-
-}  // namespace
-
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState>,

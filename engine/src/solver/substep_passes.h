@@ -39,6 +39,8 @@ inline const LinearConstraint& Point(const LinearConstraint& c, int) { return c;
 
 /// Contacts are shared among threads from these many: fewer cost more to hand out than they save.
 inline constexpr std::uint32_t kMinSharedContacts = 4096;
+/// Bodies are shared among threads from these many: fewer cost more to hand out than they save.
+inline constexpr std::uint32_t kMinSharedBodies = 2048;
 
 /// One constraint per contact, with the impulses carried over from the last step; contact i's
 /// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to

@@ -432,17 +432,18 @@ void SubstepSolver::DropClosingLags(const StepContext& context, std::span<const 
 
 // A body's turn is worked out again only where it changed (after the push-out, most bodies'
 // did not): MakeRot is the most costly part of a turning substep outside the passes.
+// Shared among the threads as the moves before it were: each body's entries are its own.
 void SubstepSolver::UpdateTurned(const StepContext& context) {
-  for (std::size_t i = 0; i < context.states.size(); ++i) {
+  ForEachIndex(&context.pool, context.states.size(), kMinSharedBodies, [&](std::uint32_t i) {
     if (context.infos[i].inv_inertia == 0.0) {
       turned_[i] = Rot{};
-      continue;
+      return;
     }
     const double turn = context.states[i].angle - angles_before_[i];
-    if (std::bit_cast<std::uint64_t>(turn) == std::bit_cast<std::uint64_t>(turns_[i])) continue;
+    if (std::bit_cast<std::uint64_t>(turn) == std::bit_cast<std::uint64_t>(turns_[i])) return;
     turns_[i] = turn;
     turned_[i] = MakeRot(turn);
-  }
+  });
 }
 
 }  // namespace engine::detail
