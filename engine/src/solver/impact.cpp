@@ -138,9 +138,6 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
             anchor_a += sc.points[k].anchor_a / struck;
             anchor_b += sc.points[k].anchor_b / struck;
           }
-          const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
-          normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
-                               sc.inv_inertia_b * rb * rb);
         }
       }
       Vec2 relative = b.velocity - a.velocity;
@@ -156,6 +153,13 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
       if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, restitution,
                          def.substeps, h, &bounce)) {
         continue;
+      }
+      if constexpr (kCanTurn<C>) {
+        if (sc.angular) {  // worked out for the pairs that bounce alone: most do not
+          const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
+          normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
+                               sc.inv_inertia_b * rb * rb);
+        }
       }
       const double impulse = (bounce.start_velocity - vn) * normal_mass;
       a.velocity -= (impulse * sc.inv_mass_a) * sc.normal;

@@ -165,24 +165,36 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   const auto pack_blocks = [&](std::uint32_t begin, std::uint32_t end) {
     if constexpr (!kCanTurn<C>) wide_.PackBlocks(constraints, order_, def.linear_slop, begin, end);
   };
-  const auto impacts = [&] {
+  const auto resolve_impacts = [&] {
     impact_lags_.clear();
     if (plan.impact_pass) {  // bounces first
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
     }
+  };
+  // The turning lanes only read the constraints, the impacts only write velocities.
+  bool pack_turning = false;
+  if constexpr (kCanTurn<C>) {
+    pack_turning = lanes && !plan.direct_solve && WideTurningConstraints::Fits(constraints, order_);
+    if (pack_turning) plan.wide = &WidePassesFor(def.substep_features.lanes);
+  }
+  const auto pack_turning_blocks = [&] {
     if constexpr (kCanTurn<C>) {
-      if (lanes && !plan.direct_solve && WideTurningConstraints::Fits(constraints, order_)) {
-        plan.wide = &WidePassesFor(def.substep_features.lanes);
-        wide_turning_.Pack(constraints, order_);
-      }
+      if (pack_turning) wide_turning_.Pack(constraints, order_);
     }
   };
   constexpr std::uint32_t kBlocksPerRun = 64;
   if (plan.shock_propagation && constraints.size() >= kMinSideBySideConstraints) {
+    const auto impacts = [&] {
+      resolve_impacts();
+      pack_turning_blocks();
+    };
     context.pool.RunSideBySideThenShare(impacts, shock_plan, blocks_to_pack, kBlocksPerRun, pack_blocks);
+  } else if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
+    context.pool.RunSideBySide(resolve_impacts, pack_turning_blocks);
   } else {
     shock_plan();
-    impacts();
+    resolve_impacts();
+    pack_turning_blocks();
     if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
   }
   push_velocities_.resize(n);
@@ -208,7 +220,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   if (plan.wide) {
     if constexpr (kCanTurn<C>) {
-      wide_turning_.UnpackImpulses(constraints);
+      wide_turning_.UnpackImpulses(constraints, &context.pool);
     } else {
       wide_.UnpackImpulses(constraints, &context.pool);
     }

@@ -5,6 +5,8 @@
 #include <cassert>
 #include <utility>
 
+#include "solver/substep_passes.h"
+
 namespace engine::detail {
 
 namespace {
@@ -115,15 +117,15 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
 }
 
-void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constraints) const {
-  for (std::size_t j = 0; j < constraints.size(); ++j) {
+void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constraints, WorkerPool* pool) const {
+  ForEachIndex(pool, constraints.size(), kMinSharedContacts, [&](std::uint32_t j) {
     const TurningBlock& block = blocks[lane_of[j] / kBlockLanes];
     const std::uint32_t lane = lane_of[j] % kBlockLanes;
     for (int k = 0; k < constraints[j].point_count; ++k) {
       constraints[j].points[k].normal_impulse = block.points[k].normal_impulse[lane];
       constraints[j].points[k].tangent_impulse = block.points[k].tangent_impulse[lane];
     }
-  }
+  });
 }
 
 void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
@@ -187,8 +189,7 @@ void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, Wo
     constraints[j].normal_impulse = block.normal_impulse[lane];
     constraints[j].tangent_impulse = block.tangent_impulse[lane];
   };
-  constexpr std::uint32_t kMinShared = 4096;
-  ForEachIndex(pool, constraints.size(), kMinShared, unpack);
+  ForEachIndex(pool, constraints.size(), kMinSharedContacts, unpack);
 }
 
 void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,

@@ -106,7 +106,8 @@ struct WideTurningConstraints {
   /// turn takes the centres' row, other arithmetic) and the order in strips.
   static bool Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order);
   void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips);
-  void UnpackImpulses(std::span<SubstepConstraint> constraints) const;
+  /// Copies the impulses back to the constraints Pack read; `pool`: threads to share them among.
+  void UnpackImpulses(std::span<SubstepConstraint> constraints, WorkerPool* pool = nullptr) const;
 };
 
 /// Sets `pushed` to 1 for both bodies of every constraint with a positive normal impulse (as
