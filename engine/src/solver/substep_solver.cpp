@@ -203,7 +203,11 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   if (plan.track_turning) {
     angles_before_.resize(n);
     turned_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) angles_before_[i] = context.states[i].angle;
+    unturned_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      angles_before_[i] = context.states[i].angle;
+      unturned_[i] = context.infos[i].inv_inertia == 0.0;
+    }
     turns_.assign(n, std::numeric_limits<double>::quiet_NaN());  // no turn worked out yet
     UpdateTurned(context);  // nothing has turned yet this step
   }
@@ -447,14 +451,10 @@ void SubstepSolver::DropClosingLags(const StepContext& context, std::span<const 
 // Shared among the threads as the moves before it were: each body's entries are its own.
 void SubstepSolver::UpdateTurned(const StepContext& context) {
   ForEachIndex(&context.pool, context.states.size(), kMinSharedBodies, [&](std::uint32_t i) {
-    if (context.infos[i].inv_inertia == 0.0) {
-      turned_[i] = Rot{};
-      return;
-    }
     const double turn = context.states[i].angle - angles_before_[i];
     if (std::bit_cast<std::uint64_t>(turn) == std::bit_cast<std::uint64_t>(turns_[i])) return;
     turns_[i] = turn;
-    turned_[i] = MakeRot(turn);
+    turned_[i] = unturned_[i] ? Rot{} : MakeRot(turn);
   });
 }
 

@@ -129,6 +129,9 @@ class SubstepSolver {
   std::vector<double> angles_before_;
   std::vector<Rot> turned_;                             ///< per body: MakeRot(turns_)
   std::vector<double> turns_;                           ///< per body: its angle less angles_before_, as last seen
+  /// Per body: it has no inverse inertia (its turn stays Rot{}); read from the infos once a step
+  /// rather than at every UpdateTurned.
+  std::vector<std::uint8_t> unturned_;
   std::vector<Vec2> push_velocities_;                   ///< PushVelocities' storage
   std::vector<double> push_angular_velocities_;
   std::vector<std::uint8_t> pushed_;
