@@ -171,7 +171,6 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
     }
   };
-  // The turning lanes only read the constraints, the impacts only write velocities.
   bool pack_turning = false;
   if constexpr (kCanTurn<C>) {
     pack_turning = lanes && !plan.direct_solve && WideTurningConstraints::Fits(constraints, order_);
@@ -190,6 +189,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     };
     context.pool.RunSideBySideThenShare(impacts, shock_plan, blocks_to_pack, kBlocksPerRun, pack_blocks);
   } else if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
+    // The packing only reads the constraints, the impacts only write velocities (and lags).
     context.pool.RunSideBySide(resolve_impacts, pack_turning_blocks);
   } else {
     shock_plan();
