@@ -5,6 +5,10 @@
 #include <array>
 #include <bit>
 
+#include "parallel/per_thread.h"
+#include "parallel/worker_pool.h"
+#include "solver/substep_passes.h"
+
 namespace engine::detail {
 
 namespace {
@@ -50,33 +54,56 @@ void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo>
 void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                    std::span<const BodyState> states, Vec2 across, int strips,
                    std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
-                   std::vector<std::uint32_t>* group_ends) {
-  // The span of the moving bodies in contact, along `across`.
-  double lo = 0.0, hi = 0.0;
-  bool any = false;
-  for (const Contact& c : contacts) {
-    for (const BodyIndex b : {c.a, c.b}) {
-      if (HasInfiniteMass(infos[b])) continue;
-      const double x = Dot(states[b].position, across);
-      lo = any ? std::min(lo, x) : x;
-      hi = any ? std::max(hi, x) : x;
-      any = true;
+                   std::vector<std::uint32_t>* group_ends, WorkerPool* pool) {
+  // The span of the moving bodies in contact, along `across`: over each thread's part of the
+  // contacts, then over the parts (the least and the most are exact, whatever the parts).
+  struct Span {
+    double lo = 0.0, hi = 0.0;
+    bool any = false;
+  };
+  const std::size_t parts = pool && contacts.size() >= kMinSharedContacts ? pool->Threads() : 1;
+  std::vector<PerThread<Span>> spans(parts);
+  const auto span_of = [&](std::size_t part) {
+    Span span;  // kept apart from the shared list until done: it might alias the states
+    const std::size_t end = contacts.size() * (part + 1) / parts;
+    for (std::size_t i = contacts.size() * part / parts; i < end; ++i) {
+      for (const BodyIndex b : {contacts[i].a, contacts[i].b}) {
+        if (HasInfiniteMass(infos[b])) continue;
+        const double x = Dot(states[b].position, across);
+        span.lo = span.any ? std::min(span.lo, x) : x;
+        span.hi = span.any ? std::max(span.hi, x) : x;
+        span.any = true;
+      }
     }
+    spans[part].value = span;
+  };
+  if (parts == 1) {
+    span_of(0);
+  } else {
+    pool->RunOnAll([&](int thread) { span_of(static_cast<std::size_t>(thread)); });
   }
+  Span all;
+  for (const auto& part : spans) {
+    const Span& span = part.value;
+    if (!span.any) continue;
+    all.lo = all.any ? std::min(all.lo, span.lo) : span.lo;
+    all.hi = all.any ? std::max(all.hi, span.hi) : span.hi;
+    all.any = true;
+  }
+  const double lo = all.lo, hi = all.hi;
   const double scale = hi > lo ? strips / (hi - lo) : 0.0;
-  // body_marks[b]: body b's strip, for the moving bodies of a contact.
+  // body_marks[b]: body b's strip (read for the moving bodies of a contact; worked out for every
+  // body, fewer than the contacts' ends).
   std::vector<std::uint64_t>& strip_of = *body_marks;
   strip_of.resize(infos.size());
-  for (const Contact& c : contacts) {
-    for (const BodyIndex b : {c.a, c.b}) {
-      const double s = (Dot(states[b].position, across) - lo) * scale;
-      const auto last = static_cast<std::uint64_t>(strips - 1);
-      strip_of[b] = s < strips - 1.0 ? (s > 0.0 ? static_cast<std::uint64_t>(s) : 0) : last;
-    }
-  }
+  ForEachIndex(pool, infos.size(), kMinSharedBodies, [&](std::uint32_t b) {
+    const double s = (Dot(states[b].position, across) - lo) * scale;
+    const auto last = static_cast<std::uint64_t>(strips - 1);
+    strip_of[b] = s < strips - 1.0 ? (s > 0.0 ? static_cast<std::uint64_t>(s) : 0) : last;
+  });
   const StripGroups groups(strips);
   slot->resize(contacts.size());
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
     const BodyIndex a = contacts[i].a, b = contacts[i].b;
     const bool moves_a = !HasInfiniteMass(infos[a]), moves_b = !HasInfiniteMass(infos[b]);
     std::uint32_t group = groups.far;
@@ -91,7 +118,7 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
       group = static_cast<std::uint32_t>(strip_of[moves_a ? a : b]);
     }
     (*slot)[i] = group;
-  }
+  });
   SortByGroup(groups.far + 1, slot, group_ends);
 }
 

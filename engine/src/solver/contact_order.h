@@ -12,6 +12,10 @@
 #include "engine/contact.h"
 
 namespace engine::detail {
+class WorkerPool;
+}
+
+namespace engine::detail {
 
 /// The colour a contact takes when both its bodies have every lower one: it may share a body.
 inline constexpr std::uint32_t kSharedColour = 63;
@@ -57,10 +61,11 @@ struct StripGroups {
 /// contacts. Strips of it share no moving body, so threads can each take whole strips, and the
 /// order inside each stays contact order. Domain decomposition for Gauss-Seidel; with strips
 /// upright (across gravity), a pile's columns stay whole.
+/// `pool`: threads to share the contacts and bodies among (the same order whatever the threads).
 void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                    std::span<const BodyState> states, Vec2 across, int strips,
                    std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
-                   std::vector<std::uint32_t>* group_ends);
+                   std::vector<std::uint32_t>* group_ends, WorkerPool* pool = nullptr);
 
 /// The order the substep solver visits contacts in: contact i's constraint sits at `slot[i]`.
 /// Either the groups [group_ends[g − 1], group_ends[g]) below `parallel_groups` share no moving
@@ -85,9 +90,9 @@ struct ContactOrder {
   }
   /// Contact order within strips (StripContacts), upright when gravity gives an up.
   void InStrips(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                std::span<const BodyState> states, Vec2 gravity) {
+                std::span<const BodyState> states, Vec2 gravity, WorkerPool* pool = nullptr) {
     const Vec2 across = gravity == Vec2{} ? Vec2{1.0, 0.0} : LeftPerp(gravity);
-    StripContacts(contacts, infos, states, across, kStrips, &body_marks, &slot, &group_ends);
+    StripContacts(contacts, infos, states, across, kStrips, &body_marks, &slot, &group_ends, pool);
     parallel_groups = 0;
     strips = kStrips;
   }

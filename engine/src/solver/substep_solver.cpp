@@ -29,7 +29,7 @@ void SubstepSolver::Step(StepContext& context) {
   pile_passes_ = context.def.velocity_iterations;  // turning worlds take 4 passes already
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
-      order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity);
+      order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity, &context.pool);
     } else {
       order_.AsFound(context.contacts.size());
     }
