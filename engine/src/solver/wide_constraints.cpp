@@ -36,8 +36,9 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
   block->inv_inertia_a[lane] = c.inv_inertia_a;
   block->inv_inertia_b[lane] = c.inv_inertia_b;
   block->friction[lane] = c.friction;
-  for (int k = 0; k < c.point_count; ++k) {
-    const SubstepPoint& p = c.points[k];
+  const SubstepPoint none{};  // a one-point contact's second point: zero
+  for (int k = 0; k < 2; ++k) {
+    const SubstepPoint& p = k < c.point_count ? c.points[k] : none;
     TurningPointLanes& lanes = block->points[k];
     lanes.base_separation[lane] = p.base_separation;
     lanes.normal_mass[lane] = p.normal_mass;
@@ -51,24 +52,31 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
   }
 }
 
-// Appends blocks whose lane l holds the k-th constraint of `runs[l]` (ranges of the strip
-// order, at most four), padding where a run is shorter than the longest.
-void AppendSideBySide(std::span<const SubstepConstraint> constraints,
-                      std::span<const std::pair<std::uint32_t, std::uint32_t>> runs,
-                      WideTurningConstraints* wide) {
+// Writes blocks [first, first + the longest run) so that lane l of the k-th holds the k-th
+// constraint of `runs[l]` (ranges of the strip order, at most four) and every other lane is
+// padding; returns where they end. Block by block, every lane: the storage is kept from step to
+// step, not zeroed first.
+std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints,
+                            std::span<const std::pair<std::uint32_t, std::uint32_t>> runs, std::size_t first,
+                            WideTurningConstraints* wide) {
   assert(runs.size() <= static_cast<std::size_t>(kBlockLanes));
   std::uint32_t longest = 0;
   for (const auto& [begin, end] : runs) longest = std::max(longest, end - begin);
-  const std::size_t first = wide->blocks.size();
-  wide->blocks.resize(first + longest);  // value-initialised: zero, padding until filled
-  for (std::size_t l = 0; l < runs.size(); ++l) {
-    const auto [begin, end] = runs[l];
-    for (std::uint32_t j = begin; j < end; ++j) {
-      const std::size_t block = first + (j - begin);
-      PutLane(constraints[j], &wide->blocks[block], static_cast<int>(l));
-      wide->lane_of[j] = static_cast<std::uint32_t>(block * kBlockLanes + l);
+  const SubstepConstraint padding{};  // zero, on body 0
+  for (std::uint32_t k = 0; k < longest; ++k) {
+    const std::size_t block = first + k;
+    for (int l = 0; l < kBlockLanes; ++l) {
+      const auto lane = static_cast<std::size_t>(l);
+      if (lane < runs.size() && runs[lane].first + k < runs[lane].second) {
+        const std::uint32_t j = runs[lane].first + k;
+        PutLane(constraints[j], &wide->blocks[block], l);
+        wide->lane_of[j] = static_cast<std::uint32_t>(block * kBlockLanes + lane);
+      } else {
+        PutLane(padding, &wide->blocks[block], l);
+      }
     }
   }
+  return first + longest;
 }
 
 }  // namespace
@@ -87,34 +95,41 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   const auto range = [&](std::uint32_t g) {
     return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : strips.group_ends[g - 1], strips.group_ends[g]};
   };
-  blocks.clear();
+  using Runs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+  const auto runs_of = [&](std::uint32_t first, std::uint32_t end, std::uint32_t step) {
+    Runs runs;
+    for (std::uint32_t g = first; g < end; g += step) runs.push_back(range(g));
+    return runs;
+  };
+  // The even strips, then the odd ones: each set a group, the two side by side on two threads.
+  // Then the even edges, then the odd ones, in one group; then the rest, one to a block, in order.
+  const Runs even = runs_of(0, groups.strips, 2), odd = runs_of(1, groups.strips, 2);
+  const Runs even_edges = runs_of(groups.strips, groups.strips + groups.even_edges, 1);
+  const Runs odd_edges = runs_of(groups.strips + groups.even_edges, groups.far, 1);
+  const auto [far_begin, far_end] = range(groups.far);
+  const auto longest = [](const Runs& runs) {
+    std::uint32_t most = 0;
+    for (const auto& [begin, end] : runs) most = std::max(most, end - begin);
+    return std::size_t{most};
+  };
+  blocks.resize(longest(even) + longest(odd) + longest(even_edges) + longest(odd_edges) + (far_end - far_begin));
   lane_of.resize(constraints.size());
   order.group_ends.clear();
   order.parallel_groups = 0;
   order.strips = 2;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
-  // The even strips, then the odd ones: each set a group, the two side by side on two threads.
-  for (std::uint32_t parity = 0; parity < 2; ++parity) {
-    runs.clear();
-    for (std::uint32_t g = parity; g < groups.strips; g += 2) runs.push_back(range(g));
-    AppendSideBySide(constraints, runs, this);
-    order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
-  }
-  // The even edges, then the odd ones, in one group.
-  for (const auto& [begin, end] : {std::pair{groups.strips, groups.strips + groups.even_edges},
-                                  std::pair{groups.strips + groups.even_edges, groups.far}}) {
-    runs.clear();
-    for (std::uint32_t g = begin; g < end; ++g) runs.push_back(range(g));
-    AppendSideBySide(constraints, runs, this);
-  }
-  order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
-  // The rest, one to a block, in order.
-  const auto [far_begin, far_end] = range(groups.far);
+  std::size_t next = PlaceSideBySide(constraints, even, 0, this);
+  order.group_ends.push_back(static_cast<std::uint32_t>(next));
+  next = PlaceSideBySide(constraints, odd, next, this);
+  order.group_ends.push_back(static_cast<std::uint32_t>(next));
+  next = PlaceSideBySide(constraints, even_edges, next, this);
+  next = PlaceSideBySide(constraints, odd_edges, next, this);
+  order.group_ends.push_back(static_cast<std::uint32_t>(next));
   for (std::uint32_t j = far_begin; j < far_end; ++j) {
-    runs.assign(1, {j, j + 1});
-    AppendSideBySide(constraints, runs, this);
+    const std::pair<std::uint32_t, std::uint32_t> one[] = {{j, j + 1}};
+    next = PlaceSideBySide(constraints, one, next, this);
   }
-  order.group_ends.push_back(static_cast<std::uint32_t>(blocks.size()));
+  order.group_ends.push_back(static_cast<std::uint32_t>(next));
+  assert(next == blocks.size());
 }
 
 void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constraints, WorkerPool* pool) const {
