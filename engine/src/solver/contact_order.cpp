@@ -60,6 +60,11 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
   struct Span {
     double lo = 0.0, hi = 0.0;
     bool any = false;
+    void Widen(double x) {
+      lo = any ? std::min(lo, x) : x;
+      hi = any ? std::max(hi, x) : x;
+      any = true;
+    }
   };
   const std::size_t parts = pool && contacts.size() >= kMinSharedContacts ? pool->Threads() : 1;
   std::vector<PerThread<Span>> spans(parts);
@@ -68,11 +73,7 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
     const std::size_t end = contacts.size() * (part + 1) / parts;
     for (std::size_t i = contacts.size() * part / parts; i < end; ++i) {
       for (const BodyIndex b : {contacts[i].a, contacts[i].b}) {
-        if (HasInfiniteMass(infos[b])) continue;
-        const double x = Dot(states[b].position, across);
-        span.lo = span.any ? std::min(span.lo, x) : x;
-        span.hi = span.any ? std::max(span.hi, x) : x;
-        span.any = true;
+        if (!HasInfiniteMass(infos[b])) span.Widen(Dot(states[b].position, across));
       }
     }
     spans[part].value = span;
@@ -84,11 +85,9 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
   }
   Span all;
   for (const auto& part : spans) {
-    const Span& span = part.value;
-    if (!span.any) continue;
-    all.lo = all.any ? std::min(all.lo, span.lo) : span.lo;
-    all.hi = all.any ? std::max(all.hi, span.hi) : span.hi;
-    all.any = true;
+    if (!part.value.any) continue;
+    all.Widen(part.value.lo);
+    all.Widen(part.value.hi);
   }
   const double lo = all.lo, hi = all.hi;
   const double scale = hi > lo ? strips / (hi - lo) : 0.0;

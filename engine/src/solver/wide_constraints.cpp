@@ -52,16 +52,23 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
   }
 }
 
+using Runs = std::span<const std::pair<std::uint32_t, std::uint32_t>>;
+
+// How many blocks runs side by side take: as many as the longest has constraints.
+std::uint32_t LongestRun(Runs runs) {
+  std::uint32_t longest = 0;
+  for (const auto& [begin, end] : runs) longest = std::max(longest, end - begin);
+  return longest;
+}
+
 // Writes blocks [first, first + the longest run) so that lane l of the k-th holds the k-th
 // constraint of `runs[l]` (ranges of the strip order, at most four) and every other lane is
 // padding; returns where they end. Block by block, every lane: the storage is kept from step to
 // step, not zeroed first.
-std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints,
-                            std::span<const std::pair<std::uint32_t, std::uint32_t>> runs, std::size_t first,
+std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, Runs runs, std::size_t first,
                             WideTurningConstraints* wide) {
   assert(runs.size() <= static_cast<std::size_t>(kBlockLanes));
-  std::uint32_t longest = 0;
-  for (const auto& [begin, end] : runs) longest = std::max(longest, end - begin);
+  const std::uint32_t longest = LongestRun(runs);
   const SubstepConstraint padding{};  // zero, on body 0
   for (std::uint32_t k = 0; k < longest; ++k) {
     const std::size_t block = first + k;
@@ -95,24 +102,19 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   const auto range = [&](std::uint32_t g) {
     return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : strips.group_ends[g - 1], strips.group_ends[g]};
   };
-  using Runs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const auto runs_of = [&](std::uint32_t first, std::uint32_t end, std::uint32_t step) {
-    Runs runs;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
     for (std::uint32_t g = first; g < end; g += step) runs.push_back(range(g));
     return runs;
   };
   // The even strips, then the odd ones: each set a group, the two side by side on two threads.
   // Then the even edges, then the odd ones, in one group; then the rest, one to a block, in order.
-  const Runs even = runs_of(0, groups.strips, 2), odd = runs_of(1, groups.strips, 2);
-  const Runs even_edges = runs_of(groups.strips, groups.strips + groups.even_edges, 1);
-  const Runs odd_edges = runs_of(groups.strips + groups.even_edges, groups.far, 1);
+  const auto even = runs_of(0, groups.strips, 2), odd = runs_of(1, groups.strips, 2);
+  const auto even_edges = runs_of(groups.strips, groups.strips + groups.even_edges, 1);
+  const auto odd_edges = runs_of(groups.strips + groups.even_edges, groups.far, 1);
   const auto [far_begin, far_end] = range(groups.far);
-  const auto longest = [](const Runs& runs) {
-    std::uint32_t most = 0;
-    for (const auto& [begin, end] : runs) most = std::max(most, end - begin);
-    return std::size_t{most};
-  };
-  blocks.resize(longest(even) + longest(odd) + longest(even_edges) + longest(odd_edges) + (far_end - far_begin));
+  blocks.resize(std::size_t{LongestRun(even)} + LongestRun(odd) + LongestRun(even_edges) + LongestRun(odd_edges) +
+                (far_end - far_begin));
   lane_of.resize(constraints.size());
   order.group_ends.clear();
   order.parallel_groups = 0;
