@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "bench/stress_scenes.h"
@@ -182,10 +183,11 @@ Scene MakeTurningScene(unsigned seed) {
     if (a + 3 < bodies && a % 2 == 0) add(a, a + 3);
   }
   for (int i = 0; i < 12; ++i) add(i, bodies - 1 - i);  // far apart
+  for (int i = 0; i < 70; ++i) add(5, 100 + 3 * i);  // a hub: past the colours, one to a block
   return scene;
 }
 
-// RunPasses for turning contacts in strip order, block-solved.
+// RunPasses for turning contacts in strip or colour order, block-solved.
 Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order, int lanes) {
   using namespace engine::detail;
   Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, std::vector<double>(scene.states.size())};
@@ -389,10 +391,15 @@ TEST_CASE("wide solver: a pour steps to the same hash at every width and thread 
 }
 
 TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-a-time passes") {
-  for (const unsigned seed : {1u, 2u, 3u}) {
+  for (const auto& [seed, by_colour] : {std::pair{1u, false}, {2u, false}, {3u, false}, {1u, true}, {2u, true}}) {
+    INFO((by_colour ? "colour order" : "strip order"));
     const Scene scene = MakeTurningScene(seed);
     engine::detail::ContactOrder order;
-    order.InStrips(scene.contacts, scene.infos, scene.states, {0.0, -9.8});
+    if (by_colour) {
+      order.ByColour(scene.contacts, scene.infos);
+    } else {
+      order.InStrips(scene.contacts, scene.infos, scene.states, {0.0, -9.8});
+    }
     const Outcome reference = RunTurningPasses(scene, order, 0);
     CHECK_FALSE(SameBits(reference.states, scene.states));
     bool pushed = false;
@@ -407,6 +414,34 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
       CHECK(SameBits(Impulses(wide.turning), Impulses(reference.turning)));
     }
   }
+}
+
+TEST_CASE("wide solver: turning contacts go by colour only where every moving body in them is a circle") {
+  std::vector<BodyInfo> infos(4);
+  infos[0].is_static = true;
+  infos[0].shape.type = engine::ShapeType::kBox;  // static: it takes no impulse
+  infos[1].shape.type = engine::ShapeType::kCircle;
+  infos[2].shape.type = engine::ShapeType::kCircle;
+  infos[3].shape.type = engine::ShapeType::kBox;
+  std::vector<Contact> contacts(2);
+  contacts[0].a = 0, contacts[0].b = 1;
+  contacts[1].a = 1, contacts[1].b = 2;
+  using engine::detail::SubstepSolver;
+  CHECK(SubstepSolver::AllRound(contacts, infos));
+  contacts.emplace_back();
+  contacts[2].a = 2, contacts[2].b = 3;
+  CHECK_FALSE(SubstepSolver::AllRound(contacts, infos));
+  infos[3].is_kinematic = true;  // a kinematic box takes no impulse either
+  CHECK(SubstepSolver::AllRound(contacts, infos));
+}
+
+TEST_CASE("wide solver: a turning pour of circles by colour steps to the same hash in lanes and on two threads") {
+  std::size_t contacts = 0;
+  const std::uint64_t one_at_a_time = PourHash(1, 1, false, true, 2200, &contacts);
+  // Enough contacts for the colour order, which the turning lanes take where every body is round.
+  REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
+  CHECK(PourHash(0, 1, false, true, 2200) == one_at_a_time);
+  CHECK(PourHash(0, 2, false, true, 2200) == one_at_a_time);
 }
 
 TEST_CASE("wide solver: a turning pour in strips steps to the same hash in lanes and on two threads") {

@@ -29,7 +29,11 @@ void SubstepSolver::Step(StepContext& context) {
   pile_passes_ = context.def.velocity_iterations;  // turning worlds take 4 passes already
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
-      order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity, &context.pool);
+      if (context.def.substep_features.colour_order && AllRound(context.contacts, context.infos)) {
+        order_.ByColour(context.contacts, context.infos);
+      } else {
+        order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity, &context.pool);
+      }
     } else {
       order_.AsFound(context.contacts.size());
     }
@@ -53,6 +57,13 @@ void SubstepSolver::Step(StepContext& context) {
     }
     Step(context, &linear_constraints_);
   }
+}
+
+bool SubstepSolver::AllRound(std::span<const Contact> contacts, std::span<const BodyInfo> infos) {
+  const auto round = [&](BodyIndex body) {
+    return HasInfiniteMass(infos[body]) || infos[body].shape.type == ShapeType::kCircle;
+  };
+  return std::all_of(contacts.begin(), contacts.end(), [&](const Contact& c) { return round(c.a) && round(c.b); });
 }
 
 bool SubstepSolver::ShockPropagates(const WorldDef& def) {

@@ -86,10 +86,64 @@ std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, Runs
   return first + longest;
 }
 
+// Sizes `blocks` for the groups of a colour order and writes their ends, in blocks, to `order`:
+// a colour that shares no moving body four to a block, any other one to a block.
+template <typename Block>
+void LayoutColours(const ContactOrder& colours, ContactOrder* order, std::vector<Block>* blocks,
+                   std::vector<std::uint32_t>* lane_of) {
+  assert(colours.strips == 0);
+  order->group_ends.clear();
+  order->strips = 0;
+  order->parallel_groups = colours.parallel_groups;
+  std::uint32_t begin = 0, block_count = 0;
+  for (std::size_t g = 0; g < colours.group_ends.size(); ++g) {
+    const std::uint32_t end = colours.group_ends[g];
+    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
+    block_count += (end - begin + lanes - 1) / lanes;
+    order->group_ends.push_back(block_count);
+    begin = end;
+  }
+  // Sized without zeroing: the packing writes every lane, padding too.
+  blocks->resize(block_count);
+  lane_of->resize(colours.group_ends.empty() ? 0 : colours.group_ends.back());
+}
+
+// Fills blocks [begin, end) of a colour layout (LayoutColours): block k of group g holds the
+// group's constraints from its (k − the group's first block) × lanes on, padding past the group's
+// end. Calls placed(j, block) for each constraint placed.
+template <typename Block, typename Constraint, typename Placed>
+void PackColours(std::span<const Constraint> constraints, const ContactOrder& colours, const ContactOrder& order,
+                 std::span<Block> blocks, std::span<std::uint32_t> lane_of, std::uint32_t begin, std::uint32_t end,
+                 Placed&& placed) {
+  for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
+    const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
+    const std::uint32_t group_end = order.group_ends[g];
+    if (group_end <= begin) continue;
+    if (group_begin >= end) break;
+    const std::uint32_t first = g == 0 ? 0 : colours.group_ends[g - 1];
+    const std::uint32_t last = colours.group_ends[g];
+    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
+    for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
+      Block& block = blocks[k];
+      const std::uint32_t j0 = first + (k - group_begin) * lanes;
+      const std::uint32_t filled = std::min(lanes, last - j0);
+      for (std::uint32_t lane = 0; lane < filled; ++lane) {
+        PutLane(constraints[j0 + lane], &block, static_cast<int>(lane));
+        lane_of[j0 + lane] = k * kBlockLanes + lane;
+        placed(j0 + lane, k);
+      }
+      for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
+        PutLane(Constraint{}, &block, static_cast<int>(lane));  // padding: zero, on body 0
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order) {
-  if (order.strips == 0 || order.strips > 2 * static_cast<std::uint32_t>(kBlockLanes)) return false;
+  const bool colours = order.strips == 0 && order.parallel_groups > 0;
+  if (!colours && (order.strips == 0 || order.strips > 2 * static_cast<std::uint32_t>(kBlockLanes))) return false;
   for (const SubstepConstraint& c : constraints) {
     if (!c.angular) return false;
   }
@@ -98,6 +152,12 @@ bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints
 
 void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips) {
   assert(Fits(constraints, strips));
+  if (strips.strips == 0) {  // a colour order
+    LayoutColours(strips, &order, &blocks, &lane_of);
+    PackColours<TurningBlock>(constraints, strips, order, std::span<TurningBlock>(blocks), std::span<std::uint32_t>(lane_of), 0,
+                              static_cast<std::uint32_t>(blocks.size()), [](std::uint32_t, std::uint32_t) {});
+    return;
+  }
   const StripGroups groups(static_cast<int>(strips.strips));
   const auto range = [&](std::uint32_t g) {
     return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : strips.group_ends[g - 1], strips.group_ends[g]};
@@ -152,51 +212,17 @@ void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const 
 }
 
 void WideConstraints::Layout(const ContactOrder& colours) {
-  assert(colours.strips == 0);
-  order.group_ends.clear();
-  order.strips = 0;
-  order.parallel_groups = colours.parallel_groups;
-  std::uint32_t begin = 0, block_count = 0;
-  for (std::size_t g = 0; g < colours.group_ends.size(); ++g) {
-    const std::uint32_t end = colours.group_ends[g];
-    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
-    block_count += (end - begin + lanes - 1) / lanes;
-    order.group_ends.push_back(block_count);
-    begin = end;
-  }
-  // Sized without zeroing: PackBlocks writes every lane, padding too.
-  blocks.resize(block_count);
-  overlapping_lanes.resize(block_count);
-  lane_of.resize(colours.group_ends.empty() ? 0 : colours.group_ends.back());
+  LayoutColours(colours, &order, &blocks, &lane_of);
+  overlapping_lanes.resize(blocks.size());
 }
 
 void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
                                  double linear_slop, std::uint32_t begin, std::uint32_t end) {
-  for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
-    const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
-    const std::uint32_t group_end = order.group_ends[g];
-    if (group_end <= begin) continue;
-    if (group_begin >= end) break;
-    const std::uint32_t first = g == 0 ? 0 : colours.group_ends[g - 1];
-    const std::uint32_t last = colours.group_ends[g];
-    const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
-    for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
-      LinearBlock& block = blocks[k];
-      const std::uint32_t j0 = first + (k - group_begin) * lanes;
-      const std::uint32_t filled = std::min(lanes, last - j0);
-      std::uint8_t overlapping = 0;
-      for (std::uint32_t lane = 0; lane < filled; ++lane) {
-        const LinearConstraint& c = constraints[j0 + lane];
-        PutLane(c, &block, static_cast<int>(lane));
-        overlapping += c.base_separation < -linear_slop ? 1 : 0;
-        lane_of[j0 + lane] = k * kBlockLanes + lane;
-      }
-      for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
-        PutLane(LinearConstraint{}, &block, static_cast<int>(lane));  // padding: zero, on body 0
-      }
-      overlapping_lanes[k] = overlapping;
-    }
-  }
+  for (std::uint32_t k = begin; k < end; ++k) overlapping_lanes[k] = 0;
+  PackColours<LinearBlock>(constraints, colours, order, std::span<LinearBlock>(blocks), std::span<std::uint32_t>(lane_of),
+                           begin, end, [&](std::uint32_t j, std::uint32_t k) {
+                             overlapping_lanes[k] += constraints[j].base_separation < -linear_slop ? 1 : 0;
+                           });
 }
 
 void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool) const {
