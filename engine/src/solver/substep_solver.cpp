@@ -24,7 +24,9 @@ void SubstepSolver::Step(StepContext& context) {
   // their passes to converge, which contact order does better where a scene is built bottom-up:
   // a turning pyramid of base 40 drifts 6.7 mm in 10 s in contact order against 2.2 cm by colour.
   // Contact order is one chain, which neither lanes nor threads can share; piles keep it within
-  // upright strips, which they can (StripContacts).
+  // upright strips, which they can (StripContacts). A circle's contacts push through its centre,
+  // so where every moving body in contact is one, there is no turning stack to build bottom-up:
+  // colour order (the 2000-circle turning pour ends 10 s with 5.0 mm of overlap either way).
   shock_levels_built_ = false;  // this step's, below, or else the constraints give them
   pile_passes_ = context.def.velocity_iterations;  // turning worlds take 4 passes already
   if (context.can_turn) {

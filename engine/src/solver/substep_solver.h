@@ -35,7 +35,7 @@ struct SubstepPlan {
   double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep
   int passes;              ///< velocity passes per substep: WorldDef's, at least 2 in a deep pile
   /// The wide solver's passes, where every body is loaded (the warm start goes on whole) and
-  /// either nothing turns and contacts go by colour, or every contact turns, in strip order,
+  /// either nothing turns and contacts go by colour, or every contact turns, in strip or colour order,
   /// with no island for the direct solve; null: the one-at-a-time passes.
   const WidePasses* wide;
 };
@@ -50,7 +50,8 @@ class SubstepSolver {
  public:
   /// Contacts start a margin apart, so fast bodies are caught before they touch.
   static constexpr bool kSpeculative = true;
-  /// Where something can turn, at least this many contacts go in strip order: the wide solver
+  /// Where something can turn, at least this many contacts go in strip order (or by colour where
+  /// every moving body in contact is a circle, AllRound): the wide solver
   /// takes four strips side by side, and threads whole strips. Fewer stay in contact order, one
   /// chain: a strip then holds too few contacts to fill the lanes. (A turning pyramid of base 20
   /// has 590 contacts: 0.96 -> 0.74 ms/step in strips, drift after 10 s 2.21 -> 2.29 mm; base 40,
@@ -122,7 +123,7 @@ class SubstepSolver {
   std::vector<SubstepConstraint> substep_constraints_;  ///< where something can turn
   std::vector<LinearConstraint> linear_constraints_;    ///< where nothing can
   WideConstraints wide_;                                ///< linear_constraints_ in blocks (SubstepPlan::wide)
-  WideTurningConstraints wide_turning_;                 ///< substep_constraints_ in blocks, a strip to a lane
+  WideTurningConstraints wide_turning_;                 ///< substep_constraints_ in blocks: strips or colours
   std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
   std::vector<std::uint32_t> lag_first_, lag_fill_, lag_contacts_;  ///< DropClosingLags' contacts by body
   std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts

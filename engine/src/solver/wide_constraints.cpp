@@ -113,8 +113,8 @@ void LayoutColours(const ContactOrder& colours, ContactOrder* order, std::vector
 // end. Calls placed(j, block) for each constraint placed.
 template <typename Block, typename Constraint, typename Placed>
 void PackColours(std::span<const Constraint> constraints, const ContactOrder& colours, const ContactOrder& order,
-                 std::span<Block> blocks, std::span<std::uint32_t> lane_of, std::uint32_t begin, std::uint32_t end,
-                 Placed&& placed) {
+                 std::uint32_t begin, std::uint32_t end, std::vector<Block>* blocks,
+                 std::vector<std::uint32_t>* lane_of, Placed&& placed) {
   for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
     const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
     const std::uint32_t group_end = order.group_ends[g];
@@ -124,12 +124,12 @@ void PackColours(std::span<const Constraint> constraints, const ContactOrder& co
     const std::uint32_t last = colours.group_ends[g];
     const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
     for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
-      Block& block = blocks[k];
+      Block& block = (*blocks)[k];
       const std::uint32_t j0 = first + (k - group_begin) * lanes;
       const std::uint32_t filled = std::min(lanes, last - j0);
       for (std::uint32_t lane = 0; lane < filled; ++lane) {
         PutLane(constraints[j0 + lane], &block, static_cast<int>(lane));
-        lane_of[j0 + lane] = k * kBlockLanes + lane;
+        (*lane_of)[j0 + lane] = k * kBlockLanes + lane;
         placed(j0 + lane, k);
       }
       for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
@@ -154,8 +154,8 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   assert(Fits(constraints, strips));
   if (strips.strips == 0) {  // a colour order
     LayoutColours(strips, &order, &blocks, &lane_of);
-    PackColours<TurningBlock>(constraints, strips, order, std::span<TurningBlock>(blocks), std::span<std::uint32_t>(lane_of), 0,
-                              static_cast<std::uint32_t>(blocks.size()), [](std::uint32_t, std::uint32_t) {});
+    PackColours(constraints, strips, order, 0, static_cast<std::uint32_t>(blocks.size()), &blocks, &lane_of,
+                [](std::uint32_t, std::uint32_t) {});
     return;
   }
   const StripGroups groups(static_cast<int>(strips.strips));
@@ -219,10 +219,9 @@ void WideConstraints::Layout(const ContactOrder& colours) {
 void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
                                  double linear_slop, std::uint32_t begin, std::uint32_t end) {
   for (std::uint32_t k = begin; k < end; ++k) overlapping_lanes[k] = 0;
-  PackColours<LinearBlock>(constraints, colours, order, std::span<LinearBlock>(blocks), std::span<std::uint32_t>(lane_of),
-                           begin, end, [&](std::uint32_t j, std::uint32_t k) {
-                             overlapping_lanes[k] += constraints[j].base_separation < -linear_slop ? 1 : 0;
-                           });
+  PackColours(constraints, colours, order, begin, end, &blocks, &lane_of, [&](std::uint32_t j, std::uint32_t k) {
+    overlapping_lanes[k] += constraints[j].base_separation < -linear_slop ? 1 : 0;
+  });
 }
 
 void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool) const {

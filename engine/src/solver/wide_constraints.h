@@ -1,5 +1,5 @@
-// The axis-aligned contacts laid out for the wide solver: blocks of four constraints, each field
-// four doubles side by side (structure of arrays), in colour order. Internal to the engine.
+// The contacts laid out for the wide solver: blocks of four constraints, each field four doubles
+// side by side (structure of arrays), in colour order, or turning ones in strips. Internal to the engine.
 #pragma once
 
 #include <cstdint>
@@ -90,7 +90,8 @@ struct alignas(32) TurningBlock {
   TurningPointLanes points[2];
 };
 
-/// The turning constraints of a strip order (ContactOrder::InStrips) in blocks, a strip to a lane:
+/// The turning constraints of a colour order in blocks as WideConstraints lays them out, or of a
+/// strip order (ContactOrder::InStrips), a strip to a lane:
 /// lane l of the k-th block of a set holds the k-th contact of its strip. Strips share no moving
 /// body and each keeps its contact order, so solving four strips side by side gives the bits of
 /// solving them one after another. Four sets of blocks, as groups for ForEachGroup's strip mode
@@ -103,7 +104,7 @@ struct WideTurningConstraints {
   std::vector<std::uint32_t> lane_of;  ///< as WideConstraints::lane_of
 
   /// Whether the wide passes can take these constraints: every one angular (a pair that cannot
-  /// turn takes the centres' row, other arithmetic) and the order in strips.
+  /// turn takes the centres' row, other arithmetic) and the order in strips or by colour.
   static bool Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order);
   void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips);
   /// Copies the impulses back to the constraints Pack read; `pool`: threads to share them among.
