@@ -6,6 +6,7 @@
 
 #include "bench/stress_scenes.h"
 #include "narrow_phase/collide.h"
+#include "solver/substep_solver.h"
 #include "engine/world.h"
 #include "world_builders.h"
 
@@ -367,4 +368,47 @@ TEST_CASE("S12: a 2×2 box dropped from y = 4 rests on the ground after 90 steps
   CHECK(std::abs(s.position.x) < 0.01);
   CHECK(std::abs(s.position.y - 1.0) < 0.01);
   CHECK(std::abs(s.angle) < 0.01);
+}
+
+TEST_CASE("turning worlds pick 2 passes for circles and 4 for the rest; set ones are kept", "[rotation]") {
+  engine::WorldDef def;
+  def.rotation = true;
+  CHECK(engine::World(def).Def().velocity_iterations == 4);
+  CHECK(engine::World(def).Def().circle_velocity_iterations == 2);
+  def.velocity_iterations = 6;  // set: circles take it too
+  CHECK(engine::World(def).Def().circle_velocity_iterations == 6);
+  def.circle_velocity_iterations = 3;
+  CHECK(engine::World(def).Def().velocity_iterations == 6);
+  CHECK(engine::World(def).Def().circle_velocity_iterations == 3);
+  def = {};  // axis-aligned: one pass for everything
+  CHECK(engine::World(def).Def().circle_velocity_iterations == 1);
+}
+
+TEST_CASE("a turning pile of circles takes circle_velocity_iterations passes, one with a box velocity_iterations",
+          "[rotation]") {
+  // 20 × 20 circles in a box, each touching its neighbours from the first step (over 256
+  // contacts); `box`: one of them is a box instead.
+  const auto pile_hash = [](int passes, int circle_passes, bool box) {
+    engine::WorldDef def;
+    def.rotation = true;
+    def.sleeping = false;
+    def.velocity_iterations = passes;
+    def.circle_velocity_iterations = circle_passes;
+    engine::World world(def);
+    stress::AddContainer(world, 10.0, 12.0);
+    for (int i = 0; i < 400; ++i) {
+      const engine::Vec2 at{-4.75 + 0.5 * (i % 20), 0.25 + 0.5 * (i / 20)};
+      world.CreateBody(box && i == 210 ? Box(at, {0.5, 0.5}) : Circle(at, 0.25));
+    }
+    for (int i = 0; i < 30; ++i) world.Step();
+    REQUIRE(world.Contacts().size() >= engine::detail::SubstepSolver::kMinStripContacts);
+    return world.StateHash();
+  };
+  const std::uint64_t automatic = pile_hash(0, 0, false);
+  CHECK(automatic == pile_hash(4, 2, false));
+  CHECK(automatic == pile_hash(2, 0, false));  // a set velocity_iterations of 2: circles take 2
+  CHECK(automatic != pile_hash(4, 4, false));
+  const std::uint64_t with_box = pile_hash(0, 0, true);
+  CHECK(with_box == pile_hash(4, 4, true));  // the circles' setting is not used
+  CHECK(with_box != pile_hash(2, 2, true));  // the passes do matter here
 }

@@ -2,6 +2,8 @@
 // engine::World with the scene's settings and joints, sleeping off, and the default or a chosen solver.
 #pragma once
 
+#include <algorithm>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,10 +41,16 @@ class BallboxEngine : public PhysicsEngine {
   std::string Settings(const SceneSpec& scene) const override {
     const engine::WorldDef def = Def(scene);
     if (def.solver == engine::ContactSolver::kSequentialImpulse) return "sequential_impulse: 10 passes per step, double";
-    const int substeps = def.substeps > 0 ? def.substeps : (scene.rotation ? 8 : 4);
-    const int passes = def.velocity_iterations > 0 ? def.velocity_iterations : (scene.rotation ? 4 : 1);
-    return std::to_string(substeps) + " substeps x " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") +
-           ", double" + (def.threads > 1 ? ", " + std::to_string(def.threads) + " threads" : "");
+    const engine::WorldDef filled = engine::World(def).Def();  // the automatic settings filled in
+    // A turning world of circles alone, without joints, takes the circles' passes once it has
+    // 256 contacts or more (WorldDef::circle_velocity_iterations).
+    const bool circles = scene.rotation && scene.joints.empty() &&
+                         std::all_of(scene.bodies.begin(), scene.bodies.end(),
+                                     [](const BodySpec& b) { return b.is_static || b.kind == Kind::kCircle; });
+    const int passes = circles ? filled.circle_velocity_iterations : filled.velocity_iterations;
+    return std::to_string(filled.substeps) + " substeps x " + std::to_string(passes) +
+           (passes == 1 ? " pass" : " passes") + ", double" +
+           (def.threads > 1 ? ", " + std::to_string(def.threads) + " threads" : "");
   }
 
   void Build(const SceneSpec& scene) override {

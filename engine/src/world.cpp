@@ -19,6 +19,7 @@ void RequireValid(const WorldDef& def) {
   Require(IsPositiveFinite(def.dt), "WorldDef::dt must be positive and finite");
   Require(IsFinite(def.gravity), "WorldDef::gravity must be finite");
   Require(def.velocity_iterations >= 0, "WorldDef::velocity_iterations must be >= 0");
+  Require(def.circle_velocity_iterations >= 0, "WorldDef::circle_velocity_iterations must be >= 0");
   Require(def.substeps >= 0, "WorldDef::substeps must be >= 0");
   Require(def.threads >= 1 && def.threads <= kMaxThreads, "WorldDef::threads must be in [1, 256]");
   Require(def.substep_features.lanes == 0 || def.substep_features.lanes == 1 || def.substep_features.lanes == 2 ||

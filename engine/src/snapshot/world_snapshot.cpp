@@ -41,7 +41,8 @@ std::uint64_t Fingerprint(const WorldDef& def) {
     w.F64(v);
   }
   for (const int v : {static_cast<int>(def.integrator), static_cast<int>(def.broad_phase),
-                      static_cast<int>(def.solver), def.substeps, def.velocity_iterations}) {
+                      static_cast<int>(def.solver), def.substeps, def.velocity_iterations,
+                      def.circle_velocity_iterations}) {
     w.U32(static_cast<std::uint32_t>(v));
   }
   const SubstepFeatures& f = def.substep_features;

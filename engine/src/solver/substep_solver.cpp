@@ -15,7 +15,11 @@ namespace engine::detail {
 
 void SubstepSolver::FillAutomaticSettings(WorldDef* def) {
   if (def->substeps == 0) def->substeps = def->rotation ? 8 : 4;
+  if (def->circle_velocity_iterations == 0) {
+    def->circle_velocity_iterations = def->velocity_iterations == 0 && def->rotation ? 2 : def->velocity_iterations;
+  }
   if (def->velocity_iterations == 0) def->velocity_iterations = def->rotation ? 4 : 1;
+  if (def->circle_velocity_iterations == 0) def->circle_velocity_iterations = def->velocity_iterations;
 }
 
 void SubstepSolver::Step(StepContext& context) {
@@ -33,6 +37,7 @@ void SubstepSolver::Step(StepContext& context) {
     if (context.contacts.size() >= kMinStripContacts) {
       if (context.def.substep_features.colour_order && AllRound(context.contacts, context.infos)) {
         order_.ByColour(context.contacts, context.infos);
+        if (context.joints == nullptr) pile_passes_ = context.def.circle_velocity_iterations;
       } else {
         order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity, &context.pool);
       }
