@@ -435,21 +435,16 @@ TEST_CASE("wide solver: turning contacts go by colour only where every moving bo
   CHECK(SubstepSolver::AllRound(contacts, infos));
 }
 
-TEST_CASE("wide solver: a turning pour of circles by colour steps to the same hash in lanes and on two threads") {
-  std::size_t contacts = 0;
-  const std::uint64_t one_at_a_time = PourHash(1, 1, false, true, 2200, &contacts);
-  // Enough contacts for the colour order, which the turning lanes take where every body is round.
-  REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
-  CHECK(PourHash(0, 1, false, true, 2200) == one_at_a_time);
-  CHECK(PourHash(0, 2, false, true, 2200) == one_at_a_time);
-}
-
-TEST_CASE("wide solver: a turning pour in strips steps to the same hash in lanes and on two threads") {
-  std::size_t contacts = 0;
-  const std::uint64_t one_at_a_time = PourHash(1, 1, true, true, 2200, &contacts);
-  // Enough contacts for the strip order, which the turning lanes take.
-  REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
-  // The widest lanes here (each width is checked pass by pass above), on one thread and on two.
-  CHECK(PourHash(0, 1, true, true, 2200) == one_at_a_time);
-  CHECK(PourHash(0, 2, true, true, 2200) == one_at_a_time);
+TEST_CASE("wide solver: a turning pour steps to the same hash in lanes and on two threads") {
+  // Circles alone go by colour; with boxes among them, in strips (SubstepSolver::AllRound).
+  for (const bool boxes : {false, true}) {
+    INFO((boxes ? "circles and boxes, in strips" : "circles, by colour"));
+    std::size_t contacts = 0;
+    const std::uint64_t one_at_a_time = PourHash(1, 1, boxes, true, 2200, &contacts);
+    // Enough contacts for either order, which the turning lanes take.
+    REQUIRE(contacts >= engine::detail::SubstepSolver::kMinStripContacts);
+    // The widest lanes here (each width is checked pass by pass above), on one thread and on two.
+    CHECK(PourHash(0, 1, boxes, true, 2200) == one_at_a_time);
+    CHECK(PourHash(0, 2, boxes, true, 2200) == one_at_a_time);
+  }
 }
