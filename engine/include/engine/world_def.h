@@ -46,10 +46,12 @@ struct SubstepFeatures {
   /// last check per substep)
   bool energy_limit = true;
   bool block_solver = true;       ///< both points of a turning pair's contact solved together
-  bool colour_order = true;       ///< where nothing can turn, contacts visited by colour
+  /// where nothing can turn, contacts visited by colour; where things turn, from 256 contacts of
+  /// circles alone (then WorldDef::circle_velocity_iterations apply), the same
+  bool colour_order = true;
   /// Where gravity loads every body: how many contacts are solved at once, side by side in SIMD
-  /// lanes (a colour's where nothing can turn, four strips' where every contact turns and there
-  /// are at least 256, docs/solver.md "The wide solver: SIMD lanes"). 0: the widest
+  /// lanes (a colour's where nothing can turn, four strips' or a colour's where every contact turns
+  /// and there are at least 256, docs/solver.md "The wide solver: SIMD lanes"). 0: the widest
   /// the processor has (4 with AVX2, 2 on other x86-64, 1 elsewhere); 1: one at a time, without
   /// the lanes' layout; 2 or 4 (SSE2, AVX2; a width the processor lacks falls back to the widest
   /// it has). The bits are the same at every width. Joints too, with or without gravity, where
@@ -91,7 +93,7 @@ struct WorldDef {
   /// the substep solver (0: 1, or 4 with rotation).
   int velocity_iterations = 0;
   /// Substep solver, with rotation: the passes per substep of a step with at least 256 contacts,
-  /// no joints, and only circles among the moving bodies in contact (0: 2 where
+  /// no joints, colour_order on, and only circles among the moving bodies in contact (0: 2 where
   /// velocity_iterations is automatic, else velocity_iterations). A circle's contacts push through
   /// its centre, so circles need fewer passes than the turning stacks of boxes the 4 are for.
   int circle_velocity_iterations = 0;
