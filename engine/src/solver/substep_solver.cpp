@@ -15,11 +15,11 @@ namespace engine::detail {
 
 void SubstepSolver::FillAutomaticSettings(WorldDef* def) {
   if (def->substeps == 0) def->substeps = def->rotation ? 8 : 4;
+  const bool automatic_passes = def->velocity_iterations == 0;
+  if (automatic_passes) def->velocity_iterations = def->rotation ? 4 : 1;
   if (def->circle_velocity_iterations == 0) {
-    def->circle_velocity_iterations = def->velocity_iterations == 0 && def->rotation ? 2 : def->velocity_iterations;
+    def->circle_velocity_iterations = automatic_passes && def->rotation ? 2 : def->velocity_iterations;
   }
-  if (def->velocity_iterations == 0) def->velocity_iterations = def->rotation ? 4 : 1;
-  if (def->circle_velocity_iterations == 0) def->circle_velocity_iterations = def->velocity_iterations;
 }
 
 void SubstepSolver::Step(StepContext& context) {
@@ -32,7 +32,8 @@ void SubstepSolver::Step(StepContext& context) {
   // so where every moving body in contact is one, there is no turning stack to build bottom-up:
   // colour order (the 2000-circle turning pour ends 10 s with 5.0 mm of overlap either way).
   shock_levels_built_ = false;  // this step's, below, or else the constraints give them
-  pile_passes_ = context.def.velocity_iterations;  // turning worlds take 4 passes already
+  // Turning worlds take 4 passes already (their circles alone, circle_velocity_iterations).
+  pile_passes_ = context.def.velocity_iterations;
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
       if (context.def.substep_features.colour_order && AllRound(context.contacts, context.infos)) {

@@ -142,25 +142,28 @@ void PackColours(std::span<const Constraint> constraints, const ContactOrder& co
 }  // namespace
 
 bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order) {
-  const bool colours = order.strips == 0 && order.parallel_groups > 0;
-  if (!colours && (order.strips == 0 || order.strips > 2 * static_cast<std::uint32_t>(kBlockLanes))) return false;
+  const bool by_colour = order.strips == 0 && order.parallel_groups > 0;
+  const bool in_strips = order.strips > 0 && order.strips <= 2 * static_cast<std::uint32_t>(kBlockLanes);
+  if (!by_colour && !in_strips) return false;
   for (const SubstepConstraint& c : constraints) {
     if (!c.angular) return false;
   }
   return true;
 }
 
-void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips) {
-  assert(Fits(constraints, strips));
-  if (strips.strips == 0) {  // a colour order
-    LayoutColours(strips, &order, &blocks, &lane_of);
-    PackColours(constraints, strips, order, 0, static_cast<std::uint32_t>(blocks.size()), &blocks, &lane_of,
+void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints,
+                                  const ContactOrder& contact_order) {
+  assert(Fits(constraints, contact_order));
+  if (contact_order.strips == 0) {  // a colour order
+    LayoutColours(contact_order, &order, &blocks, &lane_of);
+    PackColours(constraints, contact_order, order, 0, static_cast<std::uint32_t>(blocks.size()), &blocks, &lane_of,
                 [](std::uint32_t, std::uint32_t) {});
     return;
   }
-  const StripGroups groups(static_cast<int>(strips.strips));
+  const StripGroups groups(static_cast<int>(contact_order.strips));
   const auto range = [&](std::uint32_t g) {
-    return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : strips.group_ends[g - 1], strips.group_ends[g]};
+    const std::vector<std::uint32_t>& ends = contact_order.group_ends;
+    return std::pair<std::uint32_t, std::uint32_t>{g == 0 ? 0 : ends[g - 1], ends[g]};
   };
   const auto runs_of = [&](std::uint32_t first, std::uint32_t end, std::uint32_t step) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;

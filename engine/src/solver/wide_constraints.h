@@ -106,7 +106,7 @@ struct WideTurningConstraints {
   /// Whether the wide passes can take these constraints: every one angular (a pair that cannot
   /// turn takes the centres' row, other arithmetic) and the order in strips or by colour.
   static bool Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order);
-  void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& strips);
+  void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& contact_order);
   /// Copies the impulses back to the constraints Pack read; `pool`: threads to share them among.
   void UnpackImpulses(std::span<SubstepConstraint> constraints, WorkerPool* pool = nullptr) const;
 };
