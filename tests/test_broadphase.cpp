@@ -362,6 +362,38 @@ TEMPLATE_TEST_CASE("grid and tree shared among threads: all pairs, and the budge
   }
 }
 
+TEMPLATE_TEST_CASE("grid and tree shared among threads: with no crowd, the budget counts the pairs as on one",
+                   "[broadphase][parallel]", engine::UniformGrid, engine::AabbTree) {
+  // Quotas no body reaches: the threads hand their pairs to the budget together (past 4 096 of
+  // them), and its counts must be the rule's: nothing dropped, and the most pairs charged to one
+  // body counted here from all the pairs (each to its narrower body, the higher id between equals).
+  std::mt19937_64 rng(11);
+  auto boxes = RandomBoxes(rng, 9000, 160);
+  std::vector<engine::PairQuota> quotas(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const double area = (boxes[i].upper.x - boxes[i].lower.x) * (boxes[i].upper.y - boxes[i].lower.y);
+    quotas[i] = {1.0 + static_cast<double>(i % 3), engine::PairQuota::kMaxQuota, area};
+  }
+  for (const int threads : {2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    TestType structure;
+    std::vector<BodyPair> all, pairs;
+    for (int step = 0; step < 6; ++step) {
+      INFO("threads " << threads << ", step " << step);
+      engine::FindPairsAllPairs(boxes, &all);
+      REQUIRE(all.size() > 4096);
+      std::vector<std::uint32_t> charged(boxes.size(), 0);
+      for (const BodyPair& p : all) ++charged[quotas[p.a].width < quotas[p.b].width ? p.a : p.b];
+      structure.FindPairs(boxes, &pairs, quotas, &pool);
+      REQUIRE(pairs == all);
+      CHECK(structure.Collector().CrowdedCount() == 0);
+      CHECK(structure.Collector().DroppedCount() == 0);
+      CHECK(structure.Collector().MostCharged() == *std::max_element(charged.begin(), charged.end()));
+      Move(rng, boxes);
+    }
+  }
+}
+
 TEST_CASE("grid shared among threads: a cell piled past the pair limit is scanned again on one thread, the "
           "budget's pairs", "[broadphase][parallel]") {
   // 2 000 equal boxes at one point put 2 million pairs in one cell, past what a thread may hold

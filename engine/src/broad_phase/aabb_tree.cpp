@@ -253,7 +253,7 @@ void AabbTree::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* pai
   const bool found = RefreshCandidates(boxes, pool);
   if (!crowded_) {  // a crowded tree handed its pairs over already
     if (found) {
-      CollectFound();
+      CollectFound(pool);
     } else {
       AddOverlappingCandidates(boxes, pool);
     }
@@ -467,13 +467,13 @@ void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::Wor
       if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
     }
   });
-  CollectFound();
+  CollectFound(pool);
 }
 
-void AabbTree::CollectFound() {
-  for (const auto& part : found_) {
-    for (const BodyPair& p : part.value) collector_.Add(p.a, p.b);
-  }
+void AabbTree::CollectFound(detail::WorkerPool* pool) {
+  found_runs_.clear();
+  for (const auto& part : found_) found_runs_.push_back(part.value);
+  collector_.AddRuns(found_runs_, pool);
 }
 
 std::size_t AabbTree::CandidateLimit() const { return kCandidatesPerBody * leaf_of_.size() + 1024; }

@@ -117,7 +117,7 @@ class AabbTree {
   /// The candidates whose bodies' own boxes overlap, to the collector.
   void AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool);
   /// found_'s runs to the collector, in order.
-  void CollectFound();
+  void CollectFound(detail::WorkerPool* pool);
   std::size_t CandidateLimit() const;
 
   std::vector<Node> nodes_;
@@ -164,6 +164,7 @@ class AabbTree {
   std::vector<std::uint32_t> counts_;
   PairCollector collector_;
   std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each run's overlapping candidates
+  std::vector<std::span<const BodyPair>> found_runs_;               ///< found_'s, for the collector
   std::vector<detail::PerThread<std::vector<BodyPair>>> merged_;  ///< UpdateCandidates' runs' candidates
 };
 

@@ -6,8 +6,17 @@
 #include <cmath>
 
 #include "broad_phase/pair_sort.h"
+#include "parallel/worker_pool.h"
 
 namespace engine {
+
+namespace {
+
+// Fewer pairs than this are added one at a time: handing them to the threads and back costs
+// about what adding a few thousand does.
+constexpr std::size_t kMinSharedPairs = 4096;
+
+}  // namespace
 
 void PairCollector::Begin(std::span<const AABB> boxes, std::span<const PairQuota> quotas,
                           std::vector<BodyPair>* pairs) {
@@ -20,6 +29,8 @@ void PairCollector::Begin(std::span<const AABB> boxes, std::span<const PairQuota
   kept_.clear();
   dropped_ = 0;
   most_charged_ = 0;
+  sorted_from_ = sorted_to_ = 0;
+  offered_ = 0;
   if (!quotas.empty()) charged_.assign(boxes.size(), 0);
 }
 
@@ -86,18 +97,120 @@ void PairCollector::KeepCrowdsBest() {
   }
 }
 
-void PairCollector::Finish() {
-  if (!quotas_.empty()) {
-    std::uint64_t offered = 0;
-    for (std::uint32_t c : charged_) {
-      offered += c;
-      most_charged_ = std::max(most_charged_, c);
+// Shared, each thread takes a part of the pairs of the runs joined, copies it into place and
+// counts the pairs it charges to each body; then each takes a part of the bodies, adds up their
+// charges and checks them against the quotas, and a part of the pairs, to check their order.
+// With no body past its quota, every pair is kept, in the order Add would keep them: the same
+// list. Otherwise (a crowd) the charges are taken back and the pairs go through Add.
+void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool) {
+  std::size_t total = 0;
+  for (const std::span<const BodyPair> run : runs) total += run.size();
+  const auto add_each = [&] {
+    for (const std::span<const BodyPair> run : runs) {
+      for (const BodyPair& p : run) Add(p.a, p.b);
     }
-    if (!crowd_body_.empty()) KeepCrowdsBest();
-    dropped_ = offered - pairs_->size();
+  };
+  if (!pool || pool->Threads() == 1 || total < kMinSharedPairs || !crowd_body_.empty()) {
+    add_each();
+    return;
   }
-  // The tree finds its pairs in order already (but for a crowded body's, KeepCrowdsBest's).
-  if (!std::is_sorted(pairs_->begin(), pairs_->end())) detail::SortPairs(boxes_.size(), pairs_, &scratch_, &counts_);
+  const auto threads = static_cast<std::size_t>(pool->Threads());
+  const std::size_t first = pairs_->size();
+  pairs_->resize(first + total);
+  BodyPair* const out = pairs_->data() + first;
+  // visit(k, pair) for the pairs [total·t/T, total·(t+1)/T) of the runs joined.
+  const auto for_share = [&](std::size_t t, auto&& visit) {
+    const std::size_t begin = total * t / threads, end = total * (t + 1) / threads;
+    std::size_t at = 0;  // where the run starts in the join
+    for (const std::span<const BodyPair> run : runs) {
+      for (std::size_t k = std::max(begin, at); k < std::min(end, at + run.size()); ++k) visit(k, run[k - at]);
+      at += run.size();
+      if (at >= end) break;
+    }
+  };
+  const bool charging = !quotas_.empty();
+  const std::size_t bodies = boxes_.size();
+  thread_charges_.resize(threads);
+  shares_.resize(threads);
+  pool->RunOnAll([&](int thread) {
+    const auto t = static_cast<std::size_t>(thread);
+    std::vector<std::uint32_t>& charges = thread_charges_[t].value;
+    if (charging) charges.assign(bodies, 0);
+    for_share(t, [&](std::size_t k, BodyPair found) {
+      const BodyPair p = MakePair(found.a, found.b);
+      out[k] = p;
+      if (charging) ++charges[Charged(p)];
+    });
+  });
+  pool->RunOnAll([&](int thread) {
+    const auto t = static_cast<std::size_t>(thread);
+    Share share;
+    if (charging) {
+      for (std::size_t b = bodies * t / threads; b < bodies * (t + 1) / threads; ++b) {
+        std::uint32_t c = charged_[b];
+        for (const auto& charges : thread_charges_) c += charges.value[b];
+        charged_[b] = c;
+        share.fits = share.fits && c <= quotas_[b].quota;
+        share.offered += c;
+        share.most_charged = std::max(share.most_charged, c);
+      }
+    }
+    const std::size_t begin = total * t / threads, end = total * (t + 1) / threads;
+    share.sorted = std::is_sorted(out + (begin > 0 ? begin - 1 : 0), out + end);
+    shares_[t].value = share;
+  });
+  Share all;
+  for (const auto& share : shares_) {
+    all.fits = all.fits && share.value.fits;
+    all.sorted = all.sorted && share.value.sorted;
+    all.offered += share.value.offered;
+    all.most_charged = std::max(all.most_charged, share.value.most_charged);
+  }
+  if (!all.fits) {  // a crowd: the charges back, and one pair at a time
+    for (std::size_t b = 0; b < bodies; ++b) {
+      for (const auto& charges : thread_charges_) charged_[b] -= charges.value[b];
+    }
+    pairs_->resize(first);
+    add_each();
+    return;
+  }
+  if (all.sorted) {
+    sorted_from_ = first;
+    sorted_to_ = first + total;
+  }
+  offered_ = all.offered;
+  most_charged_ = all.most_charged;
+}
+
+void PairCollector::Finish() {
+  std::vector<BodyPair>& pairs = *pairs_;
+  // AddRuns' tallies hold while nothing came after it.
+  const bool tallied = sorted_to_ == pairs.size() && sorted_to_ > 0 && crowd_body_.empty();
+  if (!quotas_.empty()) {
+    std::uint64_t offered = offered_;
+    if (!tallied) {
+      offered = 0;
+      for (std::uint32_t c : charged_) {
+        offered += c;
+        most_charged_ = std::max(most_charged_, c);
+      }
+    }
+    if (!crowd_body_.empty()) {
+      KeepCrowdsBest();
+      sorted_from_ = sorted_to_ = 0;
+    }
+    dropped_ = offered - pairs.size();
+  }
+  // The tree finds its pairs in order already (but for a crowded body's, KeepCrowdsBest's);
+  // what AddRuns saw in order is not looked at again.
+  const auto in_order = [&](std::size_t begin, std::size_t end) {
+    return end <= begin + 1 || std::is_sorted(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+                                              pairs.begin() + static_cast<std::ptrdiff_t>(end));
+  };
+  const bool sorted = sorted_to_ > sorted_from_
+                          ? in_order(0, sorted_from_ + 1) && in_order(sorted_to_ - 1, pairs.size())
+                          : in_order(0, pairs.size());
+  if (!sorted) detail::SortPairs(boxes_.size(), pairs_, &scratch_, &counts_);
 }
 
 }  // namespace engine

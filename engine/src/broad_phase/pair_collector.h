@@ -9,6 +9,11 @@
 
 #include "body_pair.h"
 #include "engine/math.h"
+#include "parallel/per_thread.h"
+
+namespace engine::detail {
+class WorkerPool;
+}
 
 namespace engine {
 
@@ -59,6 +64,9 @@ class PairCollector {
       AddPastQuota(charged, OtherBody(p, charged));
     }
   }
+  /// The pairs of `runs`, run after run, as Add would take them one at a time; shared among the
+  /// pool's threads (PairCollector::AddRuns in pair_collector.cpp says how).
+  void AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool);
   /// Applies the budget and sorts the pairs by (a, b).
   void Finish();
 
@@ -114,6 +122,21 @@ class PairCollector {
   std::uint32_t most_charged_ = 0;
   std::vector<BodyPair> scratch_;
   std::vector<std::uint32_t> counts_;
+  /// AddRuns' scratch: per thread, the pairs its runs charge to each body.
+  std::vector<detail::PerThread<std::vector<std::uint32_t>>> thread_charges_;
+  /// What AddRuns found on its threads, for Finish: per thread, whether its bodies fit their
+  /// quotas and what they were charged, and whether its pairs are in order.
+  struct Share {
+    bool fits = true;
+    bool sorted = true;
+    std::uint64_t offered = 0;
+    std::uint32_t most_charged = 0;
+  };
+  std::vector<detail::PerThread<Share>> shares_;
+  /// pairs_[sorted_from_, sorted_to_) are known to be sorted, and when the list still ends at
+  /// sorted_to_ with no crowd, offered_ and most_charged_ are the charges' (AddRuns').
+  std::size_t sorted_from_ = 0, sorted_to_ = 0;
+  std::uint64_t offered_ = 0;
 };
 
 }  // namespace engine

@@ -296,7 +296,9 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* 
     });
     stopped = std::any_of(found_.begin(), found_.end(), [](const auto& run) { return run.value.count == kStop; });
     if (!stopped) {
-      for (const auto& run : found_) hand_over(run.value);
+      found_runs_.clear();
+      for (const auto& run : found_) found_runs_.emplace_back(run.value.pairs.data(), run.value.count);
+      collector_.AddRuns(found_runs_, pool);
       return;
     }
   }

@@ -96,6 +96,7 @@ class UniformGrid {
     std::size_t count = 0;
   };
   std::vector<detail::PerThread<FoundRun>> found_;
+  std::vector<std::span<const BodyPair>> found_runs_;  ///< found_'s, for the collector
   /// FillBuckets' runs, when shared: each run's count per bucket, then its next place there.
   std::vector<detail::PerThread<std::vector<std::uint32_t>>> run_next_;
   PairCollector collector_;
