@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 #include <filesystem>
+#include <vector>
 #include <fstream>
 
 #include "engine/world.h"
@@ -41,6 +42,26 @@ TEST_CASE("the engine records the first non-finite state and stops stepping", "[
   world.Step();
   CHECK(world.StepCount() == 0);     // the broken step never completes, nor any after it
   CHECK(world.StateHash() == hash);
+}
+
+TEST_CASE("on two threads, the fault is the same first body as on one", "[fault][parallel]") {
+  // 3 000 bodies (enough that the threads share the looking), two of them pushed twice by the
+  // largest force a double holds, which sum to infinity, in the second half of the ids: the
+  // first of the two is named, on any threads.
+  for (const int threads : {1, 2}) {
+    INFO("threads " << threads);
+    engine::WorldDef def;
+    def.gravity = {0, 0};
+    def.threads = threads;
+    engine::World world(def);
+    std::vector<engine::BodyId> ids;
+    for (int i = 0; i < 3000; ++i) ids.push_back(world.CreateBody(testing::Circle({3.0 * (i % 60), 3.0 * (i / 60)}, 1)));
+    for (const int body : {2700, 2500, 2700, 2500}) world.ApplyForceToCenter(ids[body], {1e308, 0});
+    world.Step();
+    REQUIRE(world.Fault());
+    CHECK(world.Fault()->step == 0);
+    CHECK(world.Fault()->body == 2500);
+  }
 }
 
 TEST_CASE("a healthy world never reports a fault", "[fault]") {

@@ -18,8 +18,9 @@
 namespace engine::detail {
 
 /// The first body (in id order) whose state is not finite, as a fault of step `step`; nothing
-/// if every number is finite.
-std::optional<NumericFault> FindNonFinite(std::span<const BodyState> states, std::int64_t step);
+/// if every number is finite. `pool`: threads to share the looking among.
+std::optional<NumericFault> FindNonFinite(std::span<const BodyState> states, std::int64_t step,
+                                          WorkerPool* pool = nullptr);
 
 struct StepContext {
   const WorldDef& def;                    ///< with the automatic settings filled in
@@ -41,7 +42,7 @@ struct StepContext {
   /// Records the first non-finite state as the fault; true if there is one (the solver then
   /// stops, so the fault is named where it appeared instead of spreading through the contacts).
   bool StopIfNonFinite() {
-    fault = FindNonFinite(states, step);
+    fault = FindNonFinite(states, step, &pool);
     return fault.has_value();
   }
 };

@@ -140,7 +140,7 @@ void World::Step() {
   }
   if (bodies.sensors > 0 || w.sensors.HasQueuedEnds()) w.sensors.Update(bodies, &w.events);
   // A non-finite number stops here, named, not in a frame.
-  w.fault = detail::FindNonFinite(bodies.states, w.step_count);
+  w.fault = detail::FindNonFinite(bodies.states, w.step_count, w.pool.get());
   ++w.step_count;
 }
 
