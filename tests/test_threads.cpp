@@ -251,3 +251,42 @@ TEST_CASE("strip order: the groups solved side by side share no moving body, and
   // Upright strips of a pile: most contacts lie inside one.
   CHECK(inside_strips > contacts.size() * 8 / 10);
 }
+
+TEST_CASE("a pile that sleeps, then is woken by a falling ball, steps to the same bits on one and two threads",
+          "[parallel][sleep]") {
+  // 3 000 circles at rest on a floor between walls that overlap it (static pairs): past 4 096
+  // pairs, the threads share the look for sleepers to wake and drop the pairs where nothing
+  // moves; once the pile sleeps, a ball dropped on it wakes it, on one thread. Step by step, the
+  // bits and who is awake must be the same on one and two threads.
+  const auto run = [](int threads, std::vector<std::size_t>* awake_counts) {
+    engine::WorldDef def;
+    def.threads = threads;
+    engine::World world(def);
+    world.CreateBody(testing::Floor(70.0));
+    world.CreateBody(testing::Static(testing::Box({-30.5, 2.0}, {1.0, 6.0})));
+    world.CreateBody(testing::Static(testing::Box({30.5, 2.0}, {1.0, 6.0})));
+    std::vector<engine::BodyId> ids;
+    for (int i = 0; i < 3000; ++i) {
+      const int row = i / 300, column = i % 300;
+      const double x = -29.9 + 0.2 * column + 0.1 * (row % 2);
+      ids.push_back(world.CreateBody(testing::Circle({x, 0.1 + 0.1733 * row}, 0.1)));
+    }
+    std::vector<std::uint64_t> hashes;
+    for (int s = 0; s < 200; ++s) {
+      if (s == 120) world.CreateBody(testing::Circle({0.05, 7.0}, 0.3, {0, -5}));
+      world.Step();
+      hashes.push_back(world.StateHash());
+      std::size_t awake = 0;
+      for (const engine::BodyId id : ids) awake += world.IsAwake(id) ? 1 : 0;
+      awake_counts->push_back(awake);
+    }
+    return hashes;
+  };
+  std::vector<std::size_t> one_awake, two_awake;
+  const std::vector<std::uint64_t> one = run(1, &one_awake);
+  const std::vector<std::uint64_t> two = run(2, &two_awake);
+  CHECK(two == one);
+  CHECK(two_awake == one_awake);
+  CHECK(one_awake[119] == 0);     // the pile slept before the ball
+  CHECK(one_awake.back() > 100);  // and the ball woke it
+}

@@ -7,7 +7,27 @@
 #include <algorithm>
 #include <vector>
 
+#include "parallel/per_thread.h"
+#include "parallel/worker_pool.h"
+
 namespace engine::detail {
+
+namespace {
+
+// Fewer pairs than this are looked over on the calling thread alone.
+constexpr std::size_t kMinSharedPairs = 4096;
+
+// One of the two bodies is awake and the other is a sleeper that an awake body wakes (not
+// static, not kinematic, not disabled).
+bool WakesSleeper(BodyIndex a, BodyIndex b, std::span<const BodyInfo> infos, SleepState sleep) {
+  if ((sleep.awake[a] != 0) == (sleep.awake[b] != 0)) return false;
+  const BodyIndex sleeper = sleep.awake[a] ? b : a;
+  return !HasInfiniteMass(infos[sleeper]) && sleep.island[sleeper] != kNoBody;
+}
+
+bool Resting(BodyPair p, SleepState sleep) { return !sleep.awake[p.a] && !sleep.awake[p.b]; }
+
+}  // namespace
 
 void UpdateSleep(std::span<const Contact> contacts, std::span<const Spring> springs,
                  std::span<const BodyPair> joint_links,
@@ -98,9 +118,55 @@ void WakeIsland(BodyIndex body, std::span<const BodyInfo> infos, SleepState slee
   }
 }
 
+// Shared, each thread looks over a part of the pairs for a sleeper to wake and counts the pairs
+// where nothing moves. Waking is rare (an island touched): then, or when a spring or joint joins
+// a sleeper to a body awake, everything goes on one thread, in pair order. Otherwise each thread
+// copies the pairs it keeps into place in `scratch`, which becomes the list.
 void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
-                        std::span<const BodyPair> joint_links,
-                        std::span<const BodyInfo> infos, SleepState sleep) {
+                        std::span<const BodyPair> joint_links, std::span<const BodyInfo> infos, SleepState sleep,
+                        WorkerPool* pool, std::vector<BodyPair>* scratch) {
+  const std::size_t n = pairs->size();
+  if (pool && scratch && pool->Threads() > 1 && n >= kMinSharedPairs) {
+    const auto threads = static_cast<std::size_t>(pool->Threads());
+    struct Part {
+      bool wakes = false;
+      std::size_t resting = 0;
+    };
+    std::vector<PerThread<Part>> parts(threads);
+    const BodyPair* const all = pairs->data();
+    pool->RunOnAll([&](int thread) {
+      const auto t = static_cast<std::size_t>(thread);
+      Part part;
+      for (std::size_t k = n * t / threads; k < n * (t + 1) / threads; ++k) {
+        part.wakes = part.wakes || WakesSleeper(all[k].a, all[k].b, infos, sleep);
+        part.resting += Resting(all[k], sleep) ? 1 : 0;
+      }
+      parts[t].value = part;
+    });
+    const bool linked_sleeper =
+        std::any_of(springs.begin(), springs.end(),
+                    [&](const Spring& s) { return s.body_b && WakesSleeper(s.body_a, *s.body_b, infos, sleep); }) ||
+        std::any_of(joint_links.begin(), joint_links.end(),
+                    [&](const BodyPair& link) { return WakesSleeper(link.a, link.b, infos, sleep); });
+    const bool wakes =
+        linked_sleeper || std::any_of(parts.begin(), parts.end(), [](const auto& part) { return part.value.wakes; });
+    if (!wakes) {
+      std::size_t resting = 0;
+      for (const auto& part : parts) resting += part.value.resting;
+      if (resting == 0) return;
+      scratch->resize(n - resting);
+      pool->RunOnAll([&](int thread) {
+        const auto t = static_cast<std::size_t>(thread);
+        std::size_t out = n * t / threads;
+        for (std::size_t u = 0; u < t; ++u) out -= parts[u].value.resting;
+        for (std::size_t k = n * t / threads; k < n * (t + 1) / threads; ++k) {
+          if (!Resting(all[k], sleep)) (*scratch)[out++] = all[k];
+        }
+      });
+      pairs->swap(*scratch);
+      return;
+    }
+  }
   for (const BodyPair& p : *pairs) {
     if ((sleep.awake[p.a] != 0) != (sleep.awake[p.b] != 0)) {
       const BodyIndex sleeper = sleep.awake[p.a] ? p.b : p.a;
@@ -116,7 +182,7 @@ void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> sp
     if ((sleep.awake[link.a] != 0) == (sleep.awake[link.b] != 0)) continue;
     WakeIsland(sleep.awake[link.a] ? link.b : link.a, infos, sleep);
   }
-  std::erase_if(*pairs, [&](BodyPair p) { return !sleep.awake[p.a] && !sleep.awake[p.b]; });
+  std::erase_if(*pairs, [&](BodyPair p) { return Resting(p, sleep); });
 }
 
 }  // namespace engine::detail

@@ -14,6 +14,10 @@
 #include "wakefulness.h"
 
 namespace engine::detail {
+class WorkerPool;
+}
+
+namespace engine::detail {
 
 /// Per body: `rest_time`, s it has moved slower than the sleep speed; `awake`, a Wakefulness;
 /// `island`, while asleep, the smallest body slot of its island (kNoBody while disabled).
@@ -30,6 +34,7 @@ struct SleepTable {
   std::vector<std::uint32_t> island;
   std::vector<Vec2> accelerations;  ///< scratch: the free accelerations the rest test reads
   std::vector<double> angular_accelerations;
+  std::vector<BodyPair> kept_pairs;  ///< scratch: WakeTouchedIslands' pairs, when shared
 
   /// Sets the slot's entry for a body just placed or changed there.
   void Place(BodyIndex index, Wakefulness wakefulness, bool enabled) {
@@ -48,9 +53,10 @@ struct SleepTable {
 /// Before the narrow phase: a moving body that reaches a sleeping one, through a candidate pair
 /// or an acting spring, wakes the sleeper's whole island; then the pairs where nothing moves
 /// (static with static, or with a sleeping body) are dropped: they need no contact.
+/// `pool`, `scratch`: threads to share the looking among, and a list to keep the pairs in.
 void WakeTouchedIslands(std::vector<BodyPair>* pairs, std::span<const Spring> springs,
-                        std::span<const BodyPair> joint_links,
-                        std::span<const BodyInfo> infos, SleepState sleep);
+                        std::span<const BodyPair> joint_links, std::span<const BodyInfo> infos, SleepState sleep,
+                        WorkerPool* pool = nullptr, std::vector<BodyPair>* scratch = nullptr);
 
 /// After a step: counts resting time (slow, and held by a contact or pushed by no force:
 /// `accelerations` are each body's free accelerations) and puts to sleep every island (bodies

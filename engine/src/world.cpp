@@ -98,7 +98,7 @@ void World::Step() {
   if (bodies.sensors > 0) w.sensors.TakeSensorPairs(&w.candidates.Pairs(), bodies.infos);
   // A moving body reaching a sleeping one wakes its island; pairs where nothing moves drop out.
   detail::WakeTouchedIslands(&w.candidates.Pairs(), w.springs.acting, w.joints.links, bodies.infos,
-                             w.sleep.View());
+                             w.sleep.View(), w.pool.get(), &w.sleep.kept_pairs);
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
                         w.candidates.Margins(), bodies.with_parts > 0, *w.pool);
