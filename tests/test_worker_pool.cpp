@@ -101,6 +101,33 @@ TEST_CASE("RunSideBySideThenShare runs each task once and visits every shared in
   }
 }
 
+TEST_CASE("RunSideBySideThenShareAfterFirst: the shared runs see everything the first task wrote", "[parallel]") {
+  // The first task writes every index slowly, the second does nothing: a shared run must never
+  // start before the first task is done, whichever thread takes it.
+  for (const int threads : {1, 2, 3}) {
+    engine::detail::WorkerPool pool(threads);
+    for (int repeat = 0; repeat < 20; ++repeat) {
+      INFO(threads << " threads, repeat " << repeat);
+      constexpr std::uint32_t kCount = 4096;
+      std::vector<std::uint32_t> written(kCount, 0), seen(kCount, 0);
+      int seconds = 0;
+      const auto first = [&] {
+        for (std::uint32_t i = 0; i < kCount; ++i) {
+          volatile double slow = 1.0;
+          for (int k = 0; k < 20; ++k) slow = slow * 1.0000001;
+          written[i] = i + 1;
+        }
+      };
+      pool.RunSideBySideThenShareAfterFirst(first, [&] { ++seconds; }, kCount, 64,
+                                            [&](std::uint32_t begin, std::uint32_t end) {
+                                              for (std::uint32_t i = begin; i < end; ++i) seen[i] = written[i];
+                                            });
+      REQUIRE(seconds == 1);
+      for (std::uint32_t i = 0; i < kCount; ++i) REQUIRE(seen[i] == i + 1);
+    }
+  }
+}
+
 TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[parallel][fluid]") {
   const auto run = [](int threads) {
     engine::WorldDef def;

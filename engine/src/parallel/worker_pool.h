@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "parallel/spin_wait.h"
+
 namespace engine::detail {
 
 class WorkerPool {
@@ -65,6 +67,30 @@ class WorkerPool {
     Run([&](int thread) {
       if (thread == 0) first();
       if (thread == 1) second();
+      TakeRuns(&next, count, run, shared);
+    });
+  }
+
+  /// As RunSideBySideThenShare, for shared runs that read what `first` writes: a thread done
+  /// with `second` before `first` is done waits for it.
+  template <typename First, typename Second, typename Shared>
+  void RunSideBySideThenShareAfterFirst(First&& first, Second&& second, std::uint32_t count, std::uint32_t run,
+                                        Shared&& shared) {
+    if (workers_.empty()) {
+      RunSideBySideThenShare(first, second, count, run, shared);
+      return;
+    }
+    alignas(64) std::atomic<std::uint32_t> next{0};
+    alignas(64) std::atomic<bool> first_done{false};
+    Run([&](int thread) {
+      if (thread == 0) {
+        first();
+        first_done.store(true, std::memory_order_release);
+        first_done.notify_all();
+      } else {
+        if (thread == 1) second();
+        SpinThenWait(first_done, [&] { return first_done.load(std::memory_order_acquire); });
+      }
       TakeRuns(&next, count, run, shared);
     });
   }

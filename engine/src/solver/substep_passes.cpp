@@ -83,12 +83,19 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
                                std::span<const BodyInfo> infos, std::span<const BodyState>,
                                std::vector<LinearConstraint>* constraints, WorkerPool* pool) {
   constraints->resize(contacts.size());
-  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts,
+               [&](std::uint32_t i) { PrepareLinearConstraints(contacts, slot, infos, *constraints, i, i + 1); });
+}
+
+void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
+                              std::span<const BodyInfo> infos, std::span<LinearConstraint> constraints,
+                              std::uint32_t begin, std::uint32_t end) {
+  for (std::uint32_t i = begin; i < end; ++i) {
     const Contact& c = contacts[i];
-    LinearConstraint& lc = (*constraints)[slot[i]];
+    LinearConstraint& lc = constraints[slot[i]];
     FillPair(c, infos, &lc);
     FillCentreRow(c, lc.inv_mass_a, lc.inv_mass_b, &lc);
-  });
+  }
 }
 
 template <>

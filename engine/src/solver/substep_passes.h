@@ -50,6 +50,10 @@ template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
                                std::vector<C>* constraints, WorkerPool* pool = nullptr);
+/// The same for contacts [begin, end) alone, into constraints already the contacts' number.
+void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
+                              std::span<const BodyInfo> infos, std::span<LinearConstraint> constraints,
+                              std::uint32_t begin, std::uint32_t end);
 
 /// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.
 TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,

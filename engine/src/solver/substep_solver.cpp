@@ -32,6 +32,7 @@ void SubstepSolver::Step(StepContext& context) {
   // so where every moving body in contact is one, there is no turning stack to build bottom-up:
   // colour order (the 2000-circle turning pour ends 10 s with 5.0 mm of overlap either way).
   shock_levels_built_ = false;  // this step's, below, or else the constraints give them
+  constraints_prepared_ = false;
   // Turning worlds take 4 passes already (their circles alone, circle_velocity_iterations).
   pile_passes_ = context.def.velocity_iterations;
   if (context.can_turn) {
@@ -59,7 +60,16 @@ void SubstepSolver::Step(StepContext& context) {
     shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
                           context.pool.Threads() > 1;
     if (shock_levels_built_) {
-      context.pool.RunSideBySide(order, [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); });
+      // The constraints, in the colours' order, are filled by whichever thread is free once the
+      // colouring is done (PrepareLinearConstraints).
+      const auto levels = [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); };
+      const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
+      linear_constraints_.resize(contacts);
+      const auto prepare = [&](std::uint32_t begin, std::uint32_t end) {
+        PrepareLinearConstraints(context.contacts, order_.slot, context.infos, linear_constraints_, begin, end);
+      };
+      context.pool.RunSideBySideThenShareAfterFirst(order, levels, contacts, kConstraintsPerRun, prepare);
+      constraints_prepared_ = true;
     } else {
       order();
     }
@@ -146,8 +156,11 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   angular_accelerations_.resize(n);
   context.forces.Evaluate(context.states, accelerations_, angular_accelerations_);
 
-  PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
-                            &context.pool);
+  if (!constraints_prepared_) {
+    PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
+                              &context.pool);
+  }
+  constraints_prepared_ = false;
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
   if constexpr (kCanTurn<C>) {

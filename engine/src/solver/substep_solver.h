@@ -67,6 +67,8 @@ class SubstepSolver {
   /// other core cost more than it saves (at 2 048, a pour of 1 000 circles, 2 074 contacts, took
   /// 0.98-1.41 of one thread's time on two).
   static constexpr std::size_t kMinSideBySideConstraints = 4096;
+  /// The constraints a thread fills at a time beside the shock levels.
+  static constexpr std::uint32_t kConstraintsPerRun = 512;
   /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
   /// with rotation (turning stacks couple their contacts, docs/solver.md).
   static void FillAutomaticSettings(WorldDef* def);
@@ -141,6 +143,7 @@ class SubstepSolver {
   DirectSolver direct_solver_;                          ///< islands with a large mass ratio
   ShockScratch shock_scratch_;
   bool shock_levels_built_ = false;                     ///< this step's levels found beside the colouring
+  bool constraints_prepared_ = false;                   ///< and the constraints filled after it
   int pile_passes_ = 1;  ///< this step's velocity passes (PassesForPile), found beside the colouring
   std::vector<ShockRow> shock_rows_;
   ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
