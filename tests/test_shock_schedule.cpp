@@ -62,13 +62,21 @@ Pile MakePile(int columns, int rows) {
   return pile;
 }
 
-std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::size_t* waits) {
+// `planned_at`: where the schedule was planned before (the pile moved by it), as in a scene
+// that moves between steps; its bins then start from that span.
+std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::size_t* waits,
+                                         const engine::Vec2* planned_at = nullptr) {
   std::vector<engine::detail::ShockRow> rows;
   engine::detail::ShockScratch scratch;
   engine::detail::BuildShockRows<engine::LinearConstraint>(pile.constraints, pile.infos, {0.0, 1.0}, &scratch,
                                                            &rows);
   engine::detail::WorkerPool pool(threads);
   engine::detail::ShockSchedule schedule;
+  if (planned_at) {
+    std::vector<engine::Vec2> moved = pile.start_positions;
+    for (engine::Vec2& p : moved) p += *planned_at;
+    schedule.Plan(rows, moved, pile.states.size(), threads);
+  }
   schedule.Plan(rows, pile.start_positions, pile.states.size(), threads);
   *waits = schedule.WaitCount();
   std::vector<engine::BodyState> states = pile.states;
@@ -97,6 +105,22 @@ TEST_CASE("shock propagation shared among threads gives the one-thread bits", "[
     // The diagonal rows cross every border at every level: the bands had to wait for each other.
     CHECK(waits >= static_cast<std::size_t>(threads - 1));
     CHECK(SameBits(shared, one));
+  }
+}
+
+TEST_CASE("shock bands planned again where the pile moved far, or a little, are shared the same", "[parallel][solver]") {
+  // The bands' bins start from the span the last call's rows had: rows far outside it are binned
+  // again over their own, so the bands still share the pile out and wait at its borders.
+  const Pile pile = MakePile(60, 40);
+  std::size_t waits = 0;
+  const std::vector<engine::BodyState> one = Propagate(pile, 1, &waits);
+  for (const engine::Vec2 moved : {engine::Vec2{1000.0, 0.0}, engine::Vec2{-1000.0, 5.0}, engine::Vec2{0.3, 0.0}}) {
+    for (const int threads : {2, 3}) {
+      CAPTURE(threads, moved.x);
+      const std::vector<engine::BodyState> shared = Propagate(pile, threads, &waits, &moved);
+      CHECK(waits >= static_cast<std::size_t>(threads - 1));
+      CHECK(SameBits(shared, one));
+    }
   }
 }
 

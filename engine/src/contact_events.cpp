@@ -75,12 +75,15 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
     Merge(contacts, 0, contacts.size(), previous_, kEndOfPairs, bodies, awake, def, &touching_, events);
     return;
   }
-  // Shared: each thread tests and merges a run of the contacts against the last step's pairs
-  // below the next run's first, into lists of its own; the runs' lists then go one after
-  // another. A run never splits a pair's contacts (bodies made of parts have several), so every
-  // pair is seen whole, and the lists come out as one thread's.
-  const auto cut = [&](int t) {
-    std::size_t i = contacts.size() * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+  // Shared: the contacts go out in runs, kRunsPerThread a thread, each to whichever thread is
+  // free (the halves cost unlike amounts: a thread reads colder lines in one); a run's contacts
+  // are tested and merged against the last step's pairs below the next run's first, into lists
+  // of the run's own; the runs' lists then go one after another. A run never splits a pair's
+  // contacts (bodies made of parts have several), so every pair is seen whole, and the lists
+  // come out as one thread's.
+  const auto runs = static_cast<std::uint32_t>(threads) * kRunsPerThread;
+  const auto cut = [&](std::uint32_t r) {
+    std::size_t i = contacts.size() * r / runs;
     while (i > 0 && i < contacts.size() && PairOf(contacts[i]) == PairOf(contacts[i - 1])) ++i;
     return i;
   };
@@ -88,13 +91,13 @@ void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodi
   const auto previous_below = [&](BodyPair pair) {
     return static_cast<std::size_t>(std::lower_bound(previous_.begin(), previous_.end(), pair) - previous_.begin());
   };
-  runs_.resize(static_cast<std::size_t>(threads));
-  pool.RunOnAll([&](int t) {
-    const std::size_t begin = cut(t), end = cut(t + 1);
+  runs_.resize(runs);
+  pool.ParallelRuns(runs, 0, 1, [&](std::uint32_t r, std::uint32_t) {
+    const std::size_t begin = cut(r), end = cut(r + 1);
     const BodyPair stop = first_pair(end);
-    const std::size_t old_begin = t == 0 ? 0 : previous_below(first_pair(begin));
+    const std::size_t old_begin = r == 0 ? 0 : previous_below(first_pair(begin));
     const std::size_t old_end = previous_below(stop);
-    MergeRun& run = runs_[static_cast<std::size_t>(t)].value;
+    MergeRun& run = runs_[r].value;
     run.touching.clear();
     run.events.Clear();
     Merge(contacts, begin, end, std::span<const BodyPair>(previous_).subspan(old_begin, old_end - old_begin), stop,

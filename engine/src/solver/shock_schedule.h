@@ -59,7 +59,8 @@ class ShockSchedule {
   std::unique_ptr<Progress[]> progress_;
   std::size_t progress_count_ = 0;
   // Plan's scratch, kept between steps.
-  std::vector<double> xs_;
+  std::vector<std::uint8_t> bin_;  ///< per row: its bin of x
+  double bin_span_[2] = {0.0, 0.0};  ///< the x the last call's rows spanned
   std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_, position_;
   std::vector<std::uint64_t> touched_by_, written_by_;  ///< per body: a bit per band
 };
