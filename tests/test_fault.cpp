@@ -55,7 +55,9 @@ TEST_CASE("on two threads, the fault is the same first body as on one", "[fault]
     def.threads = threads;
     engine::World world(def);
     std::vector<engine::BodyId> ids;
-    for (int i = 0; i < 3000; ++i) ids.push_back(world.CreateBody(testing::Circle({3.0 * (i % 60), 3.0 * (i / 60)}, 1)));
+    for (int i = 0; i < 3000; ++i) {
+      ids.push_back(world.CreateBody(testing::Circle({3.0 * (i % 60), 3.0 * (i / 60)}, 1)));
+    }
     for (const int body : {2700, 2500, 2700, 2500}) world.ApplyForceToCenter(ids[body], {1e308, 0});
     world.Step();
     REQUIRE(world.Fault());

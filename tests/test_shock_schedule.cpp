@@ -108,7 +108,8 @@ TEST_CASE("shock propagation shared among threads gives the one-thread bits", "[
   }
 }
 
-TEST_CASE("shock bands planned again where the pile moved far, or a little, are shared the same", "[parallel][solver]") {
+TEST_CASE("shock bands planned again where the pile moved far, or a little, are shared the same",
+          "[parallel][solver]") {
   // The bands' bins start from the span the last call's rows had: rows far outside it are binned
   // again over their own, so the bands still share the pile out and wait at its borders.
   const Pile pile = MakePile(60, 40);

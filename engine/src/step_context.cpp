@@ -1,12 +1,10 @@
 // Numeric faults: the first non-finite number the simulation produced.
 #include "step_context.h"
 
-#include <algorithm>
-#include <vector>
+#include <atomic>
 
 #include <cmath>
 
-#include "parallel/per_thread.h"
 
 namespace engine::detail {
 
@@ -31,15 +29,11 @@ const char* NonFinitePart(const BodyState& s) {
 std::optional<NumericFault> FindNonFinite(std::span<const BodyState> states, std::int64_t step, WorkerPool* pool) {
   const auto n = static_cast<std::uint32_t>(states.size());
   if (pool && pool->Threads() > 1 && n >= kMinSharedCheck) {
-    const auto threads = static_cast<std::uint32_t>(pool->Threads());
-    std::vector<PerThread<bool>> finite(threads);
-    pool->RunOnAll([&](int thread) {
-      const auto t = static_cast<std::uint32_t>(thread);
-      bool all = true;
-      for (std::uint32_t id = n * t / threads; id < n * (t + 1) / threads; ++id) all = all && !NonFinitePart(states[id]);
-      finite[t].value = all;
+    std::atomic<bool> any{false};  // written only by a part with a fault: no line goes back and forth
+    pool->ParallelFor(n, kMinSharedCheck, [&](std::uint32_t id) {
+      if (NonFinitePart(states[id])) any.store(true, std::memory_order_relaxed);
     });
-    if (std::all_of(finite.begin(), finite.end(), [](const PerThread<bool>& f) { return f.value; })) return std::nullopt;
+    if (!any.load(std::memory_order_relaxed)) return std::nullopt;
   }
   for (BodyIndex id = 0; id < n; ++id) {
     if (const char* what = NonFinitePart(states[id])) return NumericFault{step, id, what};

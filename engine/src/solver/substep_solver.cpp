@@ -160,7 +160,6 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
                               &context.pool);
   }
-  constraints_prepared_ = false;
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
   if constexpr (kCanTurn<C>) {
