@@ -2,7 +2,8 @@
 // contacts solved one at a time rather than in SIMD lanes (SubstepFeatures::lanes 1): circle
 // pours of 1 000, 4 000 and 10 000 (axis-aligned and turning) and box pyramids of base 20 and 40
 // (fixed and turning), by the wall clock, since two threads share the work; the state hashes of
-// the three runs compared, as the bits must depend on neither.
+// the three runs compared, as the bits must depend on neither. Then what moving data between the
+// cores costs on the machine (MeasureCrossCore), which bounds what sharing a pass can gain.
 // `bench_threads [--quick] [--repeats R] [--out DIR]`.
 #include <cstdio>
 #include <functional>
@@ -13,6 +14,7 @@
 #include "bench/bench_common.h"
 #include "bench/stress_scenes.h"
 #include "engine/world.h"
+#include "parallel/worker_pool.h"
 #include "solver/wide_passes.h"
 
 namespace {
@@ -33,6 +35,39 @@ struct Timing {
   std::uint64_t hash;
   std::size_t contacts;
 };
+
+/// What moving a step's data between the cores costs on this machine: µs per pass of a
+/// semi-implicit Euler step over `count` body states through the engine's WorkerPool, on one
+/// thread; on two, each thread its own half every pass; and on two, the halves swapped every
+/// pass, so that each thread reads states the other core wrote last. Where the third is far
+/// above the first, a pass shared between cores pays for every body it takes from the other.
+struct CrossCore {
+  double one_thread, own_halves, swapped_halves;
+};
+
+CrossCore MeasureCrossCore(std::uint32_t count, int passes) {
+  std::vector<engine::BodyState> states(count);
+  const auto time_passes = [&](int threads, bool swap) {
+    engine::detail::WorkerPool pool(threads);
+    const auto parts = static_cast<std::uint64_t>(threads);
+    const auto start = bench::Clock::now();
+    for (int pass = 0; pass < passes; ++pass) {
+      pool.RunOnAll([&](int thread) {
+        const auto part = static_cast<std::uint64_t>(swap ? (thread + pass) % threads : thread);
+        const auto begin = static_cast<std::uint32_t>(count * part / parts);
+        const auto end = static_cast<std::uint32_t>(count * (part + 1) / parts);
+        for (std::uint32_t i = begin; i < end; ++i) {
+          engine::BodyState& s = states[i];
+          s.velocity.y -= 9.8 / 240.0;
+          s.position.x += s.velocity.x / 240.0;
+          s.position.y += s.velocity.y / 240.0;
+        }
+      });
+    }
+    return 1e6 * bench::SecondsSince(start) / passes;
+  };
+  return {time_passes(1, false), time_passes(2, false), time_passes(2, true)};
+}
 
 Timing Run(const Scene& scene, int threads, int lanes, int steps) {
   engine::WorldDef def;
@@ -112,7 +147,20 @@ int main(int argc, char** argv) {
     }
     if (!same) status = 1;
   }
+  bench::Progress("cross-core");
+  std::vector<double> one, own, swapped;
+  for (int r = 0; r < repeats; ++r) {
+    const CrossCore c = MeasureCrossCore(4000, options.quick ? 2000 : 20000);
+    one.push_back(c.one_thread);
+    own.push_back(c.own_halves);
+    swapped.push_back(c.swapped_halves);
+  }
   bench::Progress("");
+  std::printf("\ncross-core: a pass over 4 000 body states (semi-implicit Euler) through the worker pool, µs/pass, "
+              "median of %d: 1 thread %s; 2 threads, each its own half %s; 2 threads, halves swapped every pass "
+              "(each reads what the other core wrote) %s\n",
+              repeats, bench::Number(bench::Median(one)).c_str(), bench::Number(bench::Median(own)).c_str(),
+              bench::Number(bench::Median(swapped)).c_str());
   std::printf("\n");
   bench::PrintMachine(load);
   return bench::ReportCsv(csv != nullptr, options.out_dir, {"threads.csv (ms/step at 1 and 2 threads)"}, status);
