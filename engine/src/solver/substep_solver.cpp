@@ -54,15 +54,19 @@ void SubstepSolver::Step(StepContext& context) {
       } else {
         order_.AsFound(context.contacts.size());
       }
-      pile_passes_ = PassesForPile(context, pile_passes_);  // reads positions alone
     };
+    const auto passes = [&] { pile_passes_ = PassesForPile(context, pile_passes_); };  // reads positions alone
     // Shock propagation's levels need only who touches whom: found beside the colouring.
     shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
                           context.pool.Threads() > 1;
     if (shock_levels_built_) {
       // The constraints, in the colours' order, are filled by whichever thread is free once the
-      // colouring is done (PrepareLinearConstraints).
-      const auto levels = [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); };
+      // colouring is done (PrepareLinearConstraints). The pile's height goes beside the colouring
+      // too, after the levels: on the colouring's thread it doubled that thread's wait.
+      const auto levels = [&] {
+        BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_);
+        passes();
+      };
       const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
       linear_constraints_.resize(contacts);
       const auto prepare = [&](std::uint32_t begin, std::uint32_t end) {
@@ -72,6 +76,7 @@ void SubstepSolver::Step(StepContext& context) {
       constraints_prepared_ = true;
     } else {
       order();
+      passes();
     }
     Step(context, &linear_constraints_);
   }
