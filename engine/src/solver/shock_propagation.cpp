@@ -61,13 +61,12 @@ template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows) {
   BuildShockLevels(constraints, infos, scratch);
-  WriteShockRows(constraints, {}, up, scratch);
+  WriteShockRows(constraints, up, scratch);
   SortShockRows(scratch, rows);
 }
 
 template <typename C>
-void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_t> slot, Vec2 up,
-                    ShockScratch* scratch, WorkerPool* pool) {
+void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scratch, WorkerPool* pool) {
   const std::span<const std::uint32_t> level = scratch->level;
   // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
   // static after all levels), or one past that for the rest. A counting sort by bucket is
@@ -91,12 +90,10 @@ void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_
     scratch->unsorted[j] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
                             level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
   };
-  if (slot.empty()) {
-    for (std::uint32_t j = 0; j < constraints.size(); ++j) write(j);
-  } else {
-    // In runs: the levels were found on another thread, and the half that reads them cold is slower.
-    ForEachIndexInRuns(pool, slot.size(), kMinSharedContacts, [&](std::uint32_t i) { write(slot[i]); });
-  }
+  // In constraint order, each run's constraints and rows one stretch of memory; in runs, to
+  // whichever thread is free: the levels were found on another thread, and the half that reads
+  // them cold is slower.
+  ForEachIndexInRuns(pool, constraints.size(), kMinSharedContacts, write);
 }
 
 // A counting sort by bucket in runs of the constraints: each run counts its rows per bucket, then
@@ -137,10 +134,8 @@ template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const
                              ShockScratch*, std::vector<ShockRow>*);
 template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
                              ShockScratch*, std::vector<ShockRow>*);
-template void WriteShockRows(std::span<const SubstepConstraint>, std::span<const std::uint32_t>, Vec2,
-                             ShockScratch*, WorkerPool*);
-template void WriteShockRows(std::span<const LinearConstraint>, std::span<const std::uint32_t>, Vec2,
-                             ShockScratch*, WorkerPool*);
+template void WriteShockRows(std::span<const SubstepConstraint>, Vec2, ShockScratch*, WorkerPool*);
+template void WriteShockRows(std::span<const LinearConstraint>, Vec2, ShockScratch*, WorkerPool*);
 
 void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
                     std::span<const Vec2> start_positions, double inv_h, double linear_slop) {

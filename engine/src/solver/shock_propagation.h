@@ -61,13 +61,10 @@ void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> in
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
 
 /// Each constraint's row and its bucket in the order (BuildShockRows), in constraint order, into
-/// `scratch`, whose levels are this step's. `slot`: contact i's constraint, as given to
-/// PrepareSubstepConstraints; with a pool the rows are shared among its threads the way the
-/// contacts were there, so that each thread reads the constraints it has just written (the
-/// reads cost most where they came from another core). Empty `slot`: in order, on one thread.
+/// `scratch`, whose levels are this step's; with a pool, in runs of the constraints shared among
+/// its threads (each writes only its constraints' rows).
 template <typename C>
-void WriteShockRows(std::span<const C> constraints, std::span<const std::uint32_t> slot, Vec2 up,
-                    ShockScratch* scratch, WorkerPool* pool = nullptr);
+void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scratch, WorkerPool* pool = nullptr);
 
 /// The supporting rows WriteShockRows wrote, in the order BuildShockRows gives; with a pool,
 /// sorted in runs shared among its threads (the same rows).

@@ -176,7 +176,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
     if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
-    WriteShockRows<C>(constraints, order_.slot, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
+    WriteShockRows<C>(constraints, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
     SortShockRows(&shock_scratch_, &shock_rows_, &context.pool);
   }
   // Two tasks side by side, then the blocks' packing shared: the shock schedule only reads the
