@@ -96,38 +96,68 @@ void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scrat
   ForEachIndexInRuns(pool, constraints.size(), kMinSharedContacts, write);
 }
 
-// A counting sort by bucket in runs of the constraints: each run counts its rows per bucket, then
-// places them from its own first place in each bucket, runs in order within a bucket, so ties
-// stay in constraint order however the runs are shared out.
+// A counting sort by bucket, stable, so ties stay in constraint order: the runs of the
+// constraints count their buckets side by side; then each thread places the rows of its own
+// buckets (the sorted list cut where the threads' parts hold as many rows), gathering which
+// constraints those are in one pass over the buckets, then copying them. Each thread writes one
+// stretch of the sorted rows: threads placing runs of the constraints wrote a little of every
+// bucket each, side by side in memory, and on two cores the sort took longer than on one. The
+// last bucket's rows (pairs that do not support) are not placed: the list ends before them.
 void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPool* pool) {
   const std::span<const std::uint32_t> bucket = scratch->bucket;
   const auto n = static_cast<std::uint32_t>(bucket.size());
   const auto buckets = static_cast<std::uint32_t>(scratch->levels) + 2;  // levels, unreached, the rest
   const std::uint32_t run = RunLength(pool, n, kMinSharedContacts);
   const std::uint32_t runs = (n + run - 1) / run;
-  std::vector<std::uint32_t>& next = scratch->first;  // runs × buckets: a run's count, then its next place
-  next.assign(std::size_t{runs} * buckets, 0);
+  std::vector<std::uint32_t>& counts = scratch->first;  // runs × buckets
+  counts.assign(std::size_t{runs} * buckets, 0);
   ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
-    std::uint32_t* count = next.data() + std::size_t{begin / run} * buckets;
+    std::uint32_t* count = counts.data() + std::size_t{begin / run} * buckets;
     for (std::uint32_t j = begin; j < end; ++j) ++count[bucket[j]];
   });
-  std::uint32_t place = 0;
-  std::uint32_t supporting = 0;
+  // Where each bucket starts in the sorted list; the last one's start is where the list ends.
+  std::vector<std::uint32_t>& place = scratch->bucket_start;
+  place.assign(buckets + 1, 0);
   for (std::uint32_t b = 0; b < buckets; ++b) {
-    if (b + 1 == buckets) supporting = place;
-    for (std::uint32_t r = 0; r < runs; ++r) {
-      std::uint32_t& at = next[std::size_t{r} * buckets + b];
-      const std::uint32_t count = at;
-      at = place;
-      place += count;
-    }
+    std::uint32_t total = 0;
+    for (std::uint32_t r = 0; r < runs; ++r) total += counts[std::size_t{r} * buckets + b];
+    place[b + 1] = place[b] + total;
   }
-  rows->resize(n);
-  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
-    std::uint32_t* at = next.data() + std::size_t{begin / run} * buckets;
-    for (std::uint32_t j = begin; j < end; ++j) (*rows)[at[bucket[j]]++] = scratch->unsorted[j];
-  });
+  const std::uint32_t supporting = place[buckets - 1];
   rows->resize(supporting);
+  const int parts = runs > 1 ? pool->Threads() : 1;
+  const auto place_part = [&](int part) {
+    // This part's buckets: from the first whose rows start at or past its share of the list.
+    const auto first_bucket = [&](int p) {
+      const std::uint64_t target = std::uint64_t{supporting} * static_cast<std::uint64_t>(p) /
+                                   static_cast<std::uint64_t>(parts);
+      std::uint32_t b = 0;
+      while (b < buckets - 1 && place[b] < target) ++b;
+      return b;
+    };
+    const std::uint32_t low = first_bucket(part), high = part + 1 == parts ? buckets - 1 : first_bucket(part + 1);
+    if (low >= high) return;
+    std::vector<std::uint32_t>& mine = scratch->part_constraints[static_cast<std::size_t>(part)];
+    mine.resize(std::size_t{n} + 1);  // one slot past: every constraint is written, kept or not
+    std::uint32_t kept = 0;
+    for (std::uint32_t j = 0; j < n; ++j) {  // branch-free: whose a bucket is is as good as random
+      mine[kept] = j;
+      kept += bucket[j] - low < high - low;
+    }
+    std::vector<std::uint32_t>& next = scratch->part_next[static_cast<std::size_t>(part)];
+    next.assign(place.begin(), place.end());
+    for (std::uint32_t k = 0; k < kept; ++k) {
+      const std::uint32_t j = mine[k];
+      (*rows)[next[bucket[j]]++] = scratch->unsorted[j];
+    }
+  };
+  scratch->part_constraints.resize(static_cast<std::size_t>(parts));
+  scratch->part_next.resize(static_cast<std::size_t>(parts));
+  if (parts == 1) {
+    place_part(0);
+  } else {
+    pool->RunOnAll(place_part);
+  }
 }
 
 template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const BodyInfo>, Vec2,

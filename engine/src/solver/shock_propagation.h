@@ -35,6 +35,9 @@ struct ShockScratch {
   std::vector<std::uint32_t> start, neighbours, fill, queue, first;
   std::vector<std::uint32_t> bucket;  ///< per constraint: its bucket in the rows' counting sort
   std::vector<ShockRow> unsorted;     ///< per constraint: its row, in constraint order
+  std::vector<std::uint32_t> bucket_start;  ///< per bucket, and one past: where its rows go
+  /// SortShockRows' per thread: the constraints whose rows it places, and each bucket's next place.
+  std::vector<std::vector<std::uint32_t>> part_constraints, part_next;
   std::size_t levels = 0;             ///< how many levels there are (the highest one's, plus one)
 };
 
