@@ -13,6 +13,13 @@
 
 namespace engine::detail {
 
+namespace {
+
+/// Against gravity, for a world with gravity.
+Vec2 Up(const WorldDef& def) { return -def.gravity / Length(def.gravity); }
+
+}  // namespace
+
 void SubstepSolver::FillAutomaticSettings(WorldDef* def) {
   if (def->substeps == 0) def->substeps = def->rotation ? 8 : 4;
   const bool automatic_passes = def->velocity_iterations == 0;
@@ -55,28 +62,34 @@ void SubstepSolver::Step(StepContext& context) {
         order_.AsFound(context.contacts.size());
       }
     };
-    const auto passes = [&] { pile_passes_ = PassesForPile(context, pile_passes_); };  // reads positions alone
+
     // Shock propagation's levels need only who touches whom: found beside the colouring.
     shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
                           context.pool.Threads() > 1;
     if (shock_levels_built_) {
       // The constraints, in the colours' order, are filled by whichever thread is free once the
-      // colouring is done (PrepareLinearConstraints). The pile's height goes beside the colouring
-      // too, after the levels: on the colouring's thread it doubled that thread's wait.
-      const auto levels = [&] {
-        BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_);
-        passes();
-      };
+      // colouring is done (PrepareLinearConstraints), and the pile measured run by run as they
+      // are: on its own, on either thread, it kept the other waiting.
+      const auto levels = [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); };
       const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
       linear_constraints_.resize(contacts);
+      const bool measure_pile = MeasuresPile(context.def, pile_passes_);
+      pile_runs_.assign(measure_pile ? (contacts + kConstraintsPerRun - 1) / kConstraintsPerRun : 0, PileExtent{});
       const auto prepare = [&](std::uint32_t begin, std::uint32_t end) {
         PrepareLinearConstraints(context.contacts, order_.slot, context.infos, linear_constraints_, begin, end);
+        if (measure_pile) {
+          pile_runs_[begin / kConstraintsPerRun] =
+              MeasurePile(context.contacts.subspan(begin, end - begin), context.infos, context.states, Up(context.def));
+        }
       };
       context.pool.RunSideBySideThenShareAfterFirst(order, levels, contacts, kConstraintsPerRun, prepare);
       constraints_prepared_ = true;
+      PileExtent pile;
+      for (const PileExtent& run : pile_runs_) pile.Merge(run);
+      pile_passes_ = PassesForPile(context, pile_passes_, &pile);
     } else {
       order();
-      passes();
+      pile_passes_ = PassesForPile(context, pile_passes_);  // reads positions alone
     }
     Step(context, &linear_constraints_);
   }
@@ -124,32 +137,16 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
 
 // One Gauss-Seidel pass carries a deep pile's weight down only over many substeps; turning
 // worlds take 4 passes already.
-int SubstepSolver::PassesForPile(const StepContext& context, int passes) {
+int SubstepSolver::PassesForPile(const StepContext& context, int passes, const PileExtent* measured) {
   const WorldDef& def = context.def;
-  if (!def.rotation && passes < 2 && Length(def.gravity) > 0.0 &&
-      PileHeightInBodies(context.contacts, context.infos, context.states, -def.gravity / Length(def.gravity)) >
-          kDeepPile) {
-    return 2;
-  }
-  return passes;
+  if (!MeasuresPile(def, passes)) return passes;
+  const double height = measured ? measured->HeightInBodies()
+                                 : PileHeightInBodies(context.contacts, context.infos, context.states, Up(def));
+  return height > kDeepPile ? 2 : passes;
 }
 
-double PileHeightInBodies(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                          std::span<const BodyState> states, Vec2 up) {
-  double low = std::numeric_limits<double>::infinity(), high = -low, spacing = 0.0;
-  std::size_t pairs = 0;
-  for (const Contact& c : contacts) {
-    if (HasInfiniteMass(infos[c.a]) || HasInfiniteMass(infos[c.b])) continue;
-    const Vec2 a = states[c.a].position, b = states[c.b].position;
-    spacing += Length(b - a);
-    for (const double height : {Dot(a, up), Dot(b, up)}) {
-      low = std::min(low, height);
-      high = std::max(high, height);
-    }
-    ++pairs;
-  }
-  if (pairs == 0 || !(spacing > 0.0)) return 0.0;
-  return (high - low) / (spacing / static_cast<double>(pairs));
+bool SubstepSolver::MeasuresPile(const WorldDef& def, int passes) {
+  return !def.rotation && passes < 2 && Length(def.gravity) > 0.0;
 }
 
 template <typename C>
@@ -176,7 +173,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
     if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
-    WriteShockRows<C>(constraints, -def.gravity / Length(def.gravity), &shock_scratch_, &context.pool);
+    WriteShockRows<C>(constraints, Up(def), &shock_scratch_, &context.pool);
     SortShockRows(&shock_scratch_, &shock_rows_, &context.pool);
   }
   // Two tasks side by side, then the blocks' packing shared: the shock schedule only reads the

@@ -9,6 +9,7 @@
 #include "forces/force_model.h"
 #include "solver/contact_order.h"
 #include "solver/direct_solver.h"
+#include "solver/pile_height.h"
 #include "solver/shock_propagation.h"
 #include "solver/shock_schedule.h"
 #include "solver/substep_constraint.h"
@@ -40,12 +41,6 @@ struct SubstepPlan {
   const WidePasses* wide;
 };
 
-/// How tall the bodies in contact stand along `up`, in body sizes: the span of their centres
-/// over the mean distance between the centres of two moving bodies that touch (0 without such
-/// a pair). A measure of how many bodies a pile's bottom carries.
-double PileHeightInBodies(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
-                          std::span<const BodyState> states, Vec2 up);
-
 class SubstepSolver {
  public:
   /// Contacts start a margin apart, so fast bodies are caught before they touch.
@@ -69,6 +64,7 @@ class SubstepSolver {
   static constexpr std::size_t kMinSideBySideConstraints = 4096;
   /// The constraints a thread fills at a time beside the shock levels.
   static constexpr std::uint32_t kConstraintsPerRun = 512;
+  static_assert(kConstraintsPerRun == kPileRun, "the pile is measured in the runs the constraints are filled in");
   /// Fills in the automatic settings: 4 substeps of 1 pass for the axis-aligned game, 8 of 4
   /// with rotation (turning stacks couple their contacts, docs/solver.md).
   static void FillAutomaticSettings(WorldDef* def);
@@ -87,8 +83,11 @@ class SubstepSolver {
   SubstepPlan Plan(const StepContext& context);
   /// Whether shock propagation runs: switched on, and gravity gives an up.
   static bool ShockPropagates(const WorldDef& def);
-  /// `passes`, or 2 where nothing turns and the pile stands taller than kDeepPile.
-  static int PassesForPile(const StepContext& context, int passes);
+  /// `passes`, or 2 where nothing turns and the pile stands taller than kDeepPile bodies:
+  /// `measured` (the contacts' PileExtent), or measured here where it is null.
+  static int PassesForPile(const StepContext& context, int passes, const PileExtent* measured = nullptr);
+  /// Whether PassesForPile looks at the pile at all.
+  static bool MeasuresPile(const WorldDef& def, int passes);
   /// Which bodies an applied force pushes (their contacts may carry a load); empty when every
   /// moving body is loaded (gravity, uniform or mutual).
   void FindLoadedBodies(const StepContext& context);
@@ -144,6 +143,7 @@ class SubstepSolver {
   ShockScratch shock_scratch_;
   bool shock_levels_built_ = false;                     ///< this step's levels found beside the colouring
   bool constraints_prepared_ = false;                   ///< and the constraints filled after it
+  std::vector<PileExtent> pile_runs_;  ///< per run of the constraints filled beside the levels
   int pile_passes_ = 1;  ///< this step's velocity passes (PassesForPile), found beside the colouring
   std::vector<ShockRow> shock_rows_;
   ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
