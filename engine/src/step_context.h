@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 
+#include "body_pair.h"
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/events.h"
@@ -29,6 +30,9 @@ struct StepContext {
   std::span<const std::uint8_t> moving;   ///< per body: integrated this step (awake, dynamic)
   /// This step's contacts in pair order: last step's impulses in (warm start), this step's out.
   std::span<Contact> contacts;
+  /// The contacts' bodies alone, in the same order, where the narrow phase wrote them (on
+  /// several threads); else empty.
+  std::span<const BodyPair> contact_pairs;
   std::span<const Vec2> start_positions;  ///< each body's centre when the step began
   bool can_turn;                          ///< some body has finite inertia (rotation on)
   const ForceModel& forces;

@@ -110,6 +110,7 @@ void World::Step() {
                               .infos = bodies.infos,
                               .moving = w.sleep.awake,
                               .contacts = w.narrow_phase.Contacts(),
+                              .contact_pairs = w.narrow_phase.ContactPairs(),
                               .start_positions = bodies.start_positions,
                               .can_turn = bodies.turnable > 0,
                               .forces = forces,

@@ -127,6 +127,7 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
   };
   const int threads = pool.Threads();
   if (threads == 1 || pairs.size() < kMinSharedPairs) {
+    contact_pairs_.clear();
     contacts_.clear();
     collide(pairs, &contacts_);
     return;
@@ -143,8 +144,12 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
   for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].value.size();
   // Only what the list grows by is zeroed first: every contact is written by the copies.
   contacts_.resize(offsets[threads]);
+  contact_pairs_.resize(offsets[threads]);
   pool.RunOnAll([&](int t) {
-    std::copy(thread_contacts_[t].value.begin(), thread_contacts_[t].value.end(), contacts_.begin() + offsets[t]);
+    const std::vector<Contact>& part = thread_contacts_[t].value;
+    std::copy(part.begin(), part.end(), contacts_.begin() + offsets[t]);
+    BodyPair* pair = contact_pairs_.data() + offsets[t];
+    for (const Contact& c : part) *pair++ = {c.a, c.b};
   });
 }
 

@@ -44,10 +44,15 @@ class NarrowPhase {
   /// its slot.
   void RemoveBody(BodyIndex index) {
     std::erase_if(contacts_, [&](const Contact& c) { return c.a == index || c.b == index; });
+    contact_pairs_.clear();
   }
 
   std::vector<Contact>& Contacts() { return contacts_; }
   const std::vector<Contact>& Contacts() const { return contacts_; }
+  /// The bodies of each of this step's contacts, in order, where the threads shared the pairs
+  /// (each writes its part's as it places its contacts); else empty. Searches that want only who
+  /// touches whom read an eighteenth of the memory, little of it from another core.
+  std::span<const BodyPair> ContactPairs() const { return contact_pairs_; }
 
  private:
   /// Fewer pairs than this are collided on one thread (the hand-off would cost more).
@@ -62,6 +67,7 @@ class NarrowPhase {
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
+  std::vector<BodyPair> contact_pairs_;
   std::vector<PerThread<std::vector<Contact>>> thread_contacts_;  ///< each thread's part, when shared
 };
 

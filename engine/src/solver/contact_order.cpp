@@ -30,7 +30,8 @@ void SortByGroup(std::uint32_t groups, std::vector<std::uint32_t>* slot,
 
 }  // namespace
 
-void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
+template <typename Pair>
+void ColourContacts(std::span<const Pair> contacts, std::span<const BodyInfo> infos,
                     std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
                     std::vector<std::uint32_t>* group_ends) {
   constexpr int kColours = kSharedColour + 1;
@@ -50,6 +51,11 @@ void ColourContacts(std::span<const Contact> contacts, std::span<const BodyInfo>
   }
   SortByGroup(static_cast<std::uint32_t>(colours), slot, group_ends);
 }
+
+template void ColourContacts(std::span<const Contact>, std::span<const BodyInfo>, std::vector<std::uint64_t>*,
+                             std::vector<std::uint32_t>*, std::vector<std::uint32_t>*);
+template void ColourContacts(std::span<const BodyPair>, std::span<const BodyInfo>, std::vector<std::uint64_t>*,
+                             std::vector<std::uint32_t>*, std::vector<std::uint32_t>*);
 
 void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                    std::span<const BodyState> states, Vec2 across, int strips,

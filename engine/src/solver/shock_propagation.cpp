@@ -54,6 +54,7 @@ void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> 
 }
 
 template void BuildShockLevels(std::span<const Contact>, std::span<const BodyInfo>, ShockScratch*);
+template void BuildShockLevels(std::span<const BodyPair>, std::span<const BodyInfo>, ShockScratch*);
 template void BuildShockLevels(std::span<const SubstepConstraint>, std::span<const BodyInfo>, ShockScratch*);
 template void BuildShockLevels(std::span<const LinearConstraint>, std::span<const BodyInfo>, ShockScratch*);
 

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "body_pair.h"
 #include "engine/body.h"
 #include "engine/contact.h"
 #include "engine/spring.h"

@@ -55,14 +55,19 @@ void SubstepSolver::Step(StepContext& context) {
     }
     Step(context, &substep_constraints_);
   } else {
+    // Colouring and the shock levels need only who touches whom: the contacts' bodies alone,
+    // where the narrow phase wrote them. (Most contacts a thread reads here another core wrote
+    // last, and the levels read the full contacts at twice the cost of the same read again.)
+    const bool pairs_alone = context.contact_pairs.size() == context.contacts.size();
     const auto order = [&] {
-      if (context.def.substep_features.colour_order) {
-        order_.ByColour(context.contacts, context.infos);
-      } else {
+      if (!context.def.substep_features.colour_order) {
         order_.AsFound(context.contacts.size());
+      } else if (pairs_alone) {
+        order_.ByColour(context.contact_pairs, context.infos);
+      } else {
+        order_.ByColour(context.contacts, context.infos);
       }
     };
-
     // Shock propagation's levels need only who touches whom: found beside the colouring.
     shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
                           context.pool.Threads() > 1;
@@ -70,7 +75,13 @@ void SubstepSolver::Step(StepContext& context) {
       // The constraints, in the colours' order, are filled by whichever thread is free once the
       // colouring is done (PrepareLinearConstraints), and the pile measured run by run as they
       // are: on its own, on either thread, it kept the other waiting.
-      const auto levels = [&] { BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_); };
+      const auto levels = [&] {
+        if (pairs_alone) {
+          BuildShockLevels<BodyPair>(context.contact_pairs, context.infos, &shock_scratch_);
+        } else {
+          BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_);
+        }
+      };
       const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
       linear_constraints_.resize(contacts);
       const bool measure_pile = MeasuresPile(context.def, pile_passes_);
