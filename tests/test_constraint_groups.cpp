@@ -1,5 +1,5 @@
 // ForEachGroup: every unit once, group after group, and a shared group cut where the threads'
-// parts cost the same when the units' work is given.
+// parts cost the same when the units' work is given; ForEachThreadsShare: the same shares.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -112,5 +112,50 @@ TEST_CASE("ForEachGroup cuts a shared group where the threads' parts cost the sa
         CHECK(part <= total / threads + unit_at_most);
       }
     }
+  }
+}
+
+TEST_CASE("ForEachThreadsShare gives each thread the units ForEachGroup gives it, every unit once",
+          "[parallel][solver]") {
+  for (const int threads : {1, 2, 3}) {
+    CAPTURE(threads);
+    // Which thread ForEachGroup (no extra work) hands each unit to, by the calls it makes.
+    const std::vector<Call> grouped = RunGroups(threads, {});
+    std::vector<std::thread::id> grouped_by(1690);
+    for (const Call& call : grouped) {
+      for (std::uint32_t unit = call.begin; unit < call.end; ++unit) grouped_by[unit] = call.thread;
+    }
+    // The same pool's threads, for ForEachThreadsShare (a thread's id stays with its chunk).
+    engine::detail::WorkerPool pool(threads);
+    std::mutex mutex;
+    std::vector<int> visits(1690, 0);
+    std::vector<std::thread::id> shared_by(1690);
+    engine::detail::ForEachThreadsShare(
+        pool, FourGroups(),
+        [&](std::uint32_t begin, std::uint32_t end) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          for (std::uint32_t unit = begin; unit < end; ++unit) {
+            ++visits[unit];
+            shared_by[unit] = std::this_thread::get_id();
+          }
+        },
+        4);
+    CHECK(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+    // Threads are told apart by where they start: the first unit of each thread's share in
+    // ForEachGroup and here must go to corresponding threads, unit for unit. Map ForEachGroup's
+    // thread ids to this pool's through the first units, then compare every unit.
+    std::vector<std::pair<std::thread::id, std::thread::id>> map;
+    bool consistent = true;
+    for (std::uint32_t unit = 0; unit < 1690; ++unit) {
+      const auto found =
+          std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == grouped_by[unit]; });
+      if (found == map.end()) {
+        map.emplace_back(grouped_by[unit], shared_by[unit]);
+      } else {
+        consistent = consistent && found->second == shared_by[unit];
+      }
+    }
+    CHECK(consistent);
+    CHECK(map.size() == static_cast<std::size_t>(threads));  // every thread had a share
   }
 }

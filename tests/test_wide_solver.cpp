@@ -378,6 +378,31 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
   }
 }
 
+TEST_CASE("wide solver: the blocks from b to e hold the constraints from FirstConstraint(b) to FirstConstraint(e)") {
+  using engine::detail::kBlockLanes;
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const Scene scene = MakeScene(seed);
+    engine::detail::ContactOrder order;
+    order.ByColour(scene.contacts, scene.infos);
+    REQUIRE(order.group_ends.size() > order.parallel_groups);  // blocks of one constraint too
+    std::vector<LinearConstraint> constraints;
+    engine::detail::PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
+                                                                &constraints);
+    engine::detail::WideConstraints wide;
+    wide.Pack(constraints, order);
+    const auto blocks = static_cast<std::uint32_t>(wide.blocks.size());
+    INFO("seed " << seed);
+    CHECK(wide.FirstConstraint(0, order) == 0);
+    CHECK(wide.FirstConstraint(blocks, order) == constraints.size());
+    // Where Pack put each constraint (lane_of) says which block holds it.
+    for (std::uint32_t k = 0; k < blocks; ++k) {
+      const std::uint32_t first = wide.FirstConstraint(k, order), end = wide.FirstConstraint(k + 1, order);
+      REQUIRE(first < end);  // every block holds at least one constraint
+      for (std::uint32_t j = first; j < end; ++j) REQUIRE(wide.lane_of[j] / kBlockLanes == k);
+    }
+  }
+}
+
 TEST_CASE("wide solver: a pour steps to the same hash at every width and thread count") {
   for (const bool boxes : {false, true}) {
     INFO((boxes ? "circles and boxes" : "circles"));

@@ -21,6 +21,40 @@ inline constexpr std::uint64_t kUnitWork = 2;
 /// two threads than on one when it was shared (bench_threads).
 inline constexpr std::uint32_t kMinSharedConstraints = 4096;
 
+/// Calls part(begin, end) on the ranges of units that ForEachGroup (without `extra_work`) gives
+/// each thread, on that thread, with no wait between groups: for work on the units that has no
+/// order, done by the thread that will next read what it writes (a unit's data then stays in
+/// that core's cache).
+template <typename Part>
+void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& part, std::uint32_t per_unit = 1) {
+  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
+  const int threads = pool.Threads();
+  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints || order.strips > 0) {
+    part(std::uint32_t{0}, total);
+    return;
+  }
+  const std::size_t groups = order.group_ends.size();
+  const auto shared = [&](std::size_t g, std::uint32_t begin) {
+    return g < order.parallel_groups && std::uint64_t{order.group_ends[g] - begin} * per_unit >= kMinSharedGroup;
+  };
+  pool.RunOnAll([&](int thread) {
+    std::uint32_t begin = 0;
+    std::size_t g = 0;
+    while (g < groups) {
+      std::uint32_t end = order.group_ends[g++];
+      if (shared(g - 1, begin)) {
+        const std::uint64_t size = end - begin;
+        part(static_cast<std::uint32_t>(begin + size * thread / threads),
+             static_cast<std::uint32_t>(begin + size * (thread + 1) / threads));
+      } else {
+        while (g < groups && !shared(g, end)) end = order.group_ends[g++];
+        if (thread == 0) part(begin, end);
+      }
+      begin = end;
+    }
+  });
+}
+
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
 /// every group is done before the next starts. In strip order, each strip goes whole to one
 /// thread, side by side, then each even edge, then each odd one, and the rest to the first. Otherwise a group of at least kMinSharedGroup that shares

@@ -67,8 +67,17 @@ void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> in
 }
 
 template <typename C>
-void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scratch, WorkerPool* pool) {
-  const std::span<const std::uint32_t> level = scratch->level;
+ShockRowWriter<C>::ShockRowWriter(std::span<const C> constraints, Vec2 up, ShockScratch* scratch)
+    : constraints_(constraints), up_(up), scratch_(scratch) {
+  scratch->bucket.resize(constraints.size());
+  scratch->unsorted.resize(constraints.size());
+}
+
+template <typename C>
+void ShockRowWriter<C>::Write(std::uint32_t begin, std::uint32_t end) const {
+  const std::span<const std::uint32_t> level = scratch_->level;
+  const Vec2 up = up_;
+  ShockScratch* scratch = scratch_;
   // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
   // static after all levels), or one past that for the rest. A counting sort by bucket is
   // linear and stable, so ties stay in constraint order, and the supporting rows come first.
@@ -76,10 +85,8 @@ void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scrat
   // good as random, and mispredicted branches cost more than writing the rows.
   const auto unreached_bucket = static_cast<std::uint32_t>(scratch->levels);
   const std::uint32_t other_bucket = unreached_bucket + 1;
-  scratch->bucket.resize(constraints.size());
-  scratch->unsorted.resize(constraints.size());
-  const auto write = [&](std::uint32_t j) {
-    const C& c = constraints[j];
+  for (std::uint32_t j = begin; j < end; ++j) {
+    const C& c = constraints_[j];
     const std::uint32_t level_a = level[c.a], level_b = level[c.b];
     // Support (the header says why only this): the normal within 45° of up, from the lower
     // body (by level) to the upper one, between bodies that cannot turn.
@@ -90,11 +97,18 @@ void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scrat
     // Which body gives: the upper one alone, or both by mass on one level.
     scratch->unsorted[j] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
                             level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
-  };
+  }
+}
+
+template <typename C>
+void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scratch, WorkerPool* pool) {
+  const ShockRowWriter<C> rows(constraints, up, scratch);
   // In constraint order, each run's constraints and rows one stretch of memory; in runs, to
   // whichever thread is free: the levels were found on another thread, and the half that reads
   // them cold is slower.
-  ForEachIndexInRuns(pool, constraints.size(), kMinSharedContacts, write);
+  const auto n = static_cast<std::uint32_t>(constraints.size());
+  ForEachRun(pool, n, kMinSharedContacts, RunLength(pool, n, kMinSharedContacts),
+             [&](std::uint32_t begin, std::uint32_t end) { rows.Write(begin, end); });
 }
 
 // A counting sort by bucket, stable, so ties stay in constraint order: the runs of the
@@ -165,6 +179,8 @@ template void BuildShockRows(std::span<const SubstepConstraint>, std::span<const
                              ShockScratch*, std::vector<ShockRow>*);
 template void BuildShockRows(std::span<const LinearConstraint>, std::span<const BodyInfo>, Vec2,
                              ShockScratch*, std::vector<ShockRow>*);
+template class ShockRowWriter<SubstepConstraint>;
+template class ShockRowWriter<LinearConstraint>;
 template void WriteShockRows(std::span<const SubstepConstraint>, Vec2, ShockScratch*, WorkerPool*);
 template void WriteShockRows(std::span<const LinearConstraint>, Vec2, ShockScratch*, WorkerPool*);
 

@@ -64,9 +64,25 @@ template <typename C>
 void BuildShockRows(std::span<const C> constraints, std::span<const BodyInfo> infos,
                     Vec2 up, ShockScratch* scratch, std::vector<ShockRow>* rows);
 
-/// Each constraint's row and its bucket in the order (BuildShockRows), in constraint order, into
-/// `scratch`, whose levels are this step's; with a pool, in runs of the constraints shared among
-/// its threads (each writes only its constraints' rows).
+/// Writes constraints' rows and buckets in the order (BuildShockRows) into `scratch`, whose
+/// levels are this step's, a range of constraints at a time: for a pass over the constraints
+/// that can write their rows as it goes (each range writes only its own). Made once a step,
+/// after the levels: it sizes the scratch for the constraints.
+template <typename C>
+class ShockRowWriter {
+ public:
+  ShockRowWriter(std::span<const C> constraints, Vec2 up, ShockScratch* scratch);
+  /// The rows of constraints [begin, end).
+  void Write(std::uint32_t begin, std::uint32_t end) const;
+
+ private:
+  std::span<const C> constraints_;
+  Vec2 up_;
+  ShockScratch* scratch_;
+};
+
+/// Each constraint's row and its bucket (ShockRowWriter), all of them; with a pool, in runs of
+/// the constraints shared among its threads.
 template <typename C>
 void WriteShockRows(std::span<const C> constraints, Vec2 up, ShockScratch* scratch, WorkerPool* pool = nullptr);
 

@@ -219,6 +219,17 @@ void WideConstraints::Layout(const ContactOrder& colours) {
   overlapping_lanes.resize(blocks.size());
 }
 
+std::uint32_t WideConstraints::FirstConstraint(std::uint32_t block, const ContactOrder& colours) const {
+  const std::vector<std::uint32_t>& block_ends = order.group_ends;
+  const auto g = static_cast<std::size_t>(std::upper_bound(block_ends.begin(), block_ends.end(), block) -
+                                          block_ends.begin());
+  if (g == block_ends.size()) return block_ends.empty() ? 0 : colours.group_ends.back();
+  const std::uint32_t group_block = g == 0 ? 0 : block_ends[g - 1];
+  const std::uint32_t group_first = g == 0 ? 0 : colours.group_ends[g - 1];
+  const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
+  return std::min(group_first + (block - group_block) * lanes, colours.group_ends[g]);
+}
+
 void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
                                  double linear_slop, std::uint32_t begin, std::uint32_t end) {
   for (std::uint32_t k = begin; k < end; ++k) overlapping_lanes[k] = 0;

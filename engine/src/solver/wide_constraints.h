@@ -52,6 +52,10 @@ struct WideConstraints {
   void Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours, double linear_slop = 0.0);
   /// Sizes the blocks for `colours`' groups (and `order`, `lane_of`, `overlapping_lanes`).
   void Layout(const ContactOrder& colours);
+  /// The first constraint of the colour order `colours` that block `block` of its layout holds
+  /// (the constraints' count for blocks.size()): blocks [b, e) hold the constraints
+  /// [FirstConstraint(b), FirstConstraint(e)), padding aside.
+  std::uint32_t FirstConstraint(std::uint32_t block, const ContactOrder& colours) const;
   /// Fills blocks [begin, end) of the layout from the constraints: each writes only its own
   /// block and its constraints' lane_of, so parts may be filled on different threads.
   void PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours, double linear_slop,
