@@ -72,6 +72,8 @@ class SubstepSolver {
   void Step(StepContext& context);
   /// Whether every moving body in a contact is a circle: its contacts push through its centre.
   static bool AllRound(std::span<const Contact> contacts, std::span<const BodyInfo> infos);
+  /// The same from only the contacts' bodies (NarrowPhase::ContactPairs).
+  static bool AllRound(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos);
   /// What carries over from step to step (the contacts the direct solve took last step), for
   /// snapshots (snapshot/world_snapshot.cpp).
   void Save(ByteWriter& out) const;
