@@ -452,12 +452,21 @@ TEST_CASE("wide solver: turning contacts go by colour only where every moving bo
   contacts[0].a = 0, contacts[0].b = 1;
   contacts[1].a = 1, contacts[1].b = 2;
   using engine::detail::SubstepSolver;
+  // The same answer from the contacts' bodies alone (what the narrow phase writes on threads).
+  const auto pairs_of = [&] {
+    std::vector<engine::BodyPair> pairs;
+    for (const Contact& c : contacts) pairs.push_back({c.a, c.b});
+    return pairs;
+  };
   CHECK(SubstepSolver::AllRound(contacts, infos));
+  CHECK(SubstepSolver::AllRound(pairs_of(), infos));
   contacts.emplace_back();
   contacts[2].a = 2, contacts[2].b = 3;
   CHECK_FALSE(SubstepSolver::AllRound(contacts, infos));
+  CHECK_FALSE(SubstepSolver::AllRound(pairs_of(), infos));
   infos[3].is_kinematic = true;  // a kinematic box takes no impulse either
   CHECK(SubstepSolver::AllRound(contacts, infos));
+  CHECK(SubstepSolver::AllRound(pairs_of(), infos));
 }
 
 TEST_CASE("wide solver: a turning pour steps to the same hash in lanes and on two threads") {
