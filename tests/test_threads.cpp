@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/stress_scenes.h"
+#include "contact_bodies.h"
 #include "engine/world.h"
 #include "solver/contact_order.h"
 #include "solver/substep_solver.h"
@@ -169,7 +170,7 @@ TEST_CASE("no two contacts of a colour share a moving body, and the groups cover
     infos.push_back(world.Info(engine::BodyId{static_cast<engine::BodyIndex>(i)}));
   }
   engine::detail::ContactOrder order;
-  order.ByColour(contacts, infos);
+  order.ByColour(testing::BodiesOf(contacts), infos);
   REQUIRE(order.group_ends.back() == contacts.size());
   // Each slot taken once.
   std::vector<int> taken(contacts.size(), 0);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/stress_scenes.h"
+#include "contact_bodies.h"
 #include "engine/world.h"
 #include "solver/contact_order.h"
 #include "solver/substep_passes.h"
@@ -269,7 +270,7 @@ TEST_CASE("wide solver: each width's passes give the bits of the one-at-a-time p
   for (const unsigned seed : {1u, 2u, 3u}) {
     const Scene scene = MakeScene(seed);
     engine::detail::ContactOrder order;
-    order.ByColour(scene.contacts, scene.infos);
+    order.ByColour(testing::BodiesOf(scene.contacts), scene.infos);
     // The hub's contacts ran out of colours: some share a body, and go one to a block.
     REQUIRE(order.group_ends.size() > order.parallel_groups);
     const Outcome reference = RunPasses(scene, order, 0);
@@ -294,7 +295,7 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
   for (const unsigned seed : {1u, 2u, 3u}) {
     const Scene scene = MakeScene(seed);
     engine::detail::ContactOrder order;
-    order.ByColour(scene.contacts, scene.infos);
+    order.ByColour(testing::BodiesOf(scene.contacts), scene.infos);
     std::vector<LinearConstraint> constraints;
     engine::detail::PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
                                                                 &constraints);
@@ -303,7 +304,7 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
     std::vector<Contact> more = big.contacts;
     more.insert(more.end(), big.contacts.begin(), big.contacts.end());
     engine::detail::ContactOrder big_order;
-    big_order.ByColour(more, big.infos);
+    big_order.ByColour(testing::BodiesOf(more), big.infos);
     std::vector<LinearConstraint> big_constraints;
     engine::detail::PrepareSubstepConstraints<LinearConstraint>(more, big_order.slot, big.infos, big.states,
                                                                 &big_constraints);
@@ -383,7 +384,7 @@ TEST_CASE("wide solver: the blocks from b to e hold the constraints from FirstCo
   for (const unsigned seed : {1u, 2u, 3u}) {
     const Scene scene = MakeScene(seed);
     engine::detail::ContactOrder order;
-    order.ByColour(scene.contacts, scene.infos);
+    order.ByColour(testing::BodiesOf(scene.contacts), scene.infos);
     REQUIRE(order.group_ends.size() > order.parallel_groups);  // blocks of one constraint too
     std::vector<LinearConstraint> constraints;
     engine::detail::PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
@@ -421,7 +422,7 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
     const Scene scene = MakeTurningScene(seed);
     engine::detail::ContactOrder order;
     if (by_colour) {
-      order.ByColour(scene.contacts, scene.infos);
+      order.ByColour(testing::BodiesOf(scene.contacts), scene.infos);
     } else {
       order.InStrips(scene.contacts, scene.infos, scene.states, {0.0, -9.8});
     }
@@ -452,21 +453,13 @@ TEST_CASE("wide solver: turning contacts go by colour only where every moving bo
   contacts[0].a = 0, contacts[0].b = 1;
   contacts[1].a = 1, contacts[1].b = 2;
   using engine::detail::SubstepSolver;
-  // The same answer from the contacts' bodies alone (what the narrow phase writes on threads).
-  const auto pairs_of = [&] {
-    std::vector<engine::BodyPair> pairs;
-    for (const Contact& c : contacts) pairs.push_back({c.a, c.b});
-    return pairs;
-  };
-  CHECK(SubstepSolver::AllRound(contacts, infos));
-  CHECK(SubstepSolver::AllRound(pairs_of(), infos));
+  using testing::BodiesOf;
+  CHECK(SubstepSolver::AllRound(BodiesOf(contacts), infos));
   contacts.emplace_back();
   contacts[2].a = 2, contacts[2].b = 3;
-  CHECK_FALSE(SubstepSolver::AllRound(contacts, infos));
-  CHECK_FALSE(SubstepSolver::AllRound(pairs_of(), infos));
+  CHECK_FALSE(SubstepSolver::AllRound(BodiesOf(contacts), infos));
   infos[3].is_kinematic = true;  // a kinematic box takes no impulse either
-  CHECK(SubstepSolver::AllRound(contacts, infos));
-  CHECK(SubstepSolver::AllRound(pairs_of(), infos));
+  CHECK(SubstepSolver::AllRound(BodiesOf(contacts), infos));
 }
 
 TEST_CASE("wide solver: a turning pour steps to the same hash in lanes and on two threads") {

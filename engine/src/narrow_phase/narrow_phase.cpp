@@ -110,7 +110,8 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
                          bool parts, WorkerPool& pool) {
   previous_contacts_.swap(contacts_);
-  const auto collide = [&](std::span<const BodyPair> part, std::vector<Contact>* out) {
+  const auto collide = [&](std::span<const BodyPair> part, std::vector<Contact>* out,
+                           std::vector<BodyPair>* out_pairs) {
     // A part starts its walk through last step's contacts at its first pair: the walk from the
     // start would have reached no further, as every contact before it is of an earlier pair.
     const auto first = part.empty() ? previous_contacts_.end()
@@ -120,47 +121,49 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                                                        });
     const auto cursor = static_cast<std::size_t>(first - previous_contacts_.begin());
     if (parts) {
-      Collide<true>(part, states, infos, geometries, margins, cursor, out);
+      Collide<true>(part, states, infos, geometries, margins, cursor, out, out_pairs);
     } else {
-      Collide<false>(part, states, infos, geometries, margins, cursor, out);
+      Collide<false>(part, states, infos, geometries, margins, cursor, out, out_pairs);
     }
   };
   const int threads = pool.Threads();
   if (threads == 1 || pairs.size() < kMinSharedPairs) {
-    contact_pairs_.clear();
     contacts_.clear();
-    collide(pairs, &contacts_);
+    contact_pairs_.clear();
+    collide(pairs, &contacts_, &contact_pairs_);
     return;
   }
-  // Each thread collides a contiguous part of the pairs into its own list; the lists, joined in
+  // Each thread collides a contiguous part of the pairs into its own lists; the lists, joined in
   // order, are the contacts one thread would have found.
   thread_contacts_.resize(threads);
+  thread_pairs_.resize(threads);
   pool.RunOnAll([&](int t) {
     const std::size_t begin = pairs.size() * t / threads, end = pairs.size() * (t + 1) / threads;
     thread_contacts_[t].value.clear();
-    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t].value);
+    thread_pairs_[t].value.clear();
+    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t].value, &thread_pairs_[t].value);
   });
   std::vector<std::size_t> offsets(threads + 1, 0);
   for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].value.size();
-  // Only what the list grows by is zeroed first: every contact is written by the copies.
+  // Only what the lists grow by is zeroed first: every element is written by the copies.
   contacts_.resize(offsets[threads]);
   contact_pairs_.resize(offsets[threads]);
   pool.RunOnAll([&](int t) {
-    const std::vector<Contact>& part = thread_contacts_[t].value;
-    std::copy(part.begin(), part.end(), contacts_.begin() + offsets[t]);
-    BodyPair* pair = contact_pairs_.data() + offsets[t];
-    for (const Contact& c : part) *pair++ = {c.a, c.b};
+    std::ranges::copy(thread_contacts_[t].value, contacts_.begin() + offsets[t]);
+    std::ranges::copy(thread_pairs_[t].value, contact_pairs_.begin() + offsets[t]);
   });
 }
 
 template <bool kParts>
 void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                           std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-                          std::size_t previous, std::vector<Contact>* out) const {
+                          std::size_t previous, std::vector<Contact>* out,
+                          std::vector<BodyPair>* out_pairs) const {
   std::vector<Contact>& contacts = *out;
   // At most one contact a pair: reserving that much at once avoids growth by doubling, which
   // could hold twice what a large pile needs.
   contacts.reserve(contacts.size() + pairs.size());
+  out_pairs->reserve(out_pairs->size() + pairs.size());
   for (const BodyPair& pair : pairs) {
     const BodyInfo& ia = infos[pair.a];
     const BodyInfo& ib = infos[pair.b];
@@ -172,6 +175,7 @@ void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyS
                       {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts);
         for (std::size_t i = first; i < contacts.size(); ++i) {
           CarryImpulses<true>(previous_contacts_, &contacts[i], &previous);
+          out_pairs->push_back(pair);
         }
         continue;
       }
@@ -184,6 +188,7 @@ void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyS
     Contact& contact = contacts.emplace_back(NewContact{pair, m, std::max(ia.restitution, ib.restitution),
                                                         std::sqrt(ia.friction * ib.friction)});
     CarryImpulses<kParts>(previous_contacts_, &contact, &previous);
+    out_pairs->push_back(pair);
   }
 }
 

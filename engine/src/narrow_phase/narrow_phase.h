@@ -44,31 +44,32 @@ class NarrowPhase {
   /// its slot.
   void RemoveBody(BodyIndex index) {
     std::erase_if(contacts_, [&](const Contact& c) { return c.a == index || c.b == index; });
-    contact_pairs_.clear();
+    std::erase_if(contact_pairs_, [&](const BodyPair& p) { return p.a == index || p.b == index; });
   }
 
   std::vector<Contact>& Contacts() { return contacts_; }
   const std::vector<Contact>& Contacts() const { return contacts_; }
-  /// The bodies of each of this step's contacts, in order, where the threads shared the pairs
-  /// (each writes its part's as it places its contacts); else empty. Searches that want only who
-  /// touches whom read an eighteenth of the memory, little of it from another core.
+  /// The bodies of each of this step's contacts, in order, written beside them by Update. Searches
+  /// that want only who touches whom read an eighteenth of the memory, little of it from another
+  /// core where the threads shared the pairs.
   std::span<const BodyPair> ContactPairs() const { return contact_pairs_; }
 
  private:
   /// Fewer pairs than this are collided on one thread (the hand-off would cost more).
   static constexpr std::size_t kMinSharedPairs = 4096;
 
-  /// Appends the contacts of `pairs` to `out`, carrying impulses from last step's contacts from
-  /// `previous` on.
+  /// Appends the contacts of `pairs` to `out` and their bodies to `out_pairs`, carrying impulses
+  /// from last step's contacts from `previous` on.
   template <bool kParts>
   void Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-               std::size_t previous, std::vector<Contact>* out) const;
+               std::size_t previous, std::vector<Contact>* out, std::vector<BodyPair>* out_pairs) const;
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
   std::vector<BodyPair> contact_pairs_;
   std::vector<PerThread<std::vector<Contact>>> thread_contacts_;  ///< each thread's part, when shared
+  std::vector<PerThread<std::vector<BodyPair>>> thread_pairs_;    ///< and its contacts' bodies
 };
 
 }  // namespace engine::detail

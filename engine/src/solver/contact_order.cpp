@@ -30,8 +30,7 @@ void SortByGroup(std::uint32_t groups, std::vector<std::uint32_t>* slot,
 
 }  // namespace
 
-template <typename Pair>
-void ColourContacts(std::span<const Pair> contacts, std::span<const BodyInfo> infos,
+void ColourContacts(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos,
                     std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
                     std::vector<std::uint32_t>* group_ends) {
   constexpr int kColours = kSharedColour + 1;
@@ -51,11 +50,6 @@ void ColourContacts(std::span<const Pair> contacts, std::span<const BodyInfo> in
   }
   SortByGroup(static_cast<std::uint32_t>(colours), slot, group_ends);
 }
-
-template void ColourContacts(std::span<const Contact>, std::span<const BodyInfo>, std::vector<std::uint64_t>*,
-                             std::vector<std::uint32_t>*, std::vector<std::uint32_t>*);
-template void ColourContacts(std::span<const BodyPair>, std::span<const BodyInfo>, std::vector<std::uint64_t>*,
-                             std::vector<std::uint32_t>*, std::vector<std::uint32_t>*);
 
 void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                    std::span<const BodyState> states, Vec2 across, int strips,

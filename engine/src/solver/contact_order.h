@@ -31,10 +31,9 @@ inline constexpr std::uint32_t kSharedColour = 63;
 /// so every contact waits for the one before it to finish; within a colour no two contacts
 /// share a body, and the processor solves several at once. The graph colouring Box2D v3 uses
 /// for its wide solver (Catto, "Solver2D", 2024); here it buys instruction-level parallelism.
-/// `body_marks` is scratch, one entry per body.
-/// `Pair`: Contact or BodyPair, anything with bodies a and b.
-template <typename Pair>
-void ColourContacts(std::span<const Pair> contacts, std::span<const BodyInfo> infos,
+/// `contacts` are the contacts' bodies (NarrowPhase::ContactPairs); `body_marks` is scratch, one
+/// entry per body.
+void ColourContacts(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos,
                     std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
                     std::vector<std::uint32_t>* group_ends);
 
@@ -85,10 +84,13 @@ struct ContactOrder {
   std::uint32_t strips = 0;
   std::vector<std::uint64_t> body_marks;  ///< scratch
 
-  /// By colour: the fastest order on one thread, where the solve does not depend on order.
-  void ByColour(std::span<const Contact> contacts, std::span<const BodyInfo> infos) { Colour(contacts, infos); }
-  /// The same from only the contacts' bodies (NarrowPhase::ContactPairs): the same order.
-  void ByColour(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos) { Colour(contacts, infos); }
+  /// By colour, from the contacts' bodies (NarrowPhase::ContactPairs): the fastest order on one
+  /// thread, where the solve does not depend on order.
+  void ByColour(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos) {
+    ColourContacts(contacts, infos, &body_marks, &slot, &group_ends);
+    parallel_groups = std::min<std::uint32_t>(static_cast<std::uint32_t>(group_ends.size()), kSharedColour);
+    strips = 0;
+  }
   /// Contact order within strips (StripContacts), upright when gravity gives an up.
   void InStrips(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                 std::span<const BodyState> states, Vec2 gravity, WorkerPool* pool = nullptr) {
@@ -110,14 +112,6 @@ struct ContactOrder {
   /// How many strips InStrips cuts: fixed, so the order (and the bits) never depend on the
   /// threads; enough for 8 threads, few enough that most contacts lie inside one.
   static constexpr int kStrips = 8;
-
- private:
-  template <typename Pair>
-  void Colour(std::span<const Pair> contacts, std::span<const BodyInfo> infos) {
-    ColourContacts<Pair>(contacts, infos, &body_marks, &slot, &group_ends);
-    parallel_groups = std::min<std::uint32_t>(static_cast<std::uint32_t>(group_ends.size()), kSharedColour);
-    strips = 0;
-  }
 };
 
 }  // namespace engine::detail

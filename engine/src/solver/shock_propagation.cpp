@@ -53,7 +53,6 @@ void BuildShockLevels(std::span<const C> constraints, std::span<const BodyInfo> 
   s->levels = tail == 0 ? 0 : level[queue[tail - 1]] + 1;  // the queue holds the bodies by level
 }
 
-template void BuildShockLevels(std::span<const Contact>, std::span<const BodyInfo>, ShockScratch*);
 template void BuildShockLevels(std::span<const BodyPair>, std::span<const BodyInfo>, ShockScratch*);
 template void BuildShockLevels(std::span<const SubstepConstraint>, std::span<const BodyInfo>, ShockScratch*);
 template void BuildShockLevels(std::span<const LinearConstraint>, std::span<const BodyInfo>, ShockScratch*);

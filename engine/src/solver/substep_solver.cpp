@@ -2,6 +2,7 @@
 #include "solver/substep_solver.h"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -42,20 +43,13 @@ void SubstepSolver::Step(StepContext& context) {
   constraints_prepared_ = false;
   // Turning worlds take 4 passes already (their circles alone, circle_velocity_iterations).
   pile_passes_ = context.def.velocity_iterations;
-  // Who touches whom alone: the contacts' bodies, where the narrow phase wrote them (several
-  // threads), read in an eighteenth of the memory, little of it from another core.
-  const bool pairs_alone = context.contact_pairs.size() == context.contacts.size();
+  // Who touches whom is read from the contacts' bodies alone (NarrowPhase::ContactPairs): an
+  // eighteenth of the memory, little of it from another core.
+  assert(context.contact_pairs.size() == context.contacts.size());
   if (context.can_turn) {
     if (context.contacts.size() >= kMinStripContacts) {
-      const bool by_colour = context.def.substep_features.colour_order &&
-                             (pairs_alone ? AllRound(context.contact_pairs, context.infos)
-                                          : AllRound(context.contacts, context.infos));
-      if (by_colour) {
-        if (pairs_alone) {
-          order_.ByColour(context.contact_pairs, context.infos);
-        } else {
-          order_.ByColour(context.contacts, context.infos);
-        }
+      if (context.def.substep_features.colour_order && AllRound(context.contact_pairs, context.infos)) {
+        order_.ByColour(context.contact_pairs, context.infos);
         if (context.joints == nullptr) pile_passes_ = context.def.circle_velocity_iterations;
       } else {
         order_.InStrips(context.contacts, context.infos, context.states, context.def.gravity, &context.pool);
@@ -65,16 +59,11 @@ void SubstepSolver::Step(StepContext& context) {
     }
     Step(context, &substep_constraints_);
   } else {
-    // Colouring and the shock levels need only who touches whom: the contacts' bodies alone,
-    // where there are (most contacts a thread reads here another core wrote last, and the
-    // levels read the full contacts at twice the cost of the same read again).
     const auto order = [&] {
-      if (!context.def.substep_features.colour_order) {
-        order_.AsFound(context.contacts.size());
-      } else if (pairs_alone) {
+      if (context.def.substep_features.colour_order) {
         order_.ByColour(context.contact_pairs, context.infos);
       } else {
-        order_.ByColour(context.contacts, context.infos);
+        order_.AsFound(context.contacts.size());
       }
     };
     // Shock propagation's levels need only who touches whom: found beside the colouring.
@@ -84,13 +73,7 @@ void SubstepSolver::Step(StepContext& context) {
       // The constraints, in the colours' order, are filled by whichever thread is free once the
       // colouring is done (PrepareLinearConstraints), and the pile measured run by run as they
       // are: on its own, on either thread, it kept the other waiting.
-      const auto levels = [&] {
-        if (pairs_alone) {
-          BuildShockLevels<BodyPair>(context.contact_pairs, context.infos, &shock_scratch_);
-        } else {
-          BuildShockLevels<Contact>(context.contacts, context.infos, &shock_scratch_);
-        }
-      };
+      const auto levels = [&] { BuildShockLevels<BodyPair>(context.contact_pairs, context.infos, &shock_scratch_); };
       const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
       linear_constraints_.resize(contacts);
       const bool measure_pile = MeasuresPile(context.def, pile_passes_);
@@ -115,24 +98,11 @@ void SubstepSolver::Step(StepContext& context) {
   }
 }
 
-namespace {
-
-template <typename Pair>
-bool EveryMovingBodyRound(std::span<const Pair> contacts, std::span<const BodyInfo> infos) {
+bool SubstepSolver::AllRound(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos) {
   const auto round = [&](BodyIndex body) {
     return HasInfiniteMass(infos[body]) || infos[body].shape.type == ShapeType::kCircle;
   };
-  return std::all_of(contacts.begin(), contacts.end(), [&](const Pair& c) { return round(c.a) && round(c.b); });
-}
-
-}  // namespace
-
-bool SubstepSolver::AllRound(std::span<const Contact> contacts, std::span<const BodyInfo> infos) {
-  return EveryMovingBodyRound(contacts, infos);
-}
-
-bool SubstepSolver::AllRound(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos) {
-  return EveryMovingBodyRound(contacts, infos);
+  return std::ranges::all_of(contacts, [&](const BodyPair& c) { return round(c.a) && round(c.b); });
 }
 
 bool SubstepSolver::ShockPropagates(const WorldDef& def) {

@@ -70,9 +70,8 @@ class SubstepSolver {
   static void FillAutomaticSettings(WorldDef* def);
 
   void Step(StepContext& context);
-  /// Whether every moving body in a contact is a circle: its contacts push through its centre.
-  static bool AllRound(std::span<const Contact> contacts, std::span<const BodyInfo> infos);
-  /// The same from only the contacts' bodies (NarrowPhase::ContactPairs).
+  /// Whether every moving body in a contact (its bodies, NarrowPhase::ContactPairs) is a circle:
+  /// its contacts push through its centre.
   static bool AllRound(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos);
   /// What carries over from step to step (the contacts the direct solve took last step), for
   /// snapshots (snapshot/world_snapshot.cpp).
