@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "parallel/spin_barrier.h"
 #include "parallel/worker_pool.h"
@@ -21,6 +22,37 @@ inline constexpr std::uint64_t kUnitWork = 2;
 /// two threads than on one when it was shared (bench_threads).
 inline constexpr std::uint32_t kMinSharedConstraints = 4096;
 
+/// The stretches a pass over `order`'s groups (not strips) goes through, in order: each group
+/// that is shared among the threads (below order.parallel_groups, so it shares no moving body,
+/// and of at least kMinSharedGroup constraints), and each run of the other groups between them,
+/// which goes whole to the first thread. Calls stretch(begin, end, shared, last) on each.
+template <typename Stretch>
+void ForEachStretch(const ContactOrder& order, std::uint32_t per_unit, Stretch&& stretch) {
+  const std::size_t groups = order.group_ends.size();
+  const auto shared = [&](std::size_t g, std::uint32_t begin) {
+    return g < order.parallel_groups && std::uint64_t{order.group_ends[g] - begin} * per_unit >= kMinSharedGroup;
+  };
+  std::uint32_t begin = 0;
+  std::size_t g = 0;
+  while (g < groups) {
+    const bool is_shared = shared(g, begin);
+    std::uint32_t end = order.group_ends[g++];
+    if (!is_shared) {
+      while (g < groups && !shared(g, end)) end = order.group_ends[g++];
+    }
+    stretch(begin, end, is_shared, g == groups);
+    begin = end;
+  }
+}
+
+/// Thread `thread`'s part of [begin, end) cut into `threads` parts of as many units each.
+inline std::pair<std::uint32_t, std::uint32_t> EvenPart(std::uint32_t begin, std::uint32_t end, int thread,
+                                                        int threads) {
+  const std::uint64_t size = end - begin;
+  return {static_cast<std::uint32_t>(begin + size * thread / threads),
+          static_cast<std::uint32_t>(begin + size * (thread + 1) / threads)};
+}
+
 /// Calls part(begin, end) on the ranges of units that ForEachGroup (without `extra_work`) gives
 /// each thread, on that thread, with no wait between groups: for work on the units that has no
 /// order, done by the thread that will next read what it writes (a unit's data then stays in
@@ -33,25 +65,15 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
     part(std::uint32_t{0}, total);
     return;
   }
-  const std::size_t groups = order.group_ends.size();
-  const auto shared = [&](std::size_t g, std::uint32_t begin) {
-    return g < order.parallel_groups && std::uint64_t{order.group_ends[g] - begin} * per_unit >= kMinSharedGroup;
-  };
   pool.RunOnAll([&](int thread) {
-    std::uint32_t begin = 0;
-    std::size_t g = 0;
-    while (g < groups) {
-      std::uint32_t end = order.group_ends[g++];
-      if (shared(g - 1, begin)) {
-        const std::uint64_t size = end - begin;
-        part(static_cast<std::uint32_t>(begin + size * thread / threads),
-             static_cast<std::uint32_t>(begin + size * (thread + 1) / threads));
-      } else {
-        while (g < groups && !shared(g, end)) end = order.group_ends[g++];
-        if (thread == 0) part(begin, end);
+    ForEachStretch(order, per_unit, [&](std::uint32_t begin, std::uint32_t end, bool shared, bool /*last*/) {
+      if (shared) {
+        const auto [first, past] = EvenPart(begin, end, thread, threads);
+        part(first, past);
+      } else if (thread == 0) {
+        part(begin, end);
       }
-      begin = end;
-    }
+    });
   });
 }
 
@@ -88,45 +110,30 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std:
     });
     return;
   }
-  const std::size_t groups = order.group_ends.size();
-  const auto shared = [&](std::size_t g, std::uint32_t begin) {
-    return g < order.parallel_groups && std::uint64_t{order.group_ends[g] - begin} * per_unit >= kMinSharedGroup;
-  };
   SpinBarrier barrier(threads);
   pool.RunOnAll([&](int thread) {
-    std::uint32_t begin = 0;
-    std::size_t g = 0;
-    while (g < groups) {
-      if (shared(g, begin)) {
-        const std::uint32_t end = order.group_ends[g++];
-        const std::uint64_t size = end - begin;
-        if (extra_work.empty()) {
-          pass(static_cast<std::uint32_t>(begin + size * thread / threads),
-               static_cast<std::uint32_t>(begin + size * (thread + 1) / threads));
-        } else {
-          const auto work = [&](std::uint32_t unit) { return kUnitWork + extra_work[unit]; };
-          std::uint64_t group_work = 0;
-          for (std::uint32_t unit = begin; unit < end; ++unit) group_work += work(unit);
-          // The first unit at which the work before it reaches part k of the group's.
-          const auto cut = [&](int k) {
-            const std::uint64_t target =
-                group_work * static_cast<std::uint64_t>(k) / static_cast<std::uint64_t>(threads);
-            std::uint64_t before = 0;
-            std::uint32_t unit = begin;
-            for (; unit < end && before < target; ++unit) before += work(unit);
-            return unit;
-          };
-          pass(cut(thread), thread + 1 == threads ? end : cut(thread + 1));
-        }
-        begin = end;
-      } else {
-        std::uint32_t end = order.group_ends[g++];
-        while (g < groups && !shared(g, end)) end = order.group_ends[g++];
+    ForEachStretch(order, per_unit, [&](std::uint32_t begin, std::uint32_t end, bool shared, bool last) {
+      if (!shared) {
         if (thread == 0) pass(begin, end);
-        begin = end;
+      } else if (extra_work.empty()) {
+        const auto [first, past] = EvenPart(begin, end, thread, threads);
+        pass(first, past);
+      } else {
+        const auto work = [&](std::uint32_t unit) { return kUnitWork + extra_work[unit]; };
+        std::uint64_t group_work = 0;
+        for (std::uint32_t unit = begin; unit < end; ++unit) group_work += work(unit);
+        // The first unit at which the work before it reaches part k of the group's.
+        const auto cut = [&](int k) {
+          const std::uint64_t target = group_work * static_cast<std::uint64_t>(k) / static_cast<std::uint64_t>(threads);
+          std::uint64_t before = 0;
+          std::uint32_t unit = begin;
+          for (; unit < end && before < target; ++unit) before += work(unit);
+          return unit;
+        };
+        pass(cut(thread), thread + 1 == threads ? end : cut(thread + 1));
       }
-      if (g < groups) barrier.Wait();  // the pool's own hand-back ends the last group
-    }
+      if (!last) barrier.Wait();  // the pool's own hand-back ends the last stretch
+    });
   });
 }
 
