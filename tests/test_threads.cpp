@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <bit>
+#include <memory>
 #include <cmath>
 #include <string>
 #include <set>
@@ -12,6 +13,8 @@
 #include "bench/stress_scenes.h"
 #include "contact_bodies.h"
 #include "engine/world.h"
+#include "narrow_phase/narrow_phase.h"
+#include "parallel/worker_pool.h"
 #include "solver/contact_order.h"
 #include "solver/substep_solver.h"
 #include "world_builders.h"
@@ -64,6 +67,51 @@ std::uint64_t PartsPileHash(int threads) {
 }
 
 }  // namespace
+
+TEST_CASE("the narrow phase writes each contact's bodies beside it, on one thread and shared out",
+          "[parallel][narrow]") {
+  // Rows of circles of radius 0.5 whose centres lie 0.9 apart along a row (they overlap) and 2 apart
+  // across (they do not touch): every pair of row neighbours touches, no pair across rows does.
+  constexpr int kColumns = 100, kRows = 60;
+  std::vector<engine::BodyState> states(kColumns * kRows);
+  std::vector<engine::BodyInfo> infos(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].position = {0.9 * static_cast<double>(i % kColumns), 2.0 * static_cast<double>(i / kColumns)};
+    infos[i].shape.type = engine::ShapeType::kCircle;
+    infos[i].shape.radius = 0.5;
+  }
+  const auto index = [](int row, int column) { return static_cast<engine::BodyIndex>(row * kColumns + column); };
+  std::vector<engine::BodyPair> pairs, touching;
+  for (int row = 0; row < kRows; ++row) {
+    for (int column = 0; column < kColumns; ++column) {
+      if (column + 1 < kColumns) {
+        pairs.push_back({index(row, column), index(row, column + 1)});
+        touching.push_back(pairs.back());
+      }
+      if (row + 1 < kRows) pairs.push_back({index(row, column), index(row + 1, column)});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::sort(touching.begin(), touching.end());
+  REQUIRE(pairs.size() > 4096);  // past the narrow phase's least to share out
+  const std::vector<std::shared_ptr<const engine::detail::BodyGeometry>> geometries(states.size());
+  const std::vector<double> margins(states.size(), 0.0);
+  for (const int threads : {1, 2, 3}) {
+    INFO(threads << " threads");
+    engine::detail::WorkerPool pool(threads);
+    engine::detail::NarrowPhase narrow_phase;
+    narrow_phase.Update(pairs, states, infos, geometries, margins, false, pool);
+    const std::vector<engine::Contact>& contacts = narrow_phase.Contacts();
+    const std::span<const engine::BodyPair> bodies = narrow_phase.ContactPairs();
+    REQUIRE(contacts.size() == touching.size());
+    REQUIRE(bodies.size() == contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      REQUIRE(contacts[i].a == touching[i].a);
+      REQUIRE(contacts[i].b == touching[i].b);
+      REQUIRE(bodies[i] == touching[i]);
+    }
+  }
+}
 
 TEST_CASE("a pour steps to the same bits on one, two and three threads", "[parallel][solver]") {
   for (const bool rotation : {false, true}) {
