@@ -79,8 +79,8 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
 
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
 /// every group is done before the next starts. In strip order, each strip goes whole to one
-/// thread, side by side, then each even edge, then each odd one, and the rest to the first. Otherwise a group of at least kMinSharedGroup that shares
-/// no moving body (below order.parallel_groups) is cut into one range per thread; runs of the
+/// thread, side by side, then each even edge, then each odd one, and the rest to the first.
+/// Otherwise each shared stretch (ForEachStretch) is cut into one range per thread, and the
 /// others go whole to the first thread. Since no two constraints in a shared group touch the same
 /// moving body, the arithmetic on each body is that of the constraints in storage order, the
 /// same bits with any number of threads.
