@@ -277,13 +277,6 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     if (context.fault) return;
     push_carried = carry_push;
   }
-  if (plan.wide) {
-    if constexpr (kCanTurn<C>) {
-      wide_turning_.UnpackImpulses(constraints, &context.pool);
-    } else {
-      wide_.UnpackImpulses(constraints, &context.pool);
-    }
-  }
   if (context.joints) {
     context.joints->End();
     // A bounce's lag moves the pair after the substeps, where no joint would pull it back: a
@@ -296,7 +289,14 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   DropClosingLags<C>(context, constraints, start);
   ApplyImpactLags<C>(constraints, order_.slot, impact_lags_, context.states);
-  StoreImpulses<C>(constraints, order_.slot, context.contacts, &context.pool);
+  // The impulses to the contacts, for next step's warm start: from the lanes where they are.
+  if (!plan.wide) {
+    StoreImpulses<C>(constraints, order_.slot, context.contacts, &context.pool);
+  } else if constexpr (kCanTurn<C>) {
+    wide_turning_.StoreImpulses(order_.slot, context.contacts, &context.pool);
+  } else {
+    wide_.StoreImpulses(order_.slot, context.contacts, &context.pool);
+  }
 }
 
 template <typename C>

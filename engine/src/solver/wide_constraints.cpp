@@ -197,13 +197,16 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   assert(next == blocks.size());
 }
 
-void WideTurningConstraints::UnpackImpulses(std::span<SubstepConstraint> constraints, WorkerPool* pool) const {
-  ForEachIndex(pool, constraints.size(), kMinSharedContacts, [&](std::uint32_t j) {
-    const TurningBlock& block = blocks[lane_of[j] / kBlockLanes];
-    const std::uint32_t lane = lane_of[j] % kBlockLanes;
-    for (int k = 0; k < constraints[j].point_count; ++k) {
-      constraints[j].points[k].normal_impulse = block.points[k].normal_impulse[lane];
-      constraints[j].points[k].tangent_impulse = block.points[k].tangent_impulse[lane];
+void WideTurningConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
+                                           WorkerPool* pool) const {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
+    const TurningBlock& block = blocks[lane_of[slot[i]] / kBlockLanes];
+    const std::uint32_t lane = lane_of[slot[i]] % kBlockLanes;
+    const bool two_points = block.two_points[lane] != 0.0;
+    for (int k = 0; k < 2; ++k) {
+      const bool held = k == 0 || two_points;
+      contacts[i].normal_impulse[k] = held ? block.points[k].normal_impulse[lane] : 0.0;
+      contacts[i].tangent_impulse[k] = held ? block.points[k].tangent_impulse[lane] : 0.0;
     }
   });
 }
@@ -238,14 +241,17 @@ void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, 
   });
 }
 
-void WideConstraints::UnpackImpulses(std::span<LinearConstraint> constraints, WorkerPool* pool) const {
-  const auto unpack = [&](std::uint32_t j) {
-    const LinearBlock& block = blocks[lane_of[j] / kBlockLanes];
-    const std::uint32_t lane = lane_of[j] % kBlockLanes;
-    constraints[j].normal_impulse = block.normal_impulse[lane];
-    constraints[j].tangent_impulse = block.tangent_impulse[lane];
-  };
-  ForEachIndex(pool, constraints.size(), kMinSharedContacts, unpack);
+void WideConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
+                                    WorkerPool* pool) const {
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
+    const LinearBlock& block = blocks[lane_of[slot[i]] / kBlockLanes];
+    const std::uint32_t lane = lane_of[slot[i]] % kBlockLanes;
+    Contact& c = contacts[i];
+    c.normal_impulse[0] = block.normal_impulse[lane];
+    c.tangent_impulse[0] = block.tangent_impulse[lane];
+    c.normal_impulse[1] = 0.0;
+    c.tangent_impulse[1] = 0.0;
+  });
 }
 
 void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,
