@@ -62,7 +62,7 @@ test-install: deps
 # A second build tree with the sanitizers in every object (benchmarks left out: not tests).
 # -O1 with line tables alone: built in half the time of -O2 -g (5 min 11 s against 10 min 26 s on
 # two cores), the suite as fast under the sanitizers (298 s against 302), reports still give lines.
-# Without -DNDEBUG: the engine's asserts (its preconditions) are checked here, the one build that does.
+# Without -DNDEBUG: the engine's asserts (its preconditions) are checked here, the one CI build that does.
 SANITIZE_OPTIMIZE := -O1 -g1
 test-sanitize: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALLBOX_BUILD_BENCH=OFF \

@@ -2,8 +2,8 @@
 #include "solver/substep_solver.h"
 
 #include <algorithm>
-#include <cassert>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <limits>
 

@@ -64,7 +64,7 @@ struct WideConstraints {
   /// Writes each contact's impulses from the lane that solved its constraint (contact i's is
   /// constraint slot[i] of the colour order), as StoreImpulses does from the constraints: read
   /// straight from the blocks, without copying them back to the constraints first (that copy and
-  /// its read cost 200 kcyc a step of the 4 000-circle pour against 100, on one thread).
+  /// its read cost 200 kcyc a step of the 4 000-circle pour on one thread, this 124).
   /// `pool`: threads to share the contacts among.
   void StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
                      WorkerPool* pool = nullptr) const;
