@@ -230,14 +230,16 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   WideTurningConstraints wide;
   wide.Pack(out.turning, order);
   const std::size_t blocks = wide.blocks.size();
-  passes.turning_warm_start(wide.blocks.data(), blocks, out.states.data());
+  REQUIRE(wide.second_points.size() == blocks);
+  passes.turning_warm_start(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data());
   for (int pass = 0; pass < 2; ++pass) {
-    passes.turning_solve(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(),
-                         scene.turned.data(), inv_h, true);
+    passes.turning_solve(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(),
+                         scene.start_positions.data(), scene.turned.data(), inv_h, true);
   }
   move();
-  passes.turning_push_out(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(),
-                          scene.turned.data(), out.push.data(), out.push_angular.data(), rate, max_speed, slop);
+  passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(),
+                          scene.start_positions.data(), scene.turned.data(), out.push.data(),
+                          out.push_angular.data(), rate, max_speed, slop);
   wide.StoreImpulses(order.slot, out.contacts);
   return out;
 }
@@ -290,7 +292,6 @@ TEST_CASE("wide solver: each width's passes give the bits of the one-at-a-time p
 
 TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks, hold each constraint in its lane") {
   using engine::detail::kBlockLanes;
-  const double slop = 0.005;
   for (const unsigned seed : {1u, 2u, 3u}) {
     const Scene scene = MakeScene(seed);
     engine::detail::ContactOrder order;
@@ -308,7 +309,7 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
     engine::detail::PrepareSubstepConstraints<LinearConstraint>(more, big_order.slot, big.infos, big.states,
                                                                 &big_constraints);
     engine::detail::WideConstraints parts;
-    parts.Pack(big_constraints, big_order, slop);
+    parts.Pack(big_constraints, big_order);
     REQUIRE(parts.blocks.size() > constraints.size() / kBlockLanes);
 
     parts.Layout(order);
@@ -316,18 +317,20 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
     std::vector<std::uint32_t> starts;  // runs of 5 blocks, filled last first
     for (std::uint32_t b = 0; b < blocks; b += 5) starts.push_back(b);
     std::reverse(starts.begin(), starts.end());
-    for (const std::uint32_t b : starts) parts.PackBlocks(constraints, order, slop, b, std::min(blocks, b + 5));
+    for (const std::uint32_t b : starts) parts.PackBlocks(constraints, order, b, std::min(blocks, b + 5));
 
     engine::detail::WideConstraints whole;
-    whole.Pack(constraints, order, slop);
+    whole.Pack(constraints, order);
     INFO("seed " << seed);
     REQUIRE(SameBits(parts.blocks, whole.blocks));
     REQUIRE(parts.lane_of == whole.lane_of);
-    REQUIRE(parts.overlapping_lanes == whole.overlapping_lanes);
+    REQUIRE(parts.lead_body == whole.lead_body);
+    REQUIRE(parts.lead_fixed == whole.lead_fixed);
     REQUIRE(parts.order.group_ends == whole.order.group_ends);
 
     // Each constraint in its lane, the parallel colours four to a block in order, the rest one
-    // to a block; every other lane zero on body 0; the overlapping lanes counted.
+    // to a block; every other lane zero on body 0; each block's lead the body its first lane's
+    // constraint moves (b where a is fixed).
     std::vector<int> filled(blocks * kBlockLanes, 0);
     std::uint32_t begin = 0;
     for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
@@ -350,18 +353,20 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
         REQUIRE(block.normal_impulse[lane] == c.normal_impulse);
         REQUIRE(block.tangent_impulse[lane] == c.tangent_impulse);
         REQUIRE(block.friction[lane] == c.friction);
+        if (lane == 0) {
+          const bool fixed = c.inv_mass_a == 0.0;
+          REQUIRE(parts.lead_body[expected / kBlockLanes] == (fixed ? c.b : c.a));
+          REQUIRE(parts.lead_fixed[expected / kBlockLanes] == (fixed ? c.a : engine::kNoBody));
+        }
         filled[expected] = 1;
       }
       begin = order.group_ends[g];
     }
     for (std::uint32_t k = 0; k < blocks; ++k) {
       const engine::detail::LinearBlock& block = parts.blocks[k];
-      int overlapping = 0;
+      REQUIRE(filled[k * kBlockLanes] == 1);  // lane 0 is never padding
       for (std::uint32_t lane = 0; lane < kBlockLanes; ++lane) {
-        if (filled[k * kBlockLanes + lane]) {
-          overlapping += block.base_separation[lane] < -slop ? 1 : 0;
-          continue;
-        }
+        if (filled[k * kBlockLanes + lane]) continue;
         for (const double x : {block.normal_x[lane], block.normal_y[lane], block.inv_mass_a[lane],
                                block.inv_mass_b[lane], block.normal_mass[lane], block.base_separation[lane],
                                block.normal_impulse[lane], block.tangent_impulse[lane], block.friction[lane]}) {
@@ -371,10 +376,11 @@ TEST_CASE("wide solver: blocks packed in parts, in any order, over stale blocks,
         REQUIRE(block.a[lane] == 0);
         REQUIRE(block.b[lane] == 0);
       }
-      REQUIRE(parts.overlapping_lanes[k] == overlapping);
     }
-    CHECK(std::count(parts.overlapping_lanes.begin(), parts.overlapping_lanes.end(), 0) <
-          static_cast<long>(blocks));  // some overlap past the slop
+    // The scene has contacts with a fixed body (leads by b) and between moving ones.
+    CHECK(std::count(parts.lead_fixed.begin(), parts.lead_fixed.end(), engine::kNoBody) > 0);
+    CHECK(std::count(parts.lead_fixed.begin(), parts.lead_fixed.end(), engine::kNoBody) <
+          static_cast<long>(blocks));
   }
 }
 

@@ -2,12 +2,14 @@
 // pool's threads. Internal to the engine.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <span>
 #include <utility>
 
 #include "parallel/spin_barrier.h"
 #include "parallel/worker_pool.h"
+#include "solver/body_cut.h"
 #include "solver/contact_order.h"
 
 namespace engine::detail {
@@ -15,8 +17,6 @@ namespace engine::detail {
 /// Groups smaller than this go to one thread: the threads' meeting between groups (about a
 /// microsecond) would cost more than sharing saves.
 inline constexpr std::uint32_t kMinSharedGroup = 256;
-/// What a unit costs a pass besides its extra work (ForEachGroup's `extra_work`).
-inline constexpr std::uint64_t kUnitWork = 2;
 /// Fewer constraints than this are all solved on one thread: handing each pass out and back
 /// costs microseconds, and a pour of 1 000 circles (2 000 contacts) ran 1.26 times slower on
 /// two threads than on one when it was shared (bench_threads).
@@ -53,10 +53,9 @@ inline std::pair<std::uint32_t, std::uint32_t> EvenPart(std::uint32_t begin, std
           static_cast<std::uint32_t>(begin + size * (thread + 1) / threads)};
 }
 
-/// Calls part(begin, end) on the ranges of units that ForEachGroup (without `extra_work`) gives
-/// each thread, on that thread, with no wait between groups: for work on the units that has no
-/// order, done by the thread that will next read what it writes (a unit's data then stays in
-/// that core's cache).
+/// Calls part(begin, end) on the ranges of units that ForEachGroup gives each thread, on that
+/// thread, with no wait between groups: for work on the units that has no order, done by the
+/// thread that will next read what it writes (a unit's data then stays in that core's cache).
 template <typename Part>
 void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& part, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
@@ -85,11 +84,8 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
 /// moving body, the arithmetic on each body is that of the constraints in storage order, the
 /// same bits with any number of threads.
 /// `per_unit`: how many constraints one unit of `order` holds (the wide solver's blocks hold 4).
-/// `extra_work`: empty, or per unit how much more than kUnitWork it costs the pass; a shared
-/// group is then cut where the threads' parts cost the same, rather than hold as many units.
 template <typename Pass>
-void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1,
-                  std::span<const std::uint8_t> extra_work = {}) {
+void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
   if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
@@ -115,25 +111,42 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std:
     ForEachStretch(order, per_unit, [&](std::uint32_t begin, std::uint32_t end, bool shared, bool last) {
       if (!shared) {
         if (thread == 0) pass(begin, end);
-      } else if (extra_work.empty()) {
+      } else {
         const auto [first, past] = EvenPart(begin, end, thread, threads);
         pass(first, past);
-      } else {
-        const auto work = [&](std::uint32_t unit) { return kUnitWork + extra_work[unit]; };
-        std::uint64_t group_work = 0;
-        for (std::uint32_t unit = begin; unit < end; ++unit) group_work += work(unit);
-        // The first unit at which the work before it reaches part k of the group's.
-        const auto cut = [&](int k) {
-          const std::uint64_t target = group_work * static_cast<std::uint64_t>(k) / static_cast<std::uint64_t>(threads);
-          std::uint64_t before = 0;
-          std::uint32_t unit = begin;
-          for (; unit < end && before < target; ++unit) before += work(unit);
-          return unit;
-        };
-        pass(cut(thread), thread + 1 == threads ? end : cut(thread + 1));
       }
       if (!last) barrier.Wait();  // the pool's own hand-back ends the last stretch
     });
+  });
+}
+
+/// As ForEachGroup in a colour order, each group shared as `cut` gives (BodyCut: by the
+/// bodies its units move; its groups and threads must be `order`'s and `pool`'s): every group is
+/// done before the next starts, and a run of groups that go whole to the first thread goes as one.
+template <typename Pass>
+void ForEachGroupByBodies(WorkerPool& pool, const ContactOrder& order, const BodyCut& cut, Pass&& pass,
+                          std::uint32_t per_unit = 1) {
+  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
+  const int threads = pool.Threads();
+  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
+    pass(std::uint32_t{0}, total);
+    return;
+  }
+  assert(order.strips == 0 && cut.Threads() == threads && cut.Groups() == order.group_ends.size());
+  SpinBarrier barrier(threads);
+  pool.RunOnAll([&](int thread) {
+    const std::size_t groups = cut.Groups();
+    for (std::size_t g = 0; g < groups;) {
+      if (cut.Whole(g)) {
+        const std::uint32_t begin = g == 0 ? 0 : order.group_ends[g - 1];
+        while (g < groups && cut.Whole(g)) ++g;
+        if (thread == 0) pass(begin, order.group_ends[g - 1]);
+      } else {
+        for (const BodyCut::Range& range : cut.Part(g, thread)) pass(range.begin, range.end);
+        ++g;
+      }
+      if (g < groups) barrier.Wait();  // the pool's own hand-back ends the last group
+    }
   });
 }
 

@@ -188,7 +188,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
   }
   const auto pack_blocks = [&](std::uint32_t begin, std::uint32_t end) {
-    if constexpr (!kCanTurn<C>) wide_.PackBlocks(constraints, order_, def.linear_slop, begin, end);
+    if constexpr (!kCanTurn<C>) wide_.PackBlocks(constraints, order_, begin, end);
   };
   if (plan.shock_propagation) {  // stacks are supported against gravity: its direction is up
     if (!shock_levels_built_) BuildShockLevels<C>(constraints, context.infos, &shock_scratch_);
@@ -251,6 +251,13 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     resolve_impacts();
     pack_turning_blocks();
     if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
+  }
+  if (plan.wide && context.pool.Threads() > 1) {  // the passes' shares: by the bodies they move
+    if constexpr (kCanTurn<C>) {
+      if (wide_turning_.order.strips == 0) wide_turning_.CutByBodies(n, context.pool.Threads());
+    } else {
+      wide_.CutByBodies(n, context.pool.Threads());
+    }
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
@@ -331,7 +338,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   }
   if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
     if constexpr (kCanTurn<C>) {
-      MarkPushedWide(wide_turning_.blocks, states.size(), &pushed_);
+      MarkPushedWide(wide_turning_, states.size(), &pushed_);
     } else {
       MarkPushedWide(wide_.blocks, states.size(), &pushed_);
     }
@@ -354,13 +361,17 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
 }
 
 // The passes over all contacts go group by group, each large group shared among the threads:
-// `pass` takes a part of the constraints, or of their blocks in the wide solver.
+// `pass` takes a part of the constraints, or of their blocks in the wide solver (the first block
+// and how many).
 template <typename C, typename Pass>
-void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass, std::span<const std::uint8_t> extra_work) {
+void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass) {
   const auto runs = [&](auto& wide) {
-    ForEachGroup(pool, wide.order, [&](std::uint32_t begin, std::uint32_t end) {
-      pass(wide.blocks.data() + begin, std::size_t{end - begin});
-    }, kBlockLanes, extra_work);
+    const auto part = [&](std::uint32_t begin, std::uint32_t end) { pass(begin, std::size_t{end - begin}); };
+    if (pool.Threads() > 1 && wide.order.strips == 0) {
+      ForEachGroupByBodies(pool, wide.order, wide.body_cut, part, kBlockLanes);
+    } else {
+      ForEachGroup(pool, wide.order, part, kBlockLanes);
+    }
   };
   if constexpr (kCanTurn<C>) {
     runs(wide_turning_);
@@ -374,11 +385,12 @@ void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints
                                   const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
-        plan.wide->turning_warm_start(blocks, count, states.data());
+        plan.wide->turning_warm_start(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
+                                      count, states.data());
       } else {
-        plan.wide->warm_start(blocks, count, states.data());
+        plan.wide->warm_start(wide_.blocks.data() + first, count, states.data());
       }
     });
   } else if (loaded_.empty()) {
@@ -396,12 +408,13 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
                               const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
-        plan.wide->turning_solve(blocks, count, states.data(), start.positions.data(), start.turned.data(),
-                                 plan.inv_h, plan.block_solver);
+        plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
+                                 states.data(), start.positions.data(), start.turned.data(), plan.inv_h,
+                                 plan.block_solver);
       } else {
-        plan.wide->solve(blocks, count, states.data(), start.positions.data(), plan.inv_h);
+        plan.wide->solve(wide_.blocks.data() + first, count, states.data(), start.positions.data(), plan.inv_h);
       }
     });
     return;
@@ -417,16 +430,17 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachBlockRun<C>(context.pool, [&](auto* blocks, std::size_t count) {
+    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
-        plan.wide->turning_push_out(blocks, count, states.data(), start.positions.data(), start.turned.data(),
+        plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
+                                    count, states.data(), start.positions.data(), start.turned.data(),
                                     push.linear.data(), push.angular.data(), plan.push_out_rate,
                                     def.max_push_out_speed, def.linear_slop);
       } else {
-        plan.wide->push_out(blocks, count, states.data(), start.positions.data(), push.linear.data(),
-                            plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+        plan.wide->push_out(wide_.blocks.data() + first, count, states.data(), start.positions.data(),
+                            push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       }
-    }, kCanTurn<C> ? std::span<const std::uint8_t>() : wide_.overlapping_lanes);  // shared out by its work
+    });
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

@@ -114,10 +114,10 @@ class SubstepSolver {
   template <typename C>
   void PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                    const StepStart& start, PushVelocities push);
-  /// Calls pass(blocks, count) on runs of the wide solver's blocks for C, group by group
-  /// (`extra_work` as ForEachGroup's).
+  /// Calls pass(first, count) on runs of the wide solver's blocks for C, group by group: on
+  /// several threads, a colour order's groups cut by the bodies they move (BodyCut).
   template <typename C, typename Pass>
-  void ForEachBlockRun(WorkerPool& pool, Pass&& pass, std::span<const std::uint8_t> extra_work = {});
+  void ForEachBlockRun(WorkerPool& pool, Pass&& pass);
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;

@@ -25,7 +25,16 @@ void PutLane(const LinearConstraint& c, LinearBlock* block, int lane) {
   block->friction[lane] = c.friction;
 }
 
-void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
+// The body constraint c moves that BodyCut cuts by, and its a where a is held fixed (else kNoBody).
+template <typename Constraint>
+void SetLead(const Constraint& c, BodyIndex* body, BodyIndex* fixed) {
+  const bool a_fixed = c.inv_mass_a == 0.0;
+  *body = a_fixed ? c.b : c.a;
+  *fixed = a_fixed ? c.a : kNoBody;
+}
+
+// Lane `lane` of a turning block and of its second points (zero for a one-point contact).
+void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningPointLanes* second, int lane) {
   block->a[lane] = static_cast<std::int32_t>(c.a);
   block->b[lane] = static_cast<std::int32_t>(c.b);
   block->two_points[lane] = c.point_count == 2 ? 1.0 : 0.0;
@@ -39,7 +48,7 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
   const SubstepPoint none{};  // a one-point contact's second point: zero
   for (int k = 0; k < 2; ++k) {
     const SubstepPoint& p = k < c.point_count ? c.points[k] : none;
-    TurningPointLanes& lanes = block->points[k];
+    TurningPointLanes& lanes = k == 0 ? block->first : *second;
     lanes.base_separation[lane] = p.base_separation;
     lanes.normal_mass[lane] = p.normal_mass;
     lanes.tangent_mass[lane] = p.tangent_mass;
@@ -76,10 +85,10 @@ std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, Runs
       const auto lane = static_cast<std::size_t>(l);
       if (lane < runs.size() && runs[lane].first + k < runs[lane].second) {
         const std::uint32_t j = runs[lane].first + k;
-        PutLane(constraints[j], &wide->blocks[block], l);
+        PutLane(constraints[j], &wide->blocks[block], &wide->second_points[block], l);
         wide->lane_of[j] = static_cast<std::uint32_t>(block * kBlockLanes + lane);
       } else {
-        PutLane(padding, &wide->blocks[block], l);
+        PutLane(padding, &wide->blocks[block], &wide->second_points[block], l);
       }
     }
   }
@@ -108,13 +117,12 @@ void LayoutColours(const ContactOrder& colours, ContactOrder* order, std::vector
   lane_of->resize(colours.group_ends.empty() ? 0 : colours.group_ends.back());
 }
 
-// Fills blocks [begin, end) of a colour layout (LayoutColours): block k of group g holds the
-// group's constraints from its (k − the group's first block) × lanes on, padding past the group's
-// end. Calls placed(j, block) for each constraint placed.
-template <typename Block, typename Constraint, typename Placed>
+// Fills blocks [begin, end) of a colour layout (LayoutColours), lane by lane through
+// put(constraint, block, lane): block k of group g holds the group's constraints from its
+// (k − the group's first block) × lanes on, padding past the group's end.
+template <typename Constraint, typename Put>
 void PackColours(std::span<const Constraint> constraints, const ContactOrder& colours, const ContactOrder& order,
-                 std::uint32_t begin, std::uint32_t end, std::vector<Block>* blocks,
-                 std::vector<std::uint32_t>* lane_of, Placed&& placed) {
+                 std::uint32_t begin, std::uint32_t end, Put&& put, std::vector<std::uint32_t>* lane_of) {
   for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
     const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
     const std::uint32_t group_end = order.group_ends[g];
@@ -124,16 +132,14 @@ void PackColours(std::span<const Constraint> constraints, const ContactOrder& co
     const std::uint32_t last = colours.group_ends[g];
     const std::uint32_t lanes = g < colours.parallel_groups ? kBlockLanes : 1;
     for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
-      Block& block = (*blocks)[k];
       const std::uint32_t j0 = first + (k - group_begin) * lanes;
       const std::uint32_t filled = std::min(lanes, last - j0);
       for (std::uint32_t lane = 0; lane < filled; ++lane) {
-        PutLane(constraints[j0 + lane], &block, static_cast<int>(lane));
+        put(constraints[j0 + lane], k, static_cast<int>(lane));
         (*lane_of)[j0 + lane] = k * kBlockLanes + lane;
-        placed(j0 + lane, k);
       }
       for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
-        PutLane(Constraint{}, &block, static_cast<int>(lane));  // padding: zero, on body 0
+        put(Constraint{}, k, static_cast<int>(lane));  // padding: zero, on body 0
       }
     }
   }
@@ -154,10 +160,16 @@ bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints
 void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints,
                                   const ContactOrder& contact_order) {
   assert(Fits(constraints, contact_order));
+  const auto put = [&](const SubstepConstraint& c, std::uint32_t block, int lane) {
+    PutLane(c, &blocks[block], &second_points[block], lane);
+    if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
+  };
   if (contact_order.strips == 0) {  // a colour order
     LayoutColours(contact_order, &order, &blocks, &lane_of);
-    PackColours(constraints, contact_order, order, 0, static_cast<std::uint32_t>(blocks.size()), &blocks, &lane_of,
-                [](std::uint32_t, std::uint32_t) {});
+    second_points.resize(blocks.size());
+    lead_body.resize(blocks.size());
+    lead_fixed.resize(blocks.size());
+    PackColours(constraints, contact_order, order, 0, static_cast<std::uint32_t>(blocks.size()), put, &lane_of);
     return;
   }
   const StripGroups groups(static_cast<int>(contact_order.strips));
@@ -178,6 +190,7 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   const auto [far_begin, far_end] = range(groups.far);
   blocks.resize(std::size_t{LongestRun(even)} + LongestRun(odd) + LongestRun(even_edges) + LongestRun(odd_edges) +
                 (far_end - far_begin));
+  second_points.resize(blocks.size());
   lane_of.resize(constraints.size());
   order.group_ends.clear();
   order.parallel_groups = 0;
@@ -200,26 +213,26 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
 void WideTurningConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
                                            WorkerPool* pool) const {
   ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
-    const TurningBlock& block = blocks[lane_of[slot[i]] / kBlockLanes];
-    const std::uint32_t lane = lane_of[slot[i]] % kBlockLanes;
-    const bool two_points = block.two_points[lane] != 0.0;
+    const std::uint32_t b = lane_of[slot[i]] / kBlockLanes, lane = lane_of[slot[i]] % kBlockLanes;
+    const bool two_points = blocks[b].two_points[lane] != 0.0;
     for (int k = 0; k < 2; ++k) {
       const bool held = k == 0 || two_points;
-      contacts[i].normal_impulse[k] = held ? block.points[k].normal_impulse[lane] : 0.0;
-      contacts[i].tangent_impulse[k] = held ? block.points[k].tangent_impulse[lane] : 0.0;
+      const TurningPointLanes& point = k == 0 ? blocks[b].first : second_points[b];
+      contacts[i].normal_impulse[k] = held ? point.normal_impulse[lane] : 0.0;
+      contacts[i].tangent_impulse[k] = held ? point.tangent_impulse[lane] : 0.0;
     }
   });
 }
 
-void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
-                           double linear_slop) {
+void WideConstraints::Pack(std::span<const LinearConstraint> constraints, const ContactOrder& colours) {
   Layout(colours);
-  PackBlocks(constraints, colours, linear_slop, 0, static_cast<std::uint32_t>(blocks.size()));
+  PackBlocks(constraints, colours, 0, static_cast<std::uint32_t>(blocks.size()));
 }
 
 void WideConstraints::Layout(const ContactOrder& colours) {
   LayoutColours(colours, &order, &blocks, &lane_of);
-  overlapping_lanes.resize(blocks.size());
+  lead_body.resize(blocks.size());
+  lead_fixed.resize(blocks.size());
 }
 
 std::uint32_t WideConstraints::FirstConstraint(std::uint32_t block, const ContactOrder& colours) const {
@@ -234,11 +247,12 @@ std::uint32_t WideConstraints::FirstConstraint(std::uint32_t block, const Contac
 }
 
 void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, const ContactOrder& colours,
-                                 double linear_slop, std::uint32_t begin, std::uint32_t end) {
-  for (std::uint32_t k = begin; k < end; ++k) overlapping_lanes[k] = 0;
-  PackColours(constraints, colours, order, begin, end, &blocks, &lane_of, [&](std::uint32_t j, std::uint32_t k) {
-    overlapping_lanes[k] += constraints[j].base_separation < -linear_slop ? 1 : 0;
-  });
+                                 std::uint32_t begin, std::uint32_t end) {
+  const auto put = [&](const LinearConstraint& c, std::uint32_t block, int lane) {
+    PutLane(c, &blocks[block], lane);
+    if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
+  };
+  PackColours(constraints, colours, order, begin, end, put, &lane_of);
 }
 
 void WideConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
@@ -254,12 +268,12 @@ void WideConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::sp
   });
 }
 
-void MarkPushedWide(std::span<const TurningBlock> blocks, std::size_t body_count,
-                    std::vector<std::uint8_t>* pushed) {
+void MarkPushedWide(const WideTurningConstraints& wide, std::size_t body_count, std::vector<std::uint8_t>* pushed) {
   pushed->assign(body_count, 0);
-  for (const TurningBlock& block : blocks) {
+  for (std::size_t k = 0; k < wide.blocks.size(); ++k) {
+    const TurningBlock& block = wide.blocks[k];
     for (int lane = 0; lane < kBlockLanes; ++lane) {
-      if (block.points[0].normal_impulse[lane] > 0.0 || block.points[1].normal_impulse[lane] > 0.0) {
+      if (block.first.normal_impulse[lane] > 0.0 || wide.second_points[k].normal_impulse[lane] > 0.0) {
         (*pushed)[block.a[lane]] = (*pushed)[block.b[lane]] = 1;
       }
     }

@@ -2,7 +2,9 @@
 // follows its one-at-a-time counterpart in substep_passes.cpp (WarmStartAll, SolveContacts with
 // SolveTurning and SolveTwoPoints, PushOut for an angular SubstepConstraint) operation by
 // operation: keep them in step. A lane's second point is worked on in every lane and kept only
-// where the contact has two (Select), so a one-point contact's bodies see exactly one point.
+// where the contact has two (Select), so a one-point contact's bodies see exactly one point. A
+// block whose lanes all have one point (circles) skips its second points whole, never reading
+// them (they are stored apart, WideTurningConstraints::second_points).
 
 constexpr std::size_t kOmegaOffset = 5;  // BodyState::angular_velocity after position, velocity, angle
 static_assert(sizeof(Rot) == 2 * sizeof(double));
@@ -105,7 +107,7 @@ struct PlaceLanes {
   return p.base_separation + (x * c.nx + y * c.ny);
 }
 
-void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* states) {
+void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states) {
   constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
@@ -116,7 +118,7 @@ void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* 
       Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
       const int points = Bits(c.two) != 0 ? 2 : 1;  // circles have one: their second is skipped whole
       for (int point = 0; point < points; ++point) {
-        const PointLanes p = LoadPoint(k.points[point], o);
+        const PointLanes p = LoadPoint(point == 0 ? k.first : seconds[i], o);
         const Lanes slide = p.tangent_impulse * RelativeAlong(p, a, b, tx, ty);
         const Lanes ti = Select((slide > Lanes(0.0)) & (Abs(p.tangent_impulse) >= edge_scale * p.normal_impulse),
                                 Lanes(0.0), p.tangent_impulse);
@@ -124,10 +126,10 @@ void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* 
         Motion a2 = a, b2 = b;
         ApplyAt(c, p, ix, iy, &a2, &b2);
         if (point == 0) {
-          ti.Store(k.points[0].tangent_impulse + o);
+          ti.Store(k.first.tangent_impulse + o);
           a = a2, b = b2;
         } else {
-          Select(c.two, ti, p.tangent_impulse).Store(k.points[1].tangent_impulse + o);
+          Select(c.two, ti, p.tangent_impulse).Store(seconds[i].tangent_impulse + o);
           a = Select(c.two, a2, a), b = Select(c.two, b2, b);
         }
       }
@@ -158,92 +160,106 @@ void TurningWarmStartBlocks(TurningBlock* blocks, std::size_t count, BodyState* 
   return conditioned & (both | first | second | neither);
 }
 
-void TurningSolveBlocks(TurningBlock* blocks, std::size_t count, BodyState* states, const Vec2* start,
-                        const Rot* turned, double inv_h_scalar, bool block_solve) {
+// One block's lanes [o, o + Lanes::kCount) of TurningSolveBlocks, `kTwo` whether any has a second
+// point (`second`): a template, so that the lanes of circles are compiled without it.
+template <bool kTwo>
+[[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningPointLanes& second, int o,
+                                                     BodyState* states, const Vec2* start, const Rot* turned,
+                                                     Lanes inv_h, bool block_solve) {
+  const PairLanes c = LoadPair(k, o);
+  const Lanes tx = -c.ny, ty = c.nx;
+  const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+  // Without a second point, p1 stands in for it where the arithmetic needs a value and is
+  // never kept.
+  const PointLanes p0 = LoadPoint(k.first, o), p1 = kTwo ? LoadPoint(second, o) : p0;
+  const Lanes min_vn0 = -Max0(SeparationAt(q, p0, c)) * inv_h;
+  const Lanes min_vn1 = kTwo ? -Max0(SeparationAt(q, p1, c)) * inv_h : Lanes(0.0);
+  const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
+
+  // Both normals together, where two points allow (the block solver).
+  Mask blocked = MaskOf(0);  // none yet
+  Motion ab = a0, bb = b0;
+  Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
+  if (kTwo && block_solve) {
+    const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
+    // NormalMass.
+    const Lanes r1a = p0.rax * c.ny - p0.ray * c.nx, r1b = p0.rbx * c.ny - p0.rby * c.nx;
+    const Lanes r2a = p1.rax * c.ny - p1.ray * c.nx, r2b = p1.rbx * c.ny - p1.rby * c.nx;
+    const Lanes m = c.ima + c.imb;
+    const Lanes k11 = (m + c.iia * r1a * r1a) + c.iib * r1b * r1b;
+    const Lanes k12 = (m + c.iia * r1a * r2a) + c.iib * r1b * r2b;
+    const Lanes k22 = (m + c.iia * r2a * r2a) + c.iib * r2b * r2b;
+    blocked = c.two & SolveTwoPointsLanes(k11, k12, k22, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
+                                          min_vn1, &xb0, &xb1);
+    const Lanes d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
+    ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
+    ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &ab, &bb);
+  }
+  // One point after the other, elsewhere (padding lanes, with no moving body, need neither).
+  Motion as = a0, bs = b0;
+  Lanes xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
+  if (((c.moving_a | c.moving_b) & ~Bits(blocked)) != 0) {
+    const Lanes v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
+    xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
+    const Lanes d0 = xs0 - p0.normal_impulse;
+    ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &as, &bs);
+    if constexpr (kTwo) {
+      Motion a1 = as, b1 = bs;
+      const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
+      const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
+      const Lanes d1 = new1 - p1.normal_impulse;
+      ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
+      xs1 = Select(c.two, new1, p1.normal_impulse);
+      as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
+    }
+  }
+  Motion a = Select(blocked, ab, as), b = Select(blocked, bb, bs);
+  const Lanes n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
+  n0.Store(k.first.normal_impulse + o);
+  if constexpr (kTwo) n1.Store(second.normal_impulse + o);
+
+  // Coulomb friction at each point, within the cone of its normal impulse.
+  const Lanes friction = Lanes::Load(k.friction + o);
+  for (int point = 0; point < (kTwo ? 2 : 1); ++point) {
+    const PointLanes& p = point == 0 ? p0 : p1;
+    const Lanes vt = RelativeAlong(p, a, b, tx, ty);
+    const Lanes max_friction = friction * (point == 0 ? n0 : n1);
+    const Lanes free = p.tangent_impulse - p.tangent_mass * vt;
+    const Lanes new_tangent =
+        Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
+    const Lanes d = new_tangent - p.tangent_impulse;
+    Motion a2 = a, b2 = b;
+    ApplyAt(c, p, d * tx, d * ty, &a2, &b2);
+    if (point == 0) {
+      new_tangent.Store(k.first.tangent_impulse + o);
+      a = a2, b = b2;
+    } else {
+      Select(c.two, new_tangent, p.tangent_impulse).Store(second.tangent_impulse + o);
+      a = Select(c.two, a2, a), b = Select(c.two, b2, b);
+    }
+  }
+  ScatterMotion(states, k.a + o, a, c.moving_a);
+  ScatterMotion(states, k.b + o, b, c.moving_b);
+}
+
+void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+                        const Vec2* start, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
-      const PairLanes c = LoadPair(k, o);
-      const Lanes tx = -c.ny, ty = c.nx;
-      const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
-      const bool any_two = Bits(c.two) != 0;  // circles have one point: their second is skipped whole
-      const PointLanes p0 = LoadPoint(k.points[0], o), p1 = LoadPoint(k.points[1], o);
-      const Lanes min_vn0 = -Max0(SeparationAt(q, p0, c)) * inv_h;
-      const Lanes min_vn1 = any_two ? -Max0(SeparationAt(q, p1, c)) * inv_h : Lanes(0.0);
-      const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
-
-      // Both normals together, where two points allow (the block solver).
-      Mask blocked = MaskOf(0);  // none yet
-      Motion ab = a0, bb = b0;
-      Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
-      if (block_solve && any_two) {
-        const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
-        // NormalMass.
-        const Lanes r1a = p0.rax * c.ny - p0.ray * c.nx, r1b = p0.rbx * c.ny - p0.rby * c.nx;
-        const Lanes r2a = p1.rax * c.ny - p1.ray * c.nx, r2b = p1.rbx * c.ny - p1.rby * c.nx;
-        const Lanes m = c.ima + c.imb;
-        const Lanes k11 = (m + c.iia * r1a * r1a) + c.iib * r1b * r1b;
-        const Lanes k12 = (m + c.iia * r1a * r2a) + c.iib * r1b * r2b;
-        const Lanes k22 = (m + c.iia * r2a * r2a) + c.iib * r2b * r2b;
-        blocked = c.two & SolveTwoPointsLanes(k11, k12, k22, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
-                                              min_vn1, &xb0, &xb1);
-        const Lanes d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
-        ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
-        ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &ab, &bb);
+      if (Bits(Lanes::Load(k.two_points + o) != Lanes(0.0)) != 0) {
+        SolveTurningLanes<true>(k, seconds[i], o, states, start, turned, inv_h, block_solve);
+      } else {  // circles have one point: their second is skipped whole
+        SolveTurningLanes<false>(k, seconds[i], o, states, start, turned, inv_h, block_solve);
       }
-      // One point after the other, elsewhere (padding lanes, with no moving body, need neither).
-      Motion as = a0, bs = b0;
-      Lanes xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
-      if (((c.moving_a | c.moving_b) & ~Bits(blocked)) != 0) {
-        const Lanes v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
-        xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
-        const Lanes d0 = xs0 - p0.normal_impulse;
-        ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &as, &bs);
-        if (any_two) {
-          Motion a1 = as, b1 = bs;
-          const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
-          const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
-          const Lanes d1 = new1 - p1.normal_impulse;
-          ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
-          xs1 = Select(c.two, new1, p1.normal_impulse);
-          as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
-        }
-      }
-      Motion a = Select(blocked, ab, as), b = Select(blocked, bb, bs);
-      const Lanes n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
-      n0.Store(k.points[0].normal_impulse + o);
-      if (any_two) n1.Store(k.points[1].normal_impulse + o);
-
-      // Coulomb friction at each point, within the cone of its normal impulse.
-      const Lanes friction = Lanes::Load(k.friction + o);
-      for (int point = 0; point < (any_two ? 2 : 1); ++point) {
-        const PointLanes& p = point == 0 ? p0 : p1;
-        const Lanes vt = RelativeAlong(p, a, b, tx, ty);
-        const Lanes max_friction = friction * (point == 0 ? n0 : n1);
-        const Lanes free = p.tangent_impulse - p.tangent_mass * vt;
-        const Lanes new_tangent =
-            Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
-        const Lanes d = new_tangent - p.tangent_impulse;
-        Motion a2 = a, b2 = b;
-        ApplyAt(c, p, d * tx, d * ty, &a2, &b2);
-        if (point == 0) {
-          new_tangent.Store(k.points[0].tangent_impulse + o);
-          a = a2, b = b2;
-        } else {
-          Select(c.two, new_tangent, p.tangent_impulse).Store(k.points[1].tangent_impulse + o);
-          a = Select(c.two, a2, a), b = Select(c.two, b2, b);
-        }
-      }
-      ScatterMotion(states, k.a + o, a, c.moving_a);
-      ScatterMotion(states, k.b + o, b, c.moving_b);
     }
   }
 }
 
-void TurningPushOutBlocks(TurningBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
-                          const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
-                          double max_push_out_speed, double linear_slop) {
+void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const BodyState* states,
+                          const Vec2* start, const Rot* turned, Vec2* push, double* push_angular,
+                          double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_linear = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
@@ -261,7 +277,7 @@ void TurningPushOutBlocks(TurningBlock* blocks, std::size_t count, const BodySta
       unsigned written_a = 0, written_b = 0;
       const int points = Bits(c.two) != 0 ? 2 : 1;
       for (int point = 0; point < points; ++point) {
-        const PointLanes p = LoadPoint(k.points[point], o);
+        const PointLanes p = LoadPoint(point == 0 ? k.first : seconds[i], o);
         const Lanes s = SeparationAt(q, p, c);
         // Overlap within the slop is left alone.
         unsigned active = ~Bits(s >= -slop) & all;
