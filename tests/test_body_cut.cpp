@@ -178,3 +178,29 @@ TEST_CASE("ForEachGroupByBodies runs each unit once on the thread the cut gives 
     }
   }
 }
+
+TEST_CASE("ShareOf names the thread whose part of the bodies ForEachIndex runs them on", "[parallel][solver]") {
+  for (const int threads : {1, 2, 3, 5}) {
+    engine::detail::WorkerPool pool(threads);
+    for (const std::size_t bodies : {std::size_t{1}, std::size_t{7}, std::size_t{10}, std::size_t{4003}}) {
+      CAPTURE(threads, bodies);
+      std::vector<std::thread::id> ran_on(bodies);
+      engine::detail::ForEachIndex(&pool, bodies, 0, [&](std::uint32_t i) { ran_on[i] = std::this_thread::get_id(); });
+      std::map<int, std::thread::id> thread_of_share;
+      for (std::size_t body = 0; body < bodies; ++body) {
+        const int share = engine::detail::ShareOf(static_cast<BodyIndex>(body), bodies, threads);
+        REQUIRE(share >= 0);
+        REQUIRE(share < threads);
+        // Shares in body order, each [ShareBegin(t), ShareBegin(t + 1)).
+        CHECK(engine::detail::ShareBegin(bodies, threads, share) <= body);
+        CHECK(body < engine::detail::ShareBegin(bodies, threads, share + 1));
+        if (thread_of_share.count(share) == 0) thread_of_share[share] = ran_on[body];
+        CHECK(thread_of_share[share] == ran_on[body]);
+      }
+      for (const auto& [t, id] : thread_of_share) {
+        for (const auto& [u, other] : thread_of_share) CHECK((t == u) == (id == other));
+      }
+      if (thread_of_share.count(0)) CHECK(thread_of_share[0] == std::this_thread::get_id());
+    }
+  }
+}

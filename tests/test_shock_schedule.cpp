@@ -1,10 +1,12 @@
 // ShockSchedule: shock propagation shared among threads gives the bits of the one-thread pass,
-// on a pile whose rows cross the bands' borders.
+// on a pile whose rows cross the bands' borders, its bodies numbered up the pile or across it;
+// each row goes to the band whose share of the bodies holds the body it moves.
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <vector>
 
 #include "parallel/worker_pool.h"
+#include "solver/body_cut.h"
 #include "solver/shock_propagation.h"
 #include "solver/shock_schedule.h"
 #include "solver/substep_constraint.h"
@@ -13,7 +15,8 @@ namespace {
 
 // A pile of `columns` × `rows` unit bodies on a static floor (body 0), each standing on the one
 // below and leaning on the one below-right (a diagonal contact, so rows cross from column to
-// column and from band to band), all sinking at speeds that differ body to body.
+// column and from band to band), all sinking at speeds that differ body to body. Numbered row
+// by row (up the pile, as a pour is built) or, `by_columns`, column by column (across it).
 struct Pile {
   std::vector<engine::BodyInfo> infos;
   std::vector<engine::BodyState> states;
@@ -21,7 +24,7 @@ struct Pile {
   std::vector<engine::LinearConstraint> constraints;
 };
 
-Pile MakePile(int columns, int rows) {
+Pile MakePile(int columns, int rows, bool by_columns = false) {
   Pile pile;
   engine::BodyInfo floor;
   floor.is_static = true;
@@ -30,16 +33,17 @@ Pile MakePile(int columns, int rows) {
   engine::BodyInfo body;
   body.mass = 1.0;
   body.inv_mass = 1.0;
-  const auto id = [&](int c, int r) { return static_cast<engine::BodyIndex>(1 + r * columns + c); };
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < columns; ++c) {
-      pile.infos.push_back(body);
-      engine::BodyState s;
-      s.position = {1.0 * c, 0.5 + 1.0 * r};
-      // Sinking, faster in some columns than others, with a little sideways motion.
-      s.velocity = {0.01 * ((c * 7 + r * 3) % 5 - 2), -0.1 - 0.05 * ((c * 13 + r * 11) % 7)};
-      pile.states.push_back(s);
-    }
+  const auto id = [&](int c, int r) {
+    return static_cast<engine::BodyIndex>(1 + (by_columns ? c * rows + r : r * columns + c));
+  };
+  for (int k = 0; k < rows * columns; ++k) {  // in id order
+    const int r = by_columns ? k % rows : k / columns, c = by_columns ? k / rows : k % columns;
+    pile.infos.push_back(body);
+    engine::BodyState s;
+    s.position = {1.0 * c, 0.5 + 1.0 * r};
+    // Sinking, faster in some columns than others, with a little sideways motion.
+    s.velocity = {0.01 * ((c * 7 + r * 3) % 5 - 2), -0.1 - 0.05 * ((c * 13 + r * 11) % 7)};
+    pile.states.push_back(s);
   }
   for (const engine::BodyState& s : pile.states) pile.start_positions.push_back(s.position);
   const auto contact = [&](engine::BodyIndex a, engine::BodyIndex b, engine::Vec2 normal) {
@@ -62,23 +66,29 @@ Pile MakePile(int columns, int rows) {
   return pile;
 }
 
-// `planned_at`: where the schedule was planned before (the pile moved by it), as in a scene
-// that moves between steps; its bins then start from that span.
+// `planned_before`: the schedule is planned once for other rows first (its scratch kept).
 std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::size_t* waits,
-                                         const engine::Vec2* planned_at = nullptr) {
+                                         const Pile* planned_before = nullptr) {
   std::vector<engine::detail::ShockRow> rows;
   engine::detail::ShockScratch scratch;
   engine::detail::BuildShockRows<engine::LinearConstraint>(pile.constraints, pile.infos, {0.0, 1.0}, &scratch,
                                                            &rows);
   engine::detail::WorkerPool pool(threads);
   engine::detail::ShockSchedule schedule;
-  if (planned_at) {
-    std::vector<engine::Vec2> moved = pile.start_positions;
-    for (engine::Vec2& p : moved) p += *planned_at;
-    schedule.Plan(rows, moved, pile.states.size(), threads);
+  if (planned_before) {
+    std::vector<engine::detail::ShockRow> other;
+    engine::detail::ShockScratch other_scratch;
+    engine::detail::BuildShockRows<engine::LinearConstraint>(planned_before->constraints, planned_before->infos,
+                                                             {0.0, 1.0}, &other_scratch, &other);
+    schedule.Plan(other, planned_before->states.size(), threads);
   }
-  schedule.Plan(rows, pile.start_positions, pile.states.size(), threads);
+  schedule.Plan(rows, pile.states.size(), threads);
   *waits = schedule.WaitCount();
+  // Each row in the band whose share of the bodies holds the body it moves (the upper one).
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const engine::BodyIndex moved = rows[r].inv_mass_b != 0.0 ? rows[r].b : rows[r].a;
+    REQUIRE(schedule.BandOf(r) == static_cast<std::uint32_t>(engine::detail::ShareOf(moved, pile.states.size(), threads)));
+  }
   std::vector<engine::BodyState> states = pile.states;
   for (int substep = 0; substep < 4; ++substep) {
     schedule.Run(pool, rows, states, pile.start_positions, 240.0, 0.005);
@@ -93,35 +103,36 @@ bool SameBits(const std::vector<engine::BodyState>& x, const std::vector<engine:
 }  // namespace
 
 TEST_CASE("shock propagation shared among threads gives the one-thread bits", "[parallel][solver]") {
-  const Pile pile = MakePile(60, 40);  // 4 680 rows: past kMinSharedShockRows
-  std::size_t waits = 0;
-  const std::vector<engine::BodyState> one = Propagate(pile, 1, &waits);
-  CHECK(waits == 0);
-  // The pass did something: every column sank and was held up.
-  CHECK(!SameBits(one, pile.states));
-  for (const int threads : {2, 3, 4}) {
-    CAPTURE(threads);
-    const std::vector<engine::BodyState> shared = Propagate(pile, threads, &waits);
-    // The diagonal rows cross every border at every level: the bands had to wait for each other.
-    CHECK(waits >= static_cast<std::size_t>(threads - 1));
-    CHECK(SameBits(shared, one));
-  }
-}
-
-TEST_CASE("shock bands planned again where the pile moved far, or a little, are shared the same",
-          "[parallel][solver]") {
-  // The bands' bins start from the span the last call's rows had: rows far outside it are binned
-  // again over their own, so the bands still share the pile out and wait at its borders.
-  const Pile pile = MakePile(60, 40);
-  std::size_t waits = 0;
-  const std::vector<engine::BodyState> one = Propagate(pile, 1, &waits);
-  for (const engine::Vec2 moved : {engine::Vec2{1000.0, 0.0}, engine::Vec2{-1000.0, 5.0}, engine::Vec2{0.3, 0.0}}) {
-    for (const int threads : {2, 3}) {
-      CAPTURE(threads, moved.x);
-      const std::vector<engine::BodyState> shared = Propagate(pile, threads, &waits, &moved);
+  for (const bool by_columns : {false, true}) {
+    CAPTURE(by_columns);
+    const Pile pile = MakePile(60, 40, by_columns);  // 4 680 rows: past kMinSharedShockRows
+    std::size_t waits = 0;
+    const std::vector<engine::BodyState> one = Propagate(pile, 1, &waits);
+    CHECK(waits == 0);
+    // The pass did something: every column sank and was held up.
+    CHECK(!SameBits(one, pile.states));
+    for (const int threads : {2, 3, 4}) {
+      CAPTURE(threads);
+      const std::vector<engine::BodyState> shared = Propagate(pile, threads, &waits);
+      // Rows cross every border between shares: the bands had to wait for each other.
       CHECK(waits >= static_cast<std::size_t>(threads - 1));
       CHECK(SameBits(shared, one));
     }
+  }
+}
+
+TEST_CASE("shock bands planned again for other rows are planned afresh", "[parallel][solver]") {
+  // The plan's scratch is kept between steps: a plan for a smaller pile first leaves nothing
+  // behind that the next one reads.
+  const Pile pile = MakePile(60, 40);
+  const Pile smaller = MakePile(50, 45, true);
+  std::size_t waits = 0;
+  const std::vector<engine::BodyState> one = Propagate(pile, 1, &waits);
+  for (const int threads : {2, 3}) {
+    CAPTURE(threads);
+    const std::vector<engine::BodyState> shared = Propagate(pile, threads, &waits, &smaller);
+    CHECK(waits >= static_cast<std::size_t>(threads - 1));
+    CHECK(SameBits(shared, one));
   }
 }
 

@@ -15,10 +15,6 @@ void BodyCut::Cut(const ContactOrder& order, std::span<const BodyIndex> lead_bod
   first_.assign(groups * thread_count + 1, 0);
   whole_.assign(groups, 0);
   scratch_.resize(thread_count);
-  // Where thread t's share of the bodies begins, as ForEachIndex cuts them.
-  const auto share_begin = [&](std::size_t t) {
-    return static_cast<BodyIndex>(std::uint64_t{body_count} * t / thread_count);
-  };
   std::uint32_t begin = 0;
   for (std::size_t g = 0; g < groups; ++g) {
     const std::uint32_t end = order.group_ends[g];
@@ -36,7 +32,8 @@ void BodyCut::Cut(const ContactOrder& order, std::span<const BodyIndex> lead_bod
           std::uint32_t to = run_end;
           if (t + 1 < thread_count) {
             to = from;
-            while (to < run_end && lead_body[to] < share_begin(t + 1)) ++to;
+            const BodyIndex next_share = ShareBegin(body_count, threads, static_cast<int>(t + 1));
+            while (to < run_end && lead_body[to] < next_share) ++to;
           }
           if (to > from) scratch_[t].push_back({from, to});
           from = to;

@@ -3,6 +3,7 @@
 // give it. Internal to the engine.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -11,6 +12,22 @@
 #include "solver/contact_order.h"
 
 namespace engine::detail {
+
+/// Where thread t's share of `body_count` bodies among `threads` begins: as ForEachIndex cuts
+/// the passes over the bodies (and a pool's ParallelFor), [n·t/T, n·(t+1)/T).
+inline BodyIndex ShareBegin(std::size_t body_count, int threads, int t) {
+  return static_cast<BodyIndex>(std::uint64_t{body_count} * static_cast<std::uint64_t>(t) /
+                                static_cast<std::uint64_t>(threads));
+}
+
+/// The thread whose share of the bodies (ShareBegin) holds `body`.
+inline int ShareOf(BodyIndex body, std::size_t body_count, int threads) {
+  int t = static_cast<int>(std::uint64_t{body} * static_cast<std::uint64_t>(threads) / std::max<std::size_t>(body_count, 1));
+  t = std::min(t, threads - 1);
+  while (t + 1 < threads && body >= ShareBegin(body_count, threads, t + 1)) ++t;
+  while (t > 0 && body < ShareBegin(body_count, threads, t)) --t;
+  return t;
+}
 
 /// Groups of fewer units than this go whole to the first thread: a meeting of the threads
 /// (about a microsecond) costs more than the few bodies such a group would send across.

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "parallel/spin_wait.h"
+#include "solver/body_cut.h"
 
 namespace engine::detail {
 
@@ -17,8 +18,7 @@ BodyIndex MovedBody(const ShockRow& row) { return row.inv_mass_b != 0.0 ? row.b 
 
 }  // namespace
 
-void ShockSchedule::Plan(std::span<const ShockRow> rows, std::span<const Vec2> start_positions,
-                         std::size_t body_count, int threads) {
+void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count, int threads) {
   bands_ = rows.size() < kMinSharedShockRows ? 1 : std::min(threads, kMaxShockBands);
   if (bands_ == 1) return;
   const auto bands = static_cast<std::size_t>(bands_);
@@ -26,55 +26,19 @@ void ShockSchedule::Plan(std::span<const ShockRow> rows, std::span<const Vec2> s
     progress_ = std::make_unique<Progress[]>(bands);
     progress_count_ = bands;
   }
-  AssignBands(rows, start_positions);
+  AssignBands(rows, body_count);
   FindWaits(rows, body_count);
 }
 
-// Bands of about equal numbers of rows, side by side, so that a pile's rows meet across a
-// border only near it: the cuts from a histogram of the moved bodies' x (a pass, where sorting
-// for exact quantiles cost as much as a propagation pass). The bins span the x the last call's
-// rows spanned (those outside go to the end bins), so that one pass both bins the rows and
-// finds the span; the bands only share out the work, and any cut gives the same bits. Where a
-// quarter of the rows or more fell outside that span (the first call, a scene moved), they
-// are binned again over their own span.
-void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::span<const Vec2> start_positions) {
+// Each row to the band whose share of the bodies holds the body it moves; each band's rows in
+// row order.
+void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body_count) {
   const std::size_t n = rows.size();
   const auto bands = static_cast<std::size_t>(bands_);
-  constexpr std::size_t kBins = 256;
-  bin_.resize(n);
-  std::uint32_t in_bin[kBins];
-  const auto bin_rows = [&](double lo, double hi) {
-    const double scale = hi > lo ? static_cast<double>(kBins) / (hi - lo) : 0.0;
-    std::fill(std::begin(in_bin), std::end(in_bin), 0u);
-    double least = std::numeric_limits<double>::infinity(), most = -least;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = start_positions[MovedBody(rows[i])].x;
-      least = std::min(least, x);
-      most = std::max(most, x);
-      const double at = (x - lo) * scale;  // finite: a non-finite state stops the steps
-      const auto bin = static_cast<std::uint8_t>(at <= 0.0 ? 0.0 : std::min(at, static_cast<double>(kBins - 1)));
-      bin_[i] = bin;
-      ++in_bin[bin];
-    }
-    bin_span_[0] = least;
-    bin_span_[1] = most;
-  };
-  const double lo = bin_span_[0], hi = bin_span_[1];
-  bin_rows(lo, hi);
-  const bool outside = 4 * (in_bin[0] + in_bin[kBins - 1]) >= n && (bin_span_[0] < lo || bin_span_[1] > hi);
-  if (outside) bin_rows(bin_span_[0], bin_span_[1]);
-  std::uint32_t band_of_bin[kBins];
-  std::size_t below = 0, band = 0;
-  for (std::size_t bin = 0; bin < kBins; ++bin) {
-    // A bin goes to the band its first row would fall in, counting rows in x order.
-    while (band + 1 < bands && below >= (band + 1) * n / bands) ++band;
-    band_of_bin[bin] = static_cast<std::uint32_t>(band);
-    below += in_bin[bin];
-  }
   band_of_.resize(n);
   band_start_.assign(bands + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    band_of_[i] = band_of_bin[bin_[i]];
+    band_of_[i] = static_cast<std::uint32_t>(ShareOf(MovedBody(rows[i]), body_count, bands_));
     ++band_start_[band_of_[i] + 1];
   }
   for (std::size_t b = 0; b < bands; ++b) band_start_[b + 1] += band_start_[b];

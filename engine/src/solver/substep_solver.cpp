@@ -218,7 +218,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   // rows, the impacts only write velocities and the lanes only their blocks.
   const auto shock_plan = [&] {
     if (plan.shock_propagation) {
-      shock_schedule_.Plan(shock_rows_, context.start_positions, context.states.size(), context.pool.Threads());
+      shock_schedule_.Plan(shock_rows_, context.states.size(), context.pool.Threads());
     }
   };
   const auto resolve_impacts = [&] {
