@@ -4,13 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <map>
-#include <mutex>
 #include <thread>
 #include <vector>
 
+#include "group_calls.h"
 #include "parallel/worker_pool.h"
 #include "solver/body_cut.h"
 #include "solver/constraint_groups.h"
@@ -115,26 +114,12 @@ TEST_CASE("ForEachGroupByBodies runs each unit once on the thread the cut gives 
     engine::detail::WorkerPool pool(threads);
     BodyCut cut;
     cut.Cut(units.order, units.lead_body, units.lead_fixed, kBodies, threads);
-    struct Call {
-      std::uint32_t begin, end;
-      std::uint64_t started, finished;
-      std::thread::id thread;
-    };
-    std::atomic<std::uint64_t> tick{0};
-    std::mutex mutex;
-    std::vector<Call> calls;
-    engine::detail::ForEachGroupByBodies(
-        pool, units.order, cut,
-        [&](std::uint32_t begin, std::uint32_t end) {
-          const std::uint64_t started = tick++;
-          const std::uint64_t finished = tick++;
-          const std::lock_guard<std::mutex> lock(mutex);
-          calls.push_back({begin, end, started, finished, std::this_thread::get_id()});
-        },
-        4);
+    testing::GroupCalls recorder;
+    engine::detail::ForEachGroupByBodies(pool, units.order, cut, recorder.Pass(), 4);
+    const std::vector<testing::GroupCall>& calls = recorder.Calls();
     const std::uint32_t total = units.order.group_ends.back();
     std::vector<int> visits(total, 0);
-    for (const Call& c : calls) {
+    for (const testing::GroupCall& c : calls) {
       for (std::uint32_t unit = c.begin; unit < c.end; ++unit) ++visits[unit];
     }
     CHECK(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
@@ -149,7 +134,7 @@ TEST_CASE("ForEachGroupByBodies runs each unit once on the thread the cut gives 
     // Each call is one of the cut's ranges (or the whole groups 1 and 3 on the calling thread),
     // and each of the cut's threads is one thread of the pool.
     std::map<int, std::thread::id> thread_of;
-    for (const Call& c : calls) {
+    for (const testing::GroupCall& c : calls) {
       const std::size_t g = group_of(c.begin);
       if (cut.Whole(g)) {
         CHECK(c.thread == std::this_thread::get_id());
@@ -171,8 +156,8 @@ TEST_CASE("ForEachGroupByBodies runs each unit once on the thread the cut gives 
       for (const auto& [u, other] : thread_of) CHECK((t == u) == (id == other));
     }
     // Every call on an earlier group ended before any call on a later one began.
-    for (const Call& early : calls) {
-      for (const Call& late : calls) {
+    for (const testing::GroupCall& early : calls) {
+      for (const testing::GroupCall& late : calls) {
         if (group_of(early.begin) < group_of(late.begin)) CHECK(early.finished < late.started);
       }
     }

@@ -3,22 +3,18 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <thread>
 #include <vector>
 
+#include "group_calls.h"
 #include "parallel/worker_pool.h"
 #include "solver/constraint_groups.h"
 
 namespace {
 
-struct Call {
-  std::uint32_t begin, end;
-  std::uint64_t started, finished;  ///< ticks of one counter shared by every call
-  std::thread::id thread;
-};
+using Call = testing::GroupCall;
 
 // Groups of 1000, 600, 50 and 40 units (blocks of four constraints): the first two are shared,
 // the third too small to share, the last past the colouring (may share a body).
@@ -31,19 +27,9 @@ engine::detail::ContactOrder FourGroups() {
 
 std::vector<Call> RunGroups(int threads) {
   engine::detail::WorkerPool pool(threads);
-  std::atomic<std::uint64_t> tick{0};
-  std::mutex mutex;
-  std::vector<Call> calls;
-  engine::detail::ForEachGroup(
-      pool, FourGroups(),
-      [&](std::uint32_t begin, std::uint32_t end) {
-        const std::uint64_t started = tick++;
-        const std::uint64_t finished = tick++;
-        const std::lock_guard<std::mutex> lock(mutex);
-        calls.push_back({begin, end, started, finished, std::this_thread::get_id()});
-      },
-      4);
-  return calls;
+  testing::GroupCalls calls;
+  engine::detail::ForEachGroup(pool, FourGroups(), calls.Pass(), 4);
+  return calls.Calls();
 }
 
 std::size_t GroupOf(std::uint32_t unit) {
