@@ -87,7 +87,8 @@ std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::siz
   // Each row in the band whose share of the bodies holds the body it moves (the upper one).
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const engine::BodyIndex moved = rows[r].inv_mass_b != 0.0 ? rows[r].b : rows[r].a;
-    REQUIRE(schedule.BandOf(r) == static_cast<std::uint32_t>(engine::detail::ShareOf(moved, pile.states.size(), threads)));
+    const int share = engine::detail::ShareOf(moved, pile.states.size(), threads);
+    REQUIRE(schedule.BandOf(r) == static_cast<std::uint32_t>(share));
   }
   std::vector<engine::BodyState> states = pile.states;
   for (int substep = 0; substep < 4; ++substep) {

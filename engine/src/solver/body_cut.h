@@ -22,7 +22,8 @@ inline BodyIndex ShareBegin(std::size_t body_count, int threads, int t) {
 
 /// The thread whose share of the bodies (ShareBegin) holds `body`.
 inline int ShareOf(BodyIndex body, std::size_t body_count, int threads) {
-  int t = static_cast<int>(std::uint64_t{body} * static_cast<std::uint64_t>(threads) / std::max<std::size_t>(body_count, 1));
+  const std::uint64_t bodies = std::max<std::size_t>(body_count, 1);
+  int t = static_cast<int>(std::uint64_t{body} * static_cast<std::uint64_t>(threads) / bodies);
   t = std::min(t, threads - 1);
   while (t + 1 < threads && body >= ShareBegin(body_count, threads, t + 1)) ++t;
   while (t > 0 && body < ShareBegin(body_count, threads, t)) --t;
