@@ -118,7 +118,7 @@ struct WideTurningConstraints {
   /// Per block, its lanes' second points (zero in a lane with one). Apart from the blocks, so
   /// that the passes over circles, which have one point, never fetch these lines: a third of the
   /// bytes (with them in the blocks, the turning 4 000-circle pour's warm start took 1.27 times as
-  /// long, its push-out 1.33, its solve 1.07).
+  /// long, its push-out 1.33, its solve 1.06).
   std::vector<TurningPointLanes> second_points;
   ContactOrder order;                ///< the four sets' ends, in blocks (strips = 2)
   std::vector<std::uint32_t> lane_of;  ///< as WideConstraints::lane_of
