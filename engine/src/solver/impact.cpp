@@ -1,6 +1,7 @@
 // Impacts with restitution, pair by pair, with the bounce placed at the moment of impact.
 #include "solver/impact.h"
 
+#include "parallel/per_thread.h"
 #include "solver/substep_passes.h"
 
 #include <algorithm>
@@ -98,85 +99,142 @@ bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double
   return BounceAtImpact(s0, vn, a, e, n, h, KickOffset(integrator), out);
 }
 
+// Where a pair is struck and how fast it closes, as the pass sees it now.
+struct Strike {
+  Vec2 anchor_a, anchor_b;
+  double separation = 0.0;
+  double vn = 0.0;
+  Bounce bounce{};
+};
+
+// Whether contact `contact`'s pair (constraint `sc`) bounces now, and if so where and how: it
+// closes faster than the restitution threshold, would come out of the bounce faster than it, and
+// meets within the step.
+template <typename C>
+bool Strikes(const C& sc, const Contact& contact, std::span<const BodyState> states,
+             std::span<const Vec2> accelerations, const WorldDef& def, double h, Strike* out) {
+  const double restitution = contact.restitution;
+  if (restitution == 0.0) return false;
+  const BodyState& a = states[sc.a];
+  const BodyState& b = states[sc.b];
+  // A turning pair is struck at the middle of its manifold, so a box landing flat stays flat.
+  Vec2 anchor_a, anchor_b;
+  double separation = Point(sc, 0).base_separation;
+  if constexpr (kCanTurn<C>) {
+    if (sc.angular) {
+      separation = std::numeric_limits<double>::infinity();
+      double gaps[2] = {0.0, 0.0};
+      for (int k = 0; k < sc.point_count; ++k) {
+        const SubstepPoint& p = sc.points[k];
+        gaps[k] = p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal);
+        separation = std::min(separation, gaps[k]);
+      }
+      // The points struck: all, or those within the slop of the first to touch.
+      int struck = sc.point_count;
+      if (contact.strike_first_touch) {
+        struck = 0;
+        for (int k = 0; k < sc.point_count; ++k) struck += gaps[k] <= separation + def.linear_slop ? 1 : 0;
+      }
+      for (int k = 0; k < sc.point_count; ++k) {
+        if (struck < sc.point_count && gaps[k] > separation + def.linear_slop) continue;
+        anchor_a += sc.points[k].anchor_a / struck;
+        anchor_b += sc.points[k].anchor_b / struck;
+      }
+    }
+  }
+  Vec2 relative = b.velocity - a.velocity;
+  if (Turns(sc)) relative += Cross(b.angular_velocity, anchor_b) - Cross(a.angular_velocity, anchor_a);
+  const double vn = Dot(relative, sc.normal);
+  // Slow impacts, and bounces that would come out slower than the threshold, are left to
+  // the contact solver as inelastic: a resting body must not buzz.
+  if (vn >= -def.restitution_threshold || restitution * -vn < def.restitution_threshold) return false;
+  const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
+  if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, restitution, def.substeps, h,
+                     &out->bounce)) {
+    return false;
+  }
+  out->anchor_a = anchor_a;
+  out->anchor_b = anchor_b;
+  out->separation = separation;
+  out->vn = vn;
+  return true;
+}
+
 }  // namespace
+
+template <typename C>
+bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> slot,
+               std::span<const Contact> contacts, std::span<const BodyState> states,
+               std::span<const Vec2> accelerations, const WorldDef& def, WorkerPool* pool) {
+  const double h = def.dt / def.substeps;
+  const auto any_in = [&](std::uint32_t begin, std::uint32_t end) {
+    Strike strike;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (Strikes(constraints[slot[i]], contacts[i], states, accelerations, def, h, &strike)) return true;
+    }
+    return false;
+  };
+  const auto count = static_cast<std::uint32_t>(contacts.size());
+  if (pool == nullptr || pool->Threads() == 1 || count < kMinSharedContacts) return any_in(0, count);
+  // Each thread its part of the contacts, which are in pair order: mostly the bodies of its own
+  // share, as the passes over the bodies cut them, so their lines stay in its core's cache.
+  const int threads = pool->Threads();
+  std::vector<PerThread<std::uint8_t>> found(static_cast<std::size_t>(threads));
+  pool->RunOnAll([&](int thread) {
+    const auto part = [&](int t) {
+      return static_cast<std::uint32_t>(std::uint64_t{count} * static_cast<std::uint64_t>(t) /
+                                        static_cast<std::uint64_t>(threads));
+    };
+    found[static_cast<std::size_t>(thread)].value = any_in(part(thread), part(thread + 1)) ? 1 : 0;
+  });
+  return std::any_of(found.begin(), found.end(), [](const PerThread<std::uint8_t>& f) { return f.value != 0; });
+}
 
 template <typename C>
 void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slot,
                     std::span<const Contact> contacts, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def, std::vector<double>* lags) {
   const double h = def.dt / def.substeps;
-  lags->assign(contacts.size(), 0.0);
+  lags->clear();  // stays empty unless a pair bounces
   for (int pass = 0; pass < kMaxImpactPasses; ++pass) {
     bool any = false;
     for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const double restitution = contacts[i].restitution;
-      if (restitution == 0.0) continue;
       C& sc = constraints[slot[i]];
-      BodyState& a = states[sc.a];
-      BodyState& b = states[sc.b];
-      // A turning pair is struck at the middle of its manifold, so a box landing flat stays flat.
-      Vec2 anchor_a, anchor_b;
-      double separation = Point(sc, 0).base_separation;
+      Strike strike;
+      if (!Strikes(sc, contacts[i], states, accelerations, def, h, &strike)) continue;
       double normal_mass = Point(sc, 0).normal_mass;
       if constexpr (kCanTurn<C>) {
-        if (sc.angular) {
-          separation = std::numeric_limits<double>::infinity();
-          double gaps[2] = {0.0, 0.0};
-          for (int k = 0; k < sc.point_count; ++k) {
-            const SubstepPoint& p = sc.points[k];
-            gaps[k] = p.base_separation + Dot(p.anchor_b - p.anchor_a, sc.normal);
-            separation = std::min(separation, gaps[k]);
-          }
-          // The points struck: all, or those within the slop of the first to touch.
-          int struck = sc.point_count;
-          if (contacts[i].strike_first_touch) {
-            struck = 0;
-            for (int k = 0; k < sc.point_count; ++k) struck += gaps[k] <= separation + def.linear_slop ? 1 : 0;
-          }
-          for (int k = 0; k < sc.point_count; ++k) {
-            if (struck < sc.point_count && gaps[k] > separation + def.linear_slop) continue;
-            anchor_a += sc.points[k].anchor_a / struck;
-            anchor_b += sc.points[k].anchor_b / struck;
-          }
-        }
-      }
-      Vec2 relative = b.velocity - a.velocity;
-      if (Turns(sc)) relative += Cross(b.angular_velocity, anchor_b) - Cross(a.angular_velocity, anchor_a);
-      const double vn = Dot(relative, sc.normal);
-      // Slow impacts, and bounces that would come out slower than the threshold, are left to
-      // the contact solver as inelastic: a resting body must not buzz.
-      if (vn >= -def.restitution_threshold || restitution * -vn < def.restitution_threshold) {
-        continue;
-      }
-      const double relative_acceleration = Dot(accelerations[sc.b] - accelerations[sc.a], sc.normal);
-      Bounce bounce;
-      if (!ComputeBounce(def.integrator, separation, vn, relative_acceleration, restitution,
-                         def.substeps, h, &bounce)) {
-        continue;
-      }
-      if constexpr (kCanTurn<C>) {
         if (sc.angular) {  // worked out for the pairs that bounce alone: most do not
-          const double ra = Cross(anchor_a, sc.normal), rb = Cross(anchor_b, sc.normal);
+          const double ra = Cross(strike.anchor_a, sc.normal), rb = Cross(strike.anchor_b, sc.normal);
           normal_mass = 1.0 / (sc.inv_mass_a + sc.inv_mass_b + sc.inv_inertia_a * ra * ra +
                                sc.inv_inertia_b * rb * rb);
         }
       }
-      const double impulse = (bounce.start_velocity - vn) * normal_mass;
+      BodyState& a = states[sc.a];
+      BodyState& b = states[sc.b];
+      const double impulse = (strike.bounce.start_velocity - strike.vn) * normal_mass;
       a.velocity -= (impulse * sc.inv_mass_a) * sc.normal;
       b.velocity += (impulse * sc.inv_mass_b) * sc.normal;
       if constexpr (kCanTurn<C>) {
         if (sc.angular) {
-          a.angular_velocity -= sc.inv_inertia_a * Cross(anchor_a, impulse * sc.normal);
-          b.angular_velocity += sc.inv_inertia_b * Cross(anchor_b, impulse * sc.normal);
+          a.angular_velocity -= sc.inv_inertia_a * Cross(strike.anchor_a, impulse * sc.normal);
+          b.angular_velocity += sc.inv_inertia_b * Cross(strike.anchor_b, impulse * sc.normal);
         }
       }
-      (*lags)[i] = bounce.lag;
+      if (lags->empty()) lags->assign(contacts.size(), 0.0);
+      (*lags)[i] = strike.bounce.lag;
       any = true;
     }
     if (!any) break;
   }
 }
 
+template bool AnyImpact(std::span<const SubstepConstraint>, std::span<const std::uint32_t>,
+                         std::span<const Contact>, std::span<const BodyState>, std::span<const Vec2>,
+                         const WorldDef&, WorkerPool*);
+template bool AnyImpact(std::span<const LinearConstraint>, std::span<const std::uint32_t>,
+                         std::span<const Contact>, std::span<const BodyState>, std::span<const Vec2>,
+                         const WorldDef&, WorkerPool*);
 template void ResolveImpacts(std::span<SubstepConstraint>, std::span<const std::uint32_t>,
                              std::span<const Contact>, std::span<BodyState>, std::span<const Vec2>,
                              const WorldDef&, std::vector<double>*);

@@ -10,6 +10,7 @@
 #include "engine/contact.h"
 #include "engine/spring.h"
 #include "engine/world_def.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -29,10 +30,20 @@ namespace engine::detail {
 /// semi-implicit Euler e²·H at the mirrored position −e·s (impact.cpp says why).
 /// `accelerations` holds each body's acceleration (zero for static and sleeping ones). The
 /// contacts are visited in contact order, contact i's constraint at `slot[i]` and its lag at
-/// `lags[i]` (one per contact, zero unless it bounces).
+/// `lags[i]` (one per contact, zero unless it bounces; `lags` is left empty when none bounces).
 template <typename C>
 void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slot,
                     std::span<const Contact> contacts, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def, std::vector<double>* lags);
+
+/// Whether ResolveImpacts would bounce any pair: its first look at each contact, before any
+/// bounce has changed a velocity. When none bounces, ResolveImpacts changes nothing and can be
+/// left out. Unlike ResolveImpacts it only reads, so `pool`'s threads share the contacts (from
+/// kMinSharedContacts): in a settled pile almost no step has an impact, and the one-thread pass
+/// read every body, whose lines the other core then had to take back.
+template <typename C>
+bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> slot,
+               std::span<const Contact> contacts, std::span<const BodyState> states,
+               std::span<const Vec2> accelerations, const WorldDef& def, WorkerPool* pool = nullptr);
 
 }  // namespace engine::detail

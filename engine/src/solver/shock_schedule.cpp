@@ -27,42 +27,74 @@ void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count,
     progress_count_ = bands;
   }
   AssignBands(rows, body_count);
-  FindWaits(rows, body_count);
+  FindWaits(body_count);
 }
 
 // Each row to the band whose share of the bodies holds the body it moves; each band's rows in
-// row order.
+// row order. A row whose two bodies lie in two shares is a crossing: only its bodies can be
+// touched by two bands (a row touching a body of one share that crosses nowhere moves a body of
+// the same share, so it is in that share's band).
 void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body_count) {
   const std::size_t n = rows.size();
   const auto bands = static_cast<std::size_t>(bands_);
+  share_begin_.resize(bands);  // ShareOf's shares, by comparison: a division a row cost 86 kcyc a step
+  for (int band = 0; band < bands_; ++band) share_begin_[band] = ShareBegin(body_count, bands_, band);
+  const auto share_of = [&](BodyIndex body) {
+    std::uint32_t band = 0;
+    while (band + 1 < bands && body >= share_begin_[band + 1]) ++band;
+    return band;
+  };
   band_of_.resize(n);
+  touches_.resize(n);
+  crossings_.clear();
   band_start_.assign(bands + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    band_of_[i] = static_cast<std::uint32_t>(ShareOf(MovedBody(rows[i]), body_count, bands_));
-    ++band_start_[band_of_[i] + 1];
+  for (std::uint32_t r = 0; r < n; ++r) {
+    const ShockRow& row = rows[r];
+    touches_[r] = {row.a, row.b, row.inv_mass_a != 0.0, row.inv_mass_b != 0.0};
+    const std::uint32_t share_a = share_of(row.a), share_b = share_of(row.b);
+    const std::uint32_t band = MovedBody(row) == row.b ? share_b : share_a;
+    band_of_[r] = band;
+    ++band_start_[band + 1];
+    if (share_a != share_b) crossings_.push_back(r);
   }
   for (std::size_t b = 0; b < bands; ++b) band_start_[b + 1] += band_start_[b];
   band_rows_.resize(n);
+  position_of_.resize(n);
   fill_.assign(band_start_.begin(), band_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) band_rows_[fill_[band_of_[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::uint32_t r = 0; r < n; ++r) {
+    const std::uint32_t band = band_of_[r];
+    position_of_[r] = fill_[band] - band_start_[band];
+    band_rows_[fill_[band]++] = r;
+  }
 }
 
 // The waits: before a row reads a body another band's earlier row wrote, or writes a body
 // another band's earlier row touched. Only bodies that some row moves and rows of two bands
 // touch can need one; the rest are passed over. A wait that an earlier wait of the same band on
 // the same band covers is left out.
-void ShockSchedule::FindWaits(std::span<const ShockRow> rows, std::size_t body_count) {
-  const std::size_t n = rows.size();
+void ShockSchedule::FindWaits(std::size_t body_count) {
+  const std::size_t n = touches_.size();
   const auto bands = static_cast<std::size_t>(bands_);
+  awaited_.assign(n, 0);
+  waits_by_band_.resize(bands);
+  for (auto& waits : waits_by_band_) waits.clear();
+  if (crossings_.empty()) return;  // every body touched by one band alone
+  // The crossings' bodies, then every row that touches one, in row order, and which bands touch
+  // and write each of those bodies.
+  crossing_body_.assign(body_count, 0);
+  for (const std::uint32_t r : crossings_) crossing_body_[touches_[r].a] = crossing_body_[touches_[r].b] = 1;
   touched_by_.assign(body_count, 0);
   written_by_.assign(body_count, 0);
-  for (std::size_t r = 0; r < n; ++r) {
-    const ShockRow& row = rows[r];
+  rows_touching_.clear();
+  for (std::uint32_t r = 0; r < n; ++r) {
+    const Touch& row = touches_[r];
+    if (!crossing_body_[row.a] && !crossing_body_[row.b]) continue;
+    rows_touching_.push_back(r);
     const std::uint64_t bit = std::uint64_t{1} << band_of_[r];
     touched_by_[row.a] |= bit;
     touched_by_[row.b] |= bit;
-    if (row.inv_mass_a != 0.0) written_by_[row.a] |= bit;
-    if (row.inv_mass_b != 0.0) written_by_[row.b] |= bit;
+    if (row.writes_a) written_by_[row.a] |= bit;
+    if (row.writes_b) written_by_[row.b] |= bit;
   }
   const auto shared = [&](BodyIndex body) {
     const std::uint64_t t = touched_by_[body];
@@ -70,16 +102,12 @@ void ShockSchedule::FindWaits(std::span<const ShockRow> rows, std::size_t body_c
   };
   last_write_.assign(body_count, kNone);
   last_touch_.assign(body_count * bands, kNone);
-  awaited_.assign(n, 0);
-  waits_by_band_.resize(bands);
-  for (auto& waits : waits_by_band_) waits.clear();
   waited_.assign(bands * bands, kNone);
   need_.resize(bands);
-  position_.assign(bands, 0);
-  for (std::uint32_t r = 0; r < n; ++r) {
-    const ShockRow& row = rows[r];
+  for (const std::uint32_t r : rows_touching_) {  // the others touch no body two bands touch
+    const Touch& row = touches_[r];
     const std::uint32_t band = band_of_[r];
-    const std::uint32_t position = position_[band]++;
+    const std::uint32_t position = position_of_[r];
     const bool share[2] = {shared(row.a), shared(row.b)};
     if (!share[0] && !share[1]) continue;
     std::fill(need_.begin(), need_.end(), kNone);
@@ -89,7 +117,7 @@ void ShockSchedule::FindWaits(std::span<const ShockRow> rows, std::size_t body_c
       if (other != band && (need_[other] == kNone || other_row > need_[other])) need_[other] = other_row;
     };
     const BodyIndex bodies[2] = {row.a, row.b};
-    const bool writes[2] = {row.inv_mass_a != 0.0, row.inv_mass_b != 0.0};
+    const bool writes[2] = {row.writes_a, row.writes_b};
     for (int k = 0; k < 2; ++k) {
       if (!share[k]) continue;
       need_row(last_write_[bodies[k]]);

@@ -57,8 +57,16 @@ class ShockSchedule {
     std::atomic<std::uint32_t> next{0};
   };
 
+  /// What FindWaits reads of a row: its bodies and which it writes (a sixth of a ShockRow).
+  struct Touch {
+    BodyIndex a;
+    BodyIndex b;
+    bool writes_a;
+    bool writes_b;
+  };
+
   void AssignBands(std::span<const ShockRow> rows, std::size_t body_count);
-  void FindWaits(std::span<const ShockRow> rows, std::size_t body_count);
+  void FindWaits(std::size_t body_count);
 
   int bands_ = 1;
   std::vector<std::uint32_t> band_rows_;   ///< each band's rows in row order, band after band
@@ -68,7 +76,13 @@ class ShockSchedule {
   std::unique_ptr<Progress[]> progress_;
   std::size_t progress_count_ = 0;
   // Plan's scratch, kept between steps.
-  std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_, position_;
+  std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_;
+  std::vector<std::uint32_t> position_of_;  ///< per row: its place in its band's list
+  std::vector<BodyIndex> share_begin_;      ///< per band: the first body of its share (ShareBegin)
+  std::vector<Touch> touches_;              ///< per row
+  std::vector<std::uint32_t> crossings_;    ///< the rows whose bodies lie in two shares
+  std::vector<std::uint8_t> crossing_body_;     ///< per body: a crossing touches it
+  std::vector<std::uint32_t> rows_touching_;    ///< the rows that touch a crossing's body
   std::vector<std::uint64_t> touched_by_, written_by_;  ///< per body: a bit per band
 };
 

@@ -223,9 +223,12 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
       shock_schedule_.Plan(shock_rows_, context.states.size(), context.pool.Threads());
     }
   };
+  // Bounces first, where any pair bounces (most steps of a settled pile have none).
+  const bool bounces = plan.impact_pass && AnyImpact<C>(constraints, order_.slot, context.contacts, context.states,
+                                                        accelerations_, def, &context.pool);
   const auto resolve_impacts = [&] {
     impact_lags_.clear();
-    if (plan.impact_pass) {  // bounces first
+    if (bounces) {
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
     }
   };
