@@ -66,9 +66,11 @@ void SubstepSolver::Step(StepContext& context) {
         order_.AsFound(context.contacts.size());
       }
     };
-    // Shock propagation's levels need only who touches whom: found beside the colouring.
-    shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints &&
-                          context.pool.Threads() > 1;
+    // Shock propagation's levels need only who touches whom: found beside the colouring. On one
+    // thread too, the same order: the pile is then measured as the constraints are prepared,
+    // not in a pass over the contacts of its own (a 4 000-circle pour's solver 3 345 -> 3 191
+    // kcyc a step).
+    shock_levels_built_ = ShockPropagates(context.def) && context.contacts.size() >= kMinSideBySideConstraints;
     if (shock_levels_built_) {
       // The constraints, in the colours' order, are filled by whichever thread is free once the
       // colouring is done (PrepareLinearConstraints), and the pile measured run by run as they
