@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <span>
 #include <vector>
 
 #include "engine/world_def.h"
@@ -65,11 +66,11 @@ engine::WorldDef Settings() {
   return def;
 }
 
-bool AnyImpactOn(const Row& row, int threads) {
+// `restitutions`: empty (read from the contacts) or one per contact.
+bool AnyImpactOn(const Row& row, int threads, std::span<const double> restitutions = {}) {
   engine::detail::WorkerPool pool(threads);
-  return engine::detail::AnyImpact<engine::LinearConstraint>(row.constraints, row.slot, row.contacts,
-                                                                     row.states, row.accelerations,
-                                                                     Settings(), &pool);
+  return engine::detail::AnyImpact<engine::LinearConstraint>(row.constraints, row.slot, row.contacts, restitutions,
+                                                             row.states, row.accelerations, Settings(), &pool);
 }
 
 }  // namespace
@@ -81,11 +82,18 @@ TEST_CASE("AnyImpact says whether the impact pass bounces a pair, on any number 
     CAPTURE(striking);
     const Row row = MakeRow(count, striking);
     const bool expected = striking != kNone;
-    CHECK(engine::detail::AnyImpact<engine::LinearConstraint>(
-              row.constraints, row.slot, row.contacts, row.states, row.accelerations, Settings()) == expected);
-    for (const int threads : {2, 3}) {
+    CHECK(engine::detail::AnyImpact<engine::LinearConstraint>(row.constraints, row.slot, row.contacts, {},
+                                                              row.states, row.accelerations, Settings()) == expected);
+    // The restitutions written apart stand for the contacts' own: the same answer with the
+    // contacts', none with every one 0 (nothing bounces without restitution).
+    std::vector<double> restitutions;
+    for (const engine::Contact& c : row.contacts) restitutions.push_back(c.restitution);
+    const std::vector<double> none(count, 0.0);
+    for (const int threads : {1, 2, 3}) {
       CAPTURE(threads);
       CHECK(AnyImpactOn(row, threads) == expected);
+      CHECK(AnyImpactOn(row, threads, restitutions) == expected);
+      CHECK_FALSE(AnyImpactOn(row, threads, none));
     }
     // And the pass itself: with no pair striking it changes nothing and leaves no lags; with one,
     // it bounces that ball upwards and gives its contact a lag.

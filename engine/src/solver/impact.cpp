@@ -5,6 +5,7 @@
 #include "solver/substep_passes.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -107,13 +108,13 @@ struct Strike {
   Bounce bounce{};
 };
 
-// Whether contact `contact`'s pair (constraint `sc`) bounces now, and if so where and how: it
-// closes faster than the restitution threshold, would come out of the bounce faster than it, and
-// meets within the step.
+// Whether contact `contact`'s pair (constraint `sc`, the contact's `restitution`) bounces now,
+// and if so where and how: it closes faster than the restitution threshold, would come out of
+// the bounce faster than it, and meets within the step. The contact itself is read only for a
+// turning pair.
 template <typename C>
-bool Strikes(const C& sc, const Contact& contact, std::span<const BodyState> states,
+bool Strikes(const C& sc, double restitution, const Contact& contact, std::span<const BodyState> states,
              std::span<const Vec2> accelerations, const WorldDef& def, double h, Strike* out) {
-  const double restitution = contact.restitution;
   if (restitution == 0.0) return false;
   const BodyState& a = states[sc.a];
   const BodyState& b = states[sc.b];
@@ -164,13 +165,18 @@ bool Strikes(const C& sc, const Contact& contact, std::span<const BodyState> sta
 
 template <typename C>
 bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> slot,
-               std::span<const Contact> contacts, std::span<const BodyState> states,
-               std::span<const Vec2> accelerations, const WorldDef& def, WorkerPool* pool) {
+               std::span<const Contact> contacts, std::span<const double> restitutions,
+               std::span<const BodyState> states, std::span<const Vec2> accelerations, const WorldDef& def,
+               WorkerPool* pool) {
+  assert(restitutions.empty() || restitutions.size() == contacts.size());
   const double h = def.dt / def.substeps;
   const auto any_in = [&](std::uint32_t begin, std::uint32_t end) {
     Strike strike;
     for (std::uint32_t i = begin; i < end; ++i) {
-      if (Strikes(constraints[slot[i]], contacts[i], states, accelerations, def, h, &strike)) return true;
+      const double restitution = restitutions.empty() ? contacts[i].restitution : restitutions[i];
+      if (Strikes(constraints[slot[i]], restitution, contacts[i], states, accelerations, def, h, &strike)) {
+        return true;
+      }
     }
     return false;
   };
@@ -201,7 +207,7 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       C& sc = constraints[slot[i]];
       Strike strike;
-      if (!Strikes(sc, contacts[i], states, accelerations, def, h, &strike)) continue;
+      if (!Strikes(sc, contacts[i].restitution, contacts[i], states, accelerations, def, h, &strike)) continue;
       double normal_mass = Point(sc, 0).normal_mass;
       if constexpr (kCanTurn<C>) {
         if (sc.angular) {  // worked out for the pairs that bounce alone: most do not
@@ -230,11 +236,11 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
 }
 
 template bool AnyImpact(std::span<const SubstepConstraint>, std::span<const std::uint32_t>,
-                         std::span<const Contact>, std::span<const BodyState>, std::span<const Vec2>,
-                         const WorldDef&, WorkerPool*);
+                         std::span<const Contact>, std::span<const double>, std::span<const BodyState>,
+                         std::span<const Vec2>, const WorldDef&, WorkerPool*);
 template bool AnyImpact(std::span<const LinearConstraint>, std::span<const std::uint32_t>,
-                         std::span<const Contact>, std::span<const BodyState>, std::span<const Vec2>,
-                         const WorldDef&, WorkerPool*);
+                         std::span<const Contact>, std::span<const double>, std::span<const BodyState>,
+                         std::span<const Vec2>, const WorldDef&, WorkerPool*);
 template void ResolveImpacts(std::span<SubstepConstraint>, std::span<const std::uint32_t>,
                              std::span<const Contact>, std::span<BodyState>, std::span<const Vec2>,
                              const WorldDef&, std::vector<double>*);

@@ -89,12 +89,13 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
 
 void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                               std::span<const BodyInfo> infos, std::span<LinearConstraint> constraints,
-                              std::uint32_t begin, std::uint32_t end) {
+                              std::uint32_t begin, std::uint32_t end, std::span<double> restitutions) {
   for (std::uint32_t i = begin; i < end; ++i) {
     const Contact& c = contacts[i];
     LinearConstraint& lc = constraints[slot[i]];
     FillPair(c, infos, &lc);
     FillCentreRow(c, lc.inv_mass_a, lc.inv_mass_b, &lc);
+    if (!restitutions.empty()) restitutions[i] = c.restitution;
   }
 }
 

@@ -50,10 +50,11 @@ template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
                                std::vector<C>* constraints, WorkerPool* pool = nullptr);
-/// The same for contacts [begin, end) alone, into constraints already the contacts' number.
+/// The same for contacts [begin, end) alone, into constraints already the contacts' number; and
+/// where `restitutions` is not empty (the contacts' number), each contact's restitution there.
 void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                               std::span<const BodyInfo> infos, std::span<LinearConstraint> constraints,
-                              std::uint32_t begin, std::uint32_t end);
+                              std::uint32_t begin, std::uint32_t end, std::span<double> restitutions = {});
 
 /// K of a two-point contact for the given (possibly partly zeroed) inverse masses and inertias.
 TwoPointMass NormalMass(const SubstepConstraint& sc, const SubstepPoint& p1, const SubstepPoint& p2,

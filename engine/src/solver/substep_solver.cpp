@@ -78,10 +78,12 @@ void SubstepSolver::Step(StepContext& context) {
       const auto levels = [&] { BuildShockLevels<BodyPair>(context.contact_pairs, context.infos, &shock_scratch_); };
       const auto contacts = static_cast<std::uint32_t>(context.contacts.size());
       linear_constraints_.resize(contacts);
+      contact_restitutions_.resize(contacts);
       const bool measure_pile = MeasuresPile(context.def, pile_passes_);
       pile_runs_.assign(measure_pile ? (contacts + kConstraintsPerRun - 1) / kConstraintsPerRun : 0, PileExtent{});
       const auto prepare = [&](std::uint32_t begin, std::uint32_t end) {
-        PrepareLinearConstraints(context.contacts, order_.slot, context.infos, linear_constraints_, begin, end);
+        PrepareLinearConstraints(context.contacts, order_.slot, context.infos, linear_constraints_, begin, end,
+                                 contact_restitutions_);
         if (measure_pile) {
           pile_runs_[begin / kConstraintsPerRun] =
               MeasurePile(context.contacts.subspan(begin, end - begin), context.infos, context.states, Up(context.def));
@@ -226,8 +228,10 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
   };
   // Bounces first, where any pair bounces (most steps of a settled pile have none).
-  const bool bounces = plan.impact_pass && AnyImpact<C>(constraints, order_.slot, context.contacts, context.states,
-                                                        accelerations_, def, &context.pool);
+  const std::span<const double> restitutions =
+      constraints_prepared_ ? std::span<const double>(contact_restitutions_) : std::span<const double>();
+  const bool bounces = plan.impact_pass && AnyImpact<C>(constraints, order_.slot, context.contacts, restitutions,
+                                                        context.states, accelerations_, def, &context.pool);
   const auto resolve_impacts = [&] {
     impact_lags_.clear();
     if (bounces) {

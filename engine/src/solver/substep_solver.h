@@ -127,6 +127,9 @@ class SubstepSolver {
   WideConstraints wide_;                                ///< linear_constraints_ in blocks (SubstepPlan::wide)
   WideTurningConstraints wide_turning_;                 ///< substep_constraints_ in blocks: strips or colours
   std::vector<double> impact_lags_;                     ///< per contact (ResolveImpacts)
+  /// Per contact, its restitution, written as the constraints are prepared beside the colouring
+  /// (constraints_prepared_), for AnyImpact.
+  std::vector<double> contact_restitutions_;
   std::vector<std::uint32_t> lag_first_, lag_fill_, lag_contacts_;  ///< DropClosingLags' contacts by body
   std::vector<std::uint8_t> loaded_;                    ///< per body: an applied force acts
   std::vector<Vec2> warm_free_;                         ///< WarmStartImpulses' storage
