@@ -11,6 +11,7 @@
 #include "parallel/worker_pool.h"
 #include "solver/impact.h"
 #include "solver/substep_constraint.h"
+#include "solver/substep_passes.h"
 
 namespace {
 
@@ -49,6 +50,10 @@ Row MakeRow(std::size_t count, std::size_t striking) {
     engine::Contact contact{};
     contact.a = c.a;
     contact.b = c.b;
+    contact.manifold.normal = c.normal;  // one point, where the ball touches the floor
+    contact.manifold.point_count = 1;
+    contact.manifold.points[0].point = {s.position.x, 0.0};
+    contact.manifold.points[0].depth = 0.0;
     contact.restitution = 0.5;
     contact.friction = 0.3;
     row.contacts.push_back(contact);
@@ -111,6 +116,48 @@ TEST_CASE("AnyImpact says whether the impact pass bounces a pair, on any number 
       CHECK(states[striking + 1].velocity.y > 0.0);
       for (std::size_t i = 0; i < count; ++i) {
         if (i != striking) CHECK(states[i + 1].velocity.y == row.states[i + 1].velocity.y);
+      }
+    }
+  }
+}
+
+TEST_CASE("the impact look taken as the constraints are prepared answers as AnyImpact", "[solver][parallel]") {
+  // PrepareSubstepConstraints with an ImpactLook: each contact looked at as its constraint is
+  // filled, on 1-3 threads, for balls that cannot turn (LinearConstraint) and that can
+  // (SubstepConstraint, the contact's point turned into anchors).
+  const std::size_t count = 5000;
+  for (const bool turning : {false, true}) {
+    CAPTURE(turning);
+    std::vector<engine::BodyInfo> infos(count + 1);
+    infos[0].is_static = true;
+    for (std::size_t i = 1; i <= count; ++i) {
+      infos[i].mass = infos[i].inv_mass = 1.0;
+      infos[i].inertia = infos[i].inv_inertia = turning ? 2.5 : 0.0;
+    }
+    for (const std::size_t striking : {kNone, std::size_t{0}, count - 1}) {
+      CAPTURE(striking);
+      const Row row = MakeRow(count, striking);
+      for (const int threads : {1, 2, 3}) {
+        CAPTURE(threads);
+        engine::detail::WorkerPool pool(threads);
+        engine::detail::ImpactLook look{row.accelerations, Settings()};
+        bool any = false;
+        if (turning) {
+          std::vector<engine::SubstepConstraint> constraints;
+          engine::detail::PrepareSubstepConstraints(row.contacts, row.slot, infos, row.states, &constraints, &pool,
+                                                    &look);
+          REQUIRE(constraints[row.slot[0]].angular);
+          any = engine::detail::AnyImpact<engine::SubstepConstraint>(constraints, row.slot, row.contacts, {},
+                                                                     row.states, row.accelerations, Settings());
+        } else {
+          std::vector<engine::LinearConstraint> constraints;
+          engine::detail::PrepareSubstepConstraints(row.contacts, row.slot, infos, row.states, &constraints, &pool,
+                                                    &look);
+          any = engine::detail::AnyImpact<engine::LinearConstraint>(constraints, row.slot, row.contacts, {},
+                                                                    row.states, row.accelerations, Settings());
+        }
+        CHECK(any == (striking != kNone));
+        CHECK(look.found.load() == any);
       }
     }
   }

@@ -197,6 +197,13 @@ bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> sl
 }
 
 template <typename C>
+bool StrikesAtFirst(const C& sc, double restitution, const Contact& contact, std::span<const BodyState> states,
+                    std::span<const Vec2> accelerations, const WorldDef& def) {
+  Strike strike;
+  return Strikes(sc, restitution, contact, states, accelerations, def, def.dt / def.substeps, &strike);
+}
+
+template <typename C>
 void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slot,
                     std::span<const Contact> contacts, std::span<BodyState> states,
                     std::span<const Vec2> accelerations, const WorldDef& def, std::vector<double>* lags) {
@@ -241,6 +248,10 @@ template bool AnyImpact(std::span<const SubstepConstraint>, std::span<const std:
 template bool AnyImpact(std::span<const LinearConstraint>, std::span<const std::uint32_t>,
                          std::span<const Contact>, std::span<const double>, std::span<const BodyState>,
                          std::span<const Vec2>, const WorldDef&, WorkerPool*);
+template bool StrikesAtFirst(const SubstepConstraint&, double, const Contact&, std::span<const BodyState>,
+                              std::span<const Vec2>, const WorldDef&);
+template bool StrikesAtFirst(const LinearConstraint&, double, const Contact&, std::span<const BodyState>,
+                              std::span<const Vec2>, const WorldDef&);
 template void ResolveImpacts(std::span<SubstepConstraint>, std::span<const std::uint32_t>,
                              std::span<const Contact>, std::span<BodyState>, std::span<const Vec2>,
                              const WorldDef&, std::vector<double>*);

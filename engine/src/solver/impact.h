@@ -2,6 +2,7 @@
 // solve. Internal to the engine.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,5 +50,29 @@ bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> sl
                std::span<const Contact> contacts, std::span<const double> restitutions,
                std::span<const BodyState> states, std::span<const Vec2> accelerations, const WorldDef& def,
                WorkerPool* pool = nullptr);
+
+/// AnyImpact's look at one contact (`contact`, its constraint `sc`, its `restitution`): whether
+/// ResolveImpacts would bounce it, before any bounce has changed a velocity.
+template <typename C>
+bool StrikesAtFirst(const C& sc, double restitution, const Contact& contact, std::span<const BodyState> states,
+                    std::span<const Vec2> accelerations, const WorldDef& def);
+
+/// AnyImpact's answer gathered as the constraints are prepared (PrepareSubstepConstraints), each
+/// contact looked at (StrikesAtFirst) while its lines are at hand: the look on its own read every
+/// contact and constraint again (352 kcyc a step of the turning 4 000-circle pour on one thread).
+/// Threads preparing side by side share one: `found` is only ever set.
+struct ImpactLook {
+  std::span<const Vec2> accelerations;
+  const WorldDef& def;
+  std::atomic<bool> found{false};
+
+  template <typename C>
+  void Look(const C& sc, const Contact& contact, std::span<const BodyState> states) {
+    if (!found.load(std::memory_order_relaxed) &&
+        StrikesAtFirst(sc, contact.restitution, contact, states, accelerations, def)) {
+      found.store(true, std::memory_order_relaxed);
+    }
+  }
+};
 
 }  // namespace engine::detail

@@ -80,11 +80,13 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
-                               std::span<const BodyInfo> infos, std::span<const BodyState>,
-                               std::vector<LinearConstraint>* constraints, WorkerPool* pool) {
+                               std::span<const BodyInfo> infos, std::span<const BodyState> states,
+                               std::vector<LinearConstraint>* constraints, WorkerPool* pool, ImpactLook* look) {
   constraints->resize(contacts.size());
-  ForEachIndex(pool, contacts.size(), kMinSharedContacts,
-               [&](std::uint32_t i) { PrepareLinearConstraints(contacts, slot, infos, *constraints, i, i + 1); });
+  ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
+    PrepareLinearConstraints(contacts, slot, infos, *constraints, i, i + 1);
+    if (look) look->Look((*constraints)[slot[i]], contacts[i], states);
+  });
 }
 
 void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
@@ -102,7 +104,7 @@ void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<SubstepConstraint>* constraints, WorkerPool* pool) {
+                               std::vector<SubstepConstraint>* constraints, WorkerPool* pool, ImpactLook* look) {
   // Filled in place, every field a constraint reads set (a point past point_count is never read):
   // copying each one in would cost a call to memcpy apiece.
   constraints->resize(contacts.size());
@@ -137,6 +139,7 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
         p.push_impulse = 0.0;
       }
     }
+    if (look) look->Look(sc, c, states);
   });
 }
 

@@ -12,6 +12,7 @@
 #include "engine/contact.h"
 #include "integrate.h"
 #include "parallel/worker_pool.h"
+#include "solver/impact.h"
 #include "solver/substep_constraint.h"
 
 namespace engine::detail {
@@ -46,10 +47,11 @@ inline constexpr std::uint32_t kMinSharedBodies = 2048;
 /// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
 /// turn contact points into anchors. `pool`: threads to share the contacts among (each
 /// constraint is written by its contact alone; from kMinSharedContacts, in ForEachIndex's runs).
+/// `look`: where not null, each contact is also looked at for an impact (ImpactLook).
 template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<C>* constraints, WorkerPool* pool = nullptr);
+                               std::vector<C>* constraints, WorkerPool* pool = nullptr, ImpactLook* look = nullptr);
 /// The same for contacts [begin, end) alone, into constraints already the contacts' number; and
 /// where `restitutions` is not empty (the contacts' number), each contact's restitution there.
 void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,

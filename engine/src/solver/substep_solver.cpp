@@ -165,9 +165,13 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   angular_accelerations_.resize(n);
   context.forces.Evaluate(context.states, accelerations_, angular_accelerations_);
 
+  // The impact pass's first look (AnyImpact), where the constraints are prepared here: taken
+  // as each is, while its contact and bodies are at hand.
+  ImpactLook look{accelerations_, def};
+  const bool looked = !constraints_prepared_ && def.substep_features.impact_pass;
   if (!constraints_prepared_) {
     PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
-                              &context.pool);
+                              &context.pool, looked ? &look : nullptr);
   }
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
@@ -230,8 +234,10 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   // Bounces first, where any pair bounces (most steps of a settled pile have none).
   const std::span<const double> restitutions =
       constraints_prepared_ ? std::span<const double>(contact_restitutions_) : std::span<const double>();
-  const bool bounces = plan.impact_pass && AnyImpact<C>(constraints, order_.slot, context.contacts, restitutions,
-                                                        context.states, accelerations_, def, &context.pool);
+  const bool bounces =
+      plan.impact_pass && (looked ? look.found.load()
+                                  : AnyImpact<C>(constraints, order_.slot, context.contacts, restitutions,
+                                                 context.states, accelerations_, def, &context.pool));
   const auto resolve_impacts = [&] {
     impact_lags_.clear();
     if (bounces) {
