@@ -103,7 +103,6 @@ bool ComputeBounce(Integrator integrator, double s0, double vn, double a, double
 // Where a pair is struck and how fast it closes, as the pass sees it now.
 struct Strike {
   Vec2 anchor_a, anchor_b;
-  double separation = 0.0;
   double vn = 0.0;
   Bounce bounce{};
 };
@@ -156,7 +155,6 @@ bool Strikes(const C& sc, double restitution, const Contact& contact, std::span<
   }
   out->anchor_a = anchor_a;
   out->anchor_b = anchor_b;
-  out->separation = separation;
   out->vn = vn;
   return true;
 }
