@@ -164,7 +164,7 @@ TEST_CASE("ForEachGroupByBodies runs each unit once on the thread the cut gives 
   }
 }
 
-TEST_CASE("ShareOf names the thread whose part of the bodies ForEachIndex runs them on", "[parallel][solver]") {
+TEST_CASE("BodyShares names the thread whose part of the bodies ForEachIndex runs them on", "[parallel][solver]") {
   for (const int threads : {1, 2, 3, 5}) {
     engine::detail::WorkerPool pool(threads);
     for (const std::size_t bodies : {std::size_t{1}, std::size_t{7}, std::size_t{10}, std::size_t{4003}}) {
@@ -172,8 +172,9 @@ TEST_CASE("ShareOf names the thread whose part of the bodies ForEachIndex runs t
       std::vector<std::thread::id> ran_on(bodies);
       engine::detail::ForEachIndex(&pool, bodies, 0, [&](std::uint32_t i) { ran_on[i] = std::this_thread::get_id(); });
       std::map<int, std::thread::id> thread_of_share;
+      const engine::detail::BodyShares shares(bodies, threads);
       for (std::size_t body = 0; body < bodies; ++body) {
-        const int share = engine::detail::ShareOf(static_cast<BodyIndex>(body), bodies, threads);
+        const int share = shares.Of(static_cast<BodyIndex>(body));
         REQUIRE(share >= 0);
         REQUIRE(share < threads);
         // Shares in body order, each [ShareBegin(t), ShareBegin(t + 1)).

@@ -85,9 +85,10 @@ std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::siz
   schedule.Plan(rows, pile.states.size(), threads);
   *waits = schedule.WaitCount();
   // Each row in the band whose share of the bodies holds the body it moves (the upper one).
+  const engine::detail::BodyShares shares(pile.states.size(), threads);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const engine::BodyIndex moved = rows[r].inv_mass_b != 0.0 ? rows[r].b : rows[r].a;
-    const int share = engine::detail::ShareOf(moved, pile.states.size(), threads);
+    const int share = shares.Of(moved);
     REQUIRE(schedule.BandOf(r) == static_cast<std::uint32_t>(share));
   }
   std::vector<engine::BodyState> states = pile.states;
@@ -105,10 +106,10 @@ std::size_t WaitsOfEveryRow(const std::vector<engine::detail::ShockRow>& rows, s
   const auto count = static_cast<std::size_t>(bands);
   std::vector<std::uint32_t> band(rows.size());
   std::vector<std::uint64_t> touched(body_count, 0), written(body_count, 0);
+  const engine::detail::BodyShares shares(body_count, bands);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const engine::detail::ShockRow& row = rows[r];
-    band[r] = static_cast<std::uint32_t>(
-        engine::detail::ShareOf(row.inv_mass_b != 0.0 ? row.b : row.a, body_count, bands));
+    band[r] = static_cast<std::uint32_t>(shares.Of(row.inv_mass_b != 0.0 ? row.b : row.a));
     const std::uint64_t bit = std::uint64_t{1} << band[r];
     touched[row.a] |= bit;
     touched[row.b] |= bit;

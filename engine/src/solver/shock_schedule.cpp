@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "parallel/spin_wait.h"
-#include "solver/body_cut.h"
 
 namespace engine::detail {
 
@@ -37,13 +36,8 @@ void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count,
 void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body_count) {
   const std::size_t n = rows.size();
   const auto bands = static_cast<std::size_t>(bands_);
-  share_begin_.resize(bands);  // ShareOf's shares, by comparison: a division a row cost 86 kcyc a step
-  for (int band = 0; band < bands_; ++band) share_begin_[band] = ShareBegin(body_count, bands_, band);
-  const auto share_of = [&](BodyIndex body) {
-    std::uint32_t band = 0;
-    while (band + 1 < bands && body >= share_begin_[band + 1]) ++band;
-    return band;
-  };
+  shares_.Reset(body_count, bands_);
+  const auto share_of = [&](BodyIndex body) { return static_cast<std::uint32_t>(shares_.Of(body)); };
   band_of_.resize(n);
   touches_.resize(n);
   crossings_.clear();

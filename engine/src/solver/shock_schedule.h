@@ -13,6 +13,7 @@
 
 #include "engine/body.h"
 #include "parallel/worker_pool.h"
+#include "solver/body_cut.h"
 #include "solver/shock_propagation.h"
 
 namespace engine::detail {
@@ -27,7 +28,7 @@ class ShockSchedule {
  public:
   /// Once a step, after the rows are built (SortShockRows): the rows split into `threads` bands (at
   /// most kMaxShockBands) by the body each row moves (the upper one), a band to each thread's
-  /// share of the bodies as every other pass cuts them (ShareOf), and the waits between them.
+  /// share of the bodies as every other pass cuts them (BodyShares), and the waits between them.
   /// With one thread or fewer than kMinSharedShockRows rows, the pass stays on the calling thread.
   ///
   /// Bands by the bodies' share, not by place: the passes before and after this one move each body
@@ -78,7 +79,7 @@ class ShockSchedule {
   // Plan's scratch, kept between steps.
   std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_;
   std::vector<std::uint32_t> position_of_;  ///< per row: its place in its band's list
-  std::vector<BodyIndex> share_begin_;      ///< per band: the first body of its share (ShareBegin)
+  BodyShares shares_;                       ///< the bands' shares of the bodies
   std::vector<Touch> touches_;              ///< per row
   std::vector<std::uint32_t> crossings_;    ///< the rows whose bodies lie in two shares
   std::vector<std::uint8_t> crossing_body_;     ///< per body: a crossing touches it

@@ -231,12 +231,12 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
       shock_schedule_.Plan(shock_rows_, context.states.size(), context.pool.Threads());
     }
   };
-  // Bounces first, where any pair bounces (most steps of a settled pile have none).
-  const std::span<const double> restitutions =
-      constraints_prepared_ ? std::span<const double>(contact_restitutions_) : std::span<const double>();
+  // Bounces first, where any pair bounces (most steps of a settled pile have none): looked for
+  // as the constraints were prepared here, or else (prepared beside the colouring, with the
+  // restitutions written apart) by the threads on their own parts of the contacts.
   const bool bounces =
       plan.impact_pass && (looked ? look.found.load()
-                                  : AnyImpact<C>(constraints, order_.slot, context.contacts, restitutions,
+                                  : AnyImpact<C>(constraints, order_.slot, context.contacts, contact_restitutions_,
                                                  context.states, accelerations_, def, &context.pool));
   const auto resolve_impacts = [&] {
     impact_lags_.clear();
