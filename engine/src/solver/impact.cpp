@@ -166,13 +166,12 @@ bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> sl
                std::span<const Contact> contacts, std::span<const double> restitutions,
                std::span<const BodyState> states, std::span<const Vec2> accelerations, const WorldDef& def,
                WorkerPool* pool) {
-  assert(restitutions.empty() || restitutions.size() == contacts.size());
+  assert(restitutions.size() == contacts.size());
   const double h = def.dt / def.substeps;
   const auto any_in = [&](std::uint32_t begin, std::uint32_t end) {
     Strike strike;
     for (std::uint32_t i = begin; i < end; ++i) {
-      const double restitution = restitutions.empty() ? contacts[i].restitution : restitutions[i];
-      if (Strikes(constraints[slot[i]], restitution, contacts[i], states, accelerations, def, h, &strike)) {
+      if (Strikes(constraints[slot[i]], restitutions[i], contacts[i], states, accelerations, def, h, &strike)) {
         return true;
       }
     }

@@ -41,10 +41,10 @@ void ResolveImpacts(std::span<C> constraints, std::span<const std::uint32_t> slo
 /// bounce has changed a velocity. When none bounces, ResolveImpacts changes nothing and can be
 /// left out. Unlike ResolveImpacts it only reads, so `pool`'s threads share the contacts (from
 /// kMinSharedContacts): in a settled pile almost no step has an impact, and the one-thread pass
-/// read every body, whose lines the other core then had to take back. `restitutions`: empty, or
-/// each contact's restitution, where something wrote them apart (then only a turning pair's
-/// contact is read: the contacts' 152 bytes each cost the look 80-100 kcyc a step of the
-/// 4 000-circle pour on one thread).
+/// read every body, whose lines the other core then had to take back. `restitutions`: each
+/// contact's restitution, written apart as the constraints were prepared, so that only a turning
+/// pair's contact is read (the contacts' 152 bytes each had cost the look 80-100 kcyc a step of
+/// the 4 000-circle pour on one thread).
 template <typename C>
 bool AnyImpact(std::span<const C> constraints, std::span<const std::uint32_t> slot,
                std::span<const Contact> contacts, std::span<const double> restitutions,
