@@ -125,9 +125,8 @@ void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* stat
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
       const Lanes s = SeparationNow(k, o, states, start, nx, ny);
-      // Overlap within the slop is left alone.
-      const unsigned overlapping = ~Bits(s >= -slop) & ((1u << Lanes::kCount) - 1);
-      if (overlapping == 0) continue;
+      // Overlap within the slop is left alone: those lanes write back the velocities they read.
+      const Mask within_slop = s >= -slop;
       const Lanes wanted = rate * -(s + slop);
       const Lanes target = Select(max_speed < wanted, max_speed, wanted);
       Lanes vax, vay, vbx, vby;
@@ -136,12 +135,12 @@ void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* stat
       const Lanes vn = (vbx - vax) * nx + (vby - vay) * ny;
       const Lanes dp = Max0(Lanes::Load(k.normal_mass + o) * (target - vn));
       const Lanes sa = Lanes::Load(k.inv_mass_a + o) * dp, sb = Lanes::Load(k.inv_mass_b + o) * dp;
-      vax = vax - sa * nx;
-      vay = vay - sa * ny;
-      vbx = vbx + sb * nx;
-      vby = vby + sb * ny;
-      Scatter(push_velocities, kVec2Stride, k.a + o, vax, vay, overlapping & Moving(k.inv_mass_a + o));
-      Scatter(push_velocities, kVec2Stride, k.b + o, vbx, vby, overlapping & Moving(k.inv_mass_b + o));
+      vax = Select(within_slop, vax, vax - sa * nx);
+      vay = Select(within_slop, vay, vay - sa * ny);
+      vbx = Select(within_slop, vbx, vbx + sb * nx);
+      vby = Select(within_slop, vby, vby + sb * ny);
+      Scatter(push_velocities, kVec2Stride, k.a + o, vax, vay, Moving(k.inv_mass_a + o));
+      Scatter(push_velocities, kVec2Stride, k.b + o, vbx, vby, Moving(k.inv_mass_b + o));
     }
   }
 }
