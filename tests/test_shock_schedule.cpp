@@ -9,6 +9,7 @@
 #include "solver/body_cut.h"
 #include "solver/shock_propagation.h"
 #include "solver/shock_schedule.h"
+#include "solver/substep_passes.h"
 #include "solver/substep_constraint.h"
 
 namespace {
@@ -92,9 +93,9 @@ std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::siz
     REQUIRE(schedule.BandOf(r) == static_cast<std::uint32_t>(share));
   }
   std::vector<engine::BodyState> states = pile.states;
-  for (int substep = 0; substep < 4; ++substep) {
-    schedule.Run(pool, rows, states, pile.start_positions, 240.0, 0.005);
-  }
+  std::vector<engine::Vec2> moved(states.size());  // the pass moves no centre: made once
+  engine::detail::MeasureMoves(states, pile.start_positions, moved);
+  for (int substep = 0; substep < 4; ++substep) schedule.Run(pool, rows, states, moved, 240.0, 0.005);
   return states;
 }
 

@@ -151,12 +151,12 @@ Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order,
   wide.Pack(out.constraints, order);
   const std::size_t blocks = wide.blocks.size();
   passes.warm_start(wide.blocks.data(), blocks, out.states.data());
-  for (int pass = 0; pass < 2; ++pass) {
-    passes.solve(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(), inv_h);
-  }
+  std::vector<Vec2> moved(out.states.size());  // the lanes read the moves since the start, as the solver makes them
+  MeasureMoves(out.states, scene.start_positions, moved);
+  for (int pass = 0; pass < 2; ++pass) passes.solve(wide.blocks.data(), blocks, out.states.data(), moved.data(), inv_h);
   move();
-  passes.push_out(wide.blocks.data(), blocks, out.states.data(), scene.start_positions.data(), out.push.data(),
-                  rate, max_speed, slop);
+  MeasureMoves(out.states, scene.start_positions, moved);
+  passes.push_out(wide.blocks.data(), blocks, moved.data(), out.push.data(), rate, max_speed, slop);
   wide.StoreImpulses(order.slot, out.contacts);
   return out;
 }

@@ -183,9 +183,9 @@ template class ShockRowWriter<LinearConstraint>;
 template void WriteShockRows(std::span<const SubstepConstraint>, Vec2, ShockScratch*, WorkerPool*);
 template void WriteShockRows(std::span<const LinearConstraint>, Vec2, ShockScratch*, WorkerPool*);
 
-void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
-                    std::span<const Vec2> start_positions, double inv_h, double linear_slop) {
-  for (const ShockRow& row : rows) PropagateRow(row, states, start_positions, inv_h, linear_slop);
+void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states, std::span<const Vec2> moved,
+                    double inv_h, double linear_slop) {
+  for (const ShockRow& row : rows) PropagateRow(row, states, moved, inv_h, linear_slop);
 }
 
 }  // namespace engine::detail

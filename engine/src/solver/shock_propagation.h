@@ -94,9 +94,9 @@ void SortShockRows(ShockScratch* scratch, std::vector<ShockRow>* rows, WorkerPoo
 /// One pass over the rows: no contact within the slop may approach faster than its gap allows
 /// this substep; the lower body of a pair is held fixed, bodies on one level share the impulse
 /// by mass. Leaves the accumulated impulses alone: this pass only keeps stacks from sinking.
-/// `start_positions` are the centres at the step's start.
-void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states,
-                    std::span<const Vec2> start_positions, double inv_h, double linear_slop);
+/// `moved`: each body's move since the step's start (MeasureMoves), made from the positions now.
+void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states, std::span<const Vec2> moved,
+                    double inv_h, double linear_slop);
 
 /// `if_set` where `set` holds, else `if_clear`: chosen by bits, not by a branch.
 inline double ChooseBits(bool set, double if_set, double if_clear) {
@@ -112,13 +112,12 @@ inline double ChooseBits(bool set, double if_set, double if_clear) {
 /// a fifth of the rows are overlapped past the slop and two thirds of the rest already part fast
 /// enough), and the mispredictions cost more than computing every row's impulse and choosing
 /// (the pass 575 -> 461 kcyc a step on one thread). Each velocity is the branching code's bits.
-inline void PropagateRow(const ShockRow& row, std::span<BodyState> states, std::span<const Vec2> start_positions,
+inline void PropagateRow(const ShockRow& row, std::span<BodyState> states, std::span<const Vec2> moved,
                          double inv_h, double linear_slop) {
   BodyState& a = states[row.a];
   BodyState& b = states[row.b];
   const Vec2 n = row.normal;
-  const Vec2 moved = (b.position - start_positions[row.b]) - (a.position - start_positions[row.a]);
-  const double s = row.base_separation + Dot(moved, n);
+  const double s = row.base_separation + Dot(moved[row.b] - moved[row.a], n);
   // Overlap still being pushed out is the solver's (its push-out speed, carried up a stack
   // here, could not be taken back later); a gap may close this far.
   const double min_vn = -std::max(s, 0.0) * inv_h;

@@ -142,9 +142,9 @@ std::size_t ShockSchedule::WaitCount() const {
 }
 
 void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
-                        std::span<const Vec2> start_positions, double inv_h, double linear_slop) {
+                        std::span<const Vec2> moved, double inv_h, double linear_slop) {
   if (bands_ == 1 || pool.Threads() < bands_) {
-    PropagateShock(rows, states, start_positions, inv_h, linear_slop);
+    PropagateShock(rows, states, moved, inv_h, linear_slop);
     return;
   }
   for (int band = 0; band < bands_; ++band) progress_[band].next.store(0, std::memory_order_relaxed);
@@ -161,7 +161,7 @@ void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::s
         SpinThenWait(theirs, [&] { return theirs.load(std::memory_order_acquire) > row; });
       }
       const std::uint32_t r = band_rows_[k];
-      PropagateRow(rows[r], states, start_positions, inv_h, linear_slop);
+      PropagateRow(rows[r], states, moved, inv_h, linear_slop);
       if (awaited_[r]) {
         mine.store(r + 1, std::memory_order_release);
         mine.notify_all();

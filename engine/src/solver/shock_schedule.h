@@ -44,7 +44,7 @@ class ShockSchedule {
   std::size_t WaitCount() const;
   /// PropagateShock over the rows Plan saw, on the pool's threads.
   void Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
-           std::span<const Vec2> start_positions, double inv_h, double linear_slop);
+           std::span<const Vec2> moved, double inv_h, double linear_slop);
 
  private:
   /// Before the thread's row at `position` in its list, thread `thread` must be past row `row`.

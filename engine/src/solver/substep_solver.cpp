@@ -278,6 +278,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
+  moved_.resize(n);
   ClearPush({push_velocities_, push_angular_velocities_}, &context.pool);  // each move by push clears them after
   if (plan.track_turning) {
     angles_before_.resize(n);
@@ -337,6 +338,11 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
+  // The axis-aligned lanes and shock propagation measure separations from the bodies' moves.
+  const bool lanes_measure = plan.wide && !kCanTurn<C>;
+  if (lanes_measure || plan.shock_propagation) {
+    MeasureMoves(states, context.start_positions, moved_, &context.pool);
+  }
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
   JointSolver* joints = context.joints;
   if (joints) joints->Begin(states, h, true);  // springs, then the joints' warm start
@@ -351,7 +357,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->SolveDirect(states, inv_h);
   if (plan.energy_limit) LimitContactEnergy(constraints, states, context.infos, energy_before, warm);
   if (plan.shock_propagation) {
-    shock_schedule_.Run(context.pool, shock_rows_, states, context.start_positions, inv_h, def.linear_slop);
+    shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop);
   }
   if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
     if constexpr (kCanTurn<C>) {
@@ -365,6 +371,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   if (joints) joints->MarkBodies(&pushed_);
   MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
+  if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, &context.pool);
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
@@ -431,7 +438,7 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
                                  states.data(), start.positions.data(), start.turned.data(), plan.inv_h,
                                  plan.block_solver);
       } else {
-        plan.wide->solve(wide_.blocks.data() + first, count, states.data(), start.positions.data(), plan.inv_h);
+        plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
       }
     });
     return;
@@ -454,8 +461,8 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
                                     push.linear.data(), push.angular.data(), plan.push_out_rate,
                                     def.max_push_out_speed, def.linear_slop);
       } else {
-        plan.wide->push_out(wide_.blocks.data() + first, count, states.data(), start.positions.data(),
-                            push.linear.data(), plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+        plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),
+                            plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       }
     });
     return;

@@ -16,19 +16,14 @@ constexpr std::size_t kVelocityOffset = 2;  // BodyState::velocity after positio
 // std::max(x, 0.0)
 [[gnu::always_inline]] inline Lanes Max0(Lanes x) { return Select(x < Lanes(0.0), Lanes(0.0), x); }
 
-// The separation now of the lanes' contacts (CurrentSeparation).
-[[gnu::always_inline]] inline Lanes SeparationNow(const LinearBlock& k, int o, const BodyState* states,
-                                                  const Vec2* start, Lanes nx, Lanes ny) {
-  const double* positions = &states[0].position.x;
-  const double* starts = &start[0].x;
-  Lanes pax, pay, pbx, pby, sax, say, sbx, sby;
-  Gather(positions, kStateStride, k.a + o, &pax, &pay);
-  Gather(positions, kStateStride, k.b + o, &pbx, &pby);
-  Gather(starts, kVec2Stride, k.a + o, &sax, &say);
-  Gather(starts, kVec2Stride, k.b + o, &sbx, &sby);
-  const Lanes mx = (pbx - sbx) - (pax - sax);
-  const Lanes my = (pby - sby) - (pay - say);
-  return Lanes::Load(k.base_separation + o) + (mx * nx + my * ny);
+// The separation now of the lanes' contacts (CurrentSeparation), from the bodies' moves since
+// the step's start (MeasureMoves).
+[[gnu::always_inline]] inline Lanes SeparationNow(const LinearBlock& k, int o, const Vec2* moved, Lanes nx,
+                                                  Lanes ny) {
+  Lanes max, may, mbx, mby;
+  Gather(&moved[0].x, kVec2Stride, k.a + o, &max, &may);
+  Gather(&moved[0].x, kVec2Stride, k.b + o, &mbx, &mby);
+  return Lanes::Load(k.base_separation + o) + ((mbx - max) * nx + (mby - may) * ny);
 }
 
 // Which lanes move their body: inverse mass not zero (a static or kinematic body is never
@@ -67,7 +62,7 @@ void WarmStartBlocks(LinearBlock* blocks, std::size_t count, BodyState* states) 
   }
 }
 
-void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* start,
+void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* moved,
                  double inv_h_scalar) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* velocities = &states[0].position.x + kVelocityOffset;
@@ -76,7 +71,7 @@ void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, cons
     LinearBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
-      const Lanes min_vn = -Max0(SeparationNow(k, o, states, start, nx, ny)) * inv_h;
+      const Lanes min_vn = -Max0(SeparationNow(k, o, moved, nx, ny)) * inv_h;
       Lanes vax, vay, vbx, vby;
       Gather(velocities, kStateStride, k.a + o, &vax, &vay);
       Gather(velocities, kStateStride, k.b + o, &vbx, &vby);
@@ -115,8 +110,7 @@ void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, cons
   }
 }
 
-void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* states, const Vec2* start,
-                   Vec2* push, double push_out_rate, double max_push_out_speed, double linear_slop) {
+void PushOutBlocks(LinearBlock* blocks, std::size_t count, const Vec2* moved, Vec2* push, double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_velocities = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
@@ -124,7 +118,7 @@ void PushOutBlocks(LinearBlock* blocks, std::size_t count, const BodyState* stat
     LinearBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
-      const Lanes s = SeparationNow(k, o, states, start, nx, ny);
+      const Lanes s = SeparationNow(k, o, moved, nx, ny);
       // Overlap within the slop is left alone: those lanes write back the velocities they read.
       const Mask within_slop = s >= -slop;
       const Lanes wanted = rate * -(s + slop);

@@ -20,10 +20,9 @@ namespace engine::detail {
 struct WidePasses {
   int lanes;  ///< 1, 2 (SSE2) or 4 (AVX2)
   void (*warm_start)(LinearBlock* blocks, std::size_t count, BodyState* states);
-  void (*solve)(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* start_positions,
-                double inv_h);
-  void (*push_out)(LinearBlock* blocks, std::size_t count, const BodyState* states,
-                   const Vec2* start_positions, Vec2* push, double push_out_rate,
+  // `moved`: each body's move since the step's start (MeasureMoves), made from the positions now.
+  void (*solve)(LinearBlock* blocks, std::size_t count, BodyState* states, const Vec2* moved, double inv_h);
+  void (*push_out)(LinearBlock* blocks, std::size_t count, const Vec2* moved, Vec2* push, double push_out_rate,
                    double max_push_out_speed, double linear_slop);
   // The same for turning contacts (angular SubstepConstraints), `seconds` the blocks' second
   // points (WideTurningConstraints::second_points, from the same block on), `turned` each body's
