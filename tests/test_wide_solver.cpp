@@ -232,14 +232,16 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   const std::size_t blocks = wide.blocks.size();
   REQUIRE(wide.second_points.size() == blocks);
   passes.turning_warm_start(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data());
+  std::vector<Vec2> moved(out.states.size());  // the lanes read the moves since the start, as the solver makes them
+  MeasureMoves(out.states, scene.start_positions, moved);
   for (int pass = 0; pass < 2; ++pass) {
-    passes.turning_solve(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(),
-                         scene.start_positions.data(), scene.turned.data(), inv_h, true);
+    passes.turning_solve(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(), moved.data(),
+                         scene.turned.data(), inv_h, true);
   }
   move();
-  passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(),
-                          scene.start_positions.data(), scene.turned.data(), out.push.data(),
-                          out.push_angular.data(), rate, max_speed, slop);
+  MeasureMoves(out.states, scene.start_positions, moved);
+  passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, moved.data(), scene.turned.data(),
+                          out.push.data(), out.push_angular.data(), rate, max_speed, slop);
   wide.StoreImpulses(order.slot, out.contacts);
   return out;
 }

@@ -338,8 +338,8 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
-  // The axis-aligned lanes and shock propagation measure separations from the bodies' moves.
-  const bool lanes_measure = plan.wide && !kCanTurn<C>;
+  // The lanes and shock propagation measure separations from the bodies' moves.
+  const bool lanes_measure = plan.wide != nullptr;
   if (lanes_measure || plan.shock_propagation) {
     MeasureMoves(states, context.start_positions, moved_, &context.pool);
   }
@@ -435,7 +435,7 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
-                                 states.data(), start.positions.data(), start.turned.data(), plan.inv_h,
+                                 states.data(), moved_.data(), start.turned.data(), plan.inv_h,
                                  plan.block_solver);
       } else {
         plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
@@ -457,8 +457,7 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
-                                    count, states.data(), start.positions.data(), start.turned.data(),
-                                    push.linear.data(), push.angular.data(), plan.push_out_rate,
+                                    count, moved_.data(), start.turned.data(), push.linear.data(), push.angular.data(), plan.push_out_rate,
                                     def.max_push_out_speed, def.linear_slop);
       } else {
         plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),

@@ -29,11 +29,10 @@ struct WidePasses {
   // rotation since the step's start; `block_solve` as SubstepPlan's.
   void (*turning_warm_start)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states);
   void (*turning_solve)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
-                        const Vec2* start_positions, const Rot* turned, double inv_h, bool block_solve);
-  void (*turning_push_out)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count,
-                           const BodyState* states, const Vec2* start_positions, const Rot* turned, Vec2* push,
-                           double* push_angular, double push_out_rate, double max_push_out_speed,
-                           double linear_slop);
+                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve);
+  void (*turning_push_out)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+                           const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
+                           double max_push_out_speed, double linear_slop);
   // Revolute joints' point rows (JointSolver's warm start, Solve and PushOut for them).
   void (*joint_warm_start)(JointBlock* blocks, std::size_t count, BodyState* states);
   void (*joint_solve)(JointBlock* blocks, std::size_t count, BodyState* states, double inv_h);

@@ -82,21 +82,18 @@ struct PlaceLanes {
   Lanes tac, tas, tbc, tbs;  ///< each body's turn since then
 };
 
-[[gnu::always_inline]] inline PlaceLanes GatherPlaces(const TurningBlock& k, int o, const BodyState* states,
-                                                      const Vec2* start, const Rot* turned) {
-  const double* positions = &states[0].position.x;
-  const double* starts = &start[0].x;
+// `moved`: each body's move since the step's start (MeasureMoves).
+[[gnu::always_inline]] inline PlaceLanes GatherPlaces(const TurningBlock& k, int o, const Vec2* moved,
+                                                      const Rot* turned) {
   const double* turns = &turned[0].c;
-  Lanes pax, pay, pbx, pby, sax, say, sbx, sby;
+  Lanes max, may, mbx, mby;
   PlaceLanes q;
-  Gather(positions, kStateStride, k.a + o, &pax, &pay);
-  Gather(positions, kStateStride, k.b + o, &pbx, &pby);
-  Gather(starts, kVec2Stride, k.a + o, &sax, &say);
-  Gather(starts, kVec2Stride, k.b + o, &sbx, &sby);
+  Gather(&moved[0].x, kVec2Stride, k.a + o, &max, &may);
+  Gather(&moved[0].x, kVec2Stride, k.b + o, &mbx, &mby);
   Gather(turns, kVec2Stride, k.a + o, &q.tac, &q.tas);
   Gather(turns, kVec2Stride, k.b + o, &q.tbc, &q.tbs);
-  q.mx = (pbx - sbx) - (pax - sax);
-  q.my = (pby - sby) - (pay - say);
+  q.mx = mbx - max;
+  q.my = mby - may;
   return q;
 }
 
@@ -164,11 +161,11 @@ void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, st
 // point (`second`): a template, so that the lanes of circles are compiled without it.
 template <bool kTwo>
 [[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningPointLanes& second, int o,
-                                                     BodyState* states, const Vec2* start, const Rot* turned,
+                                                     BodyState* states, const Vec2* moved, const Rot* turned,
                                                      Lanes inv_h, bool block_solve) {
   const PairLanes c = LoadPair(k, o);
   const Lanes tx = -c.ny, ty = c.nx;
-  const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+  const PlaceLanes q = GatherPlaces(k, o, moved, turned);
   // Without a second point, p1 stands in for it where the arithmetic needs a value and is
   // never kept.
   const PointLanes p0 = LoadPoint(k.first, o), p1 = kTwo ? LoadPoint(second, o) : p0;
@@ -243,22 +240,22 @@ template <bool kTwo>
 }
 
 void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
-                        const Vec2* start, const Rot* turned, double inv_h_scalar, bool block_solve) {
+                        const Vec2* moved, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       if (Bits(Lanes::Load(k.two_points + o) != Lanes(0.0)) != 0) {
-        SolveTurningLanes<true>(k, seconds[i], o, states, start, turned, inv_h, block_solve);
+        SolveTurningLanes<true>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       } else {  // circles have one point: their second is skipped whole
-        SolveTurningLanes<false>(k, seconds[i], o, states, start, turned, inv_h, block_solve);
+        SolveTurningLanes<false>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       }
     }
   }
 }
 
-void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const BodyState* states,
-                          const Vec2* start, const Rot* turned, Vec2* push, double* push_angular,
+void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+                          const Rot* turned, Vec2* push, double* push_angular,
                           double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_linear = &push[0].x;
@@ -268,7 +265,7 @@ void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std:
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const PairLanes c = LoadPair(k, o);
-      const PlaceLanes q = GatherPlaces(k, o, states, start, turned);
+      const PlaceLanes q = GatherPlaces(k, o, moved, turned);
       // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
       Lanes vax, vay, vbx, vby;
       Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
