@@ -233,12 +233,14 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   };
   // Bounces first, where any pair bounces (most steps of a settled pile have none): looked for
   // as the constraints were prepared here, or else (prepared beside the colouring, with the
-  // restitutions written apart) by the threads on their own parts of the contacts.
-  const bool bounces =
-      plan.impact_pass && (looked ? look.found.load()
-                                  : AnyImpact<C>(constraints, order_.slot, context.contacts, contact_restitutions_,
-                                                 context.states, accelerations_, def, &context.pool));
-  const auto resolve_impacts = [&] {
+  // restitutions written apart) by the threads on their own parts of the contacts (`pool`), or
+  // on one thread beside the shock plan.
+  const auto any_bounce = [&](WorkerPool* pool) {
+    return plan.impact_pass && (looked ? look.found.load()
+                                       : AnyImpact<C>(constraints, order_.slot, context.contacts,
+                                                      contact_restitutions_, context.states, accelerations_, def, pool));
+  };
+  const auto resolve_impacts = [&](bool bounces) {
     impact_lags_.clear();
     if (bounces) {
       ResolveImpacts(constraints, order_.slot, context.contacts, context.states, accelerations_, def, &impact_lags_);
@@ -254,27 +256,38 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
       if (pack_turning) wide_turning_.Pack(constraints, order_);
     }
   };
+  const auto cut_by_bodies = [&] {
+    if (plan.wide && context.pool.Threads() > 1) {  // the passes' shares: by the bodies they move
+      if constexpr (kCanTurn<C>) {
+        if (wide_turning_.order.strips == 0) wide_turning_.CutByBodies(n, context.pool.Threads());
+      } else {
+        wide_.CutByBodies(n, context.pool.Threads());
+      }
+    }
+  };
   if (plan.shock_propagation && constraints.size() >= kMinSideBySideConstraints) {
+    // The shock plan on one thread; the look for bounces, the bounces and the cut on the other,
+    // which had waited out most of the plan (120 kcyc a step of the 4 000-circle pour) after
+    // looking on both threads (48).
     const auto impacts = [&] {
-      resolve_impacts();
+      resolve_impacts(any_bounce(nullptr));
       pack_turning_blocks();
+      if (blocks_to_pack == 0) cut_by_bodies();  // the blocks are packed
     };
     context.pool.RunSideBySideThenShare(impacts, shock_plan, blocks_to_pack, kBlocksPerRun, pack_blocks);
-  } else if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
-    // The packing only reads the constraints, the impacts only write velocities (and lags).
-    context.pool.RunSideBySide(resolve_impacts, pack_turning_blocks);
+    if (blocks_to_pack > 0) cut_by_bodies();
   } else {
-    shock_plan();
-    resolve_impacts();
-    pack_turning_blocks();
-    if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
-  }
-  if (plan.wide && context.pool.Threads() > 1) {  // the passes' shares: by the bodies they move
-    if constexpr (kCanTurn<C>) {
-      if (wide_turning_.order.strips == 0) wide_turning_.CutByBodies(n, context.pool.Threads());
+    const bool bounces = any_bounce(&context.pool);
+    if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
+      // The packing only reads the constraints, the impacts only write velocities (and lags).
+      context.pool.RunSideBySide([&] { resolve_impacts(bounces); }, pack_turning_blocks);
     } else {
-      wide_.CutByBodies(n, context.pool.Threads());
+      shock_plan();
+      resolve_impacts(bounces);
+      pack_turning_blocks();
+      if (blocks_to_pack > 0) pack_blocks(0, blocks_to_pack);
     }
+    cut_by_bodies();
   }
   push_velocities_.resize(n);
   push_angular_velocities_.resize(n);
