@@ -177,6 +177,36 @@ TEST_CASE("shock propagation shared among threads gives the one-thread bits", "[
   }
 }
 
+TEST_CASE("shock propagation's branching and branch-free forms give the same bits", "[solver]") {
+  // Every third body rising: rows that push and rows that do not, changing often along them.
+  Pile pile = MakePile(30, 20);
+  for (std::size_t i = 1; i < pile.states.size(); i += 3) pile.states[i].velocity.y = 0.2;
+  std::vector<engine::detail::ShockRow> rows;
+  engine::detail::ShockScratch scratch;
+  engine::detail::BuildShockRows<engine::LinearConstraint>(pile.constraints, pile.infos, {0.0, 1.0}, &scratch,
+                                                           &rows);
+  const std::vector<engine::Vec2> moved(pile.states.size());  // no centre has moved since the start
+  // Which rows push, by hand: the ones that change a velocity, taken one at a time in order.
+  std::vector<engine::BodyState> by_hand = pile.states;
+  std::size_t changes = 0;
+  bool last = false;
+  for (const engine::detail::ShockRow& row : rows) {
+    const engine::BodyState a = by_hand[row.a], b = by_hand[row.b];
+    engine::detail::PropagateShock(std::span(&row, 1), by_hand, moved, 240.0, 0.005, false);
+    const bool pushed =
+        std::memcmp(&a, &by_hand[row.a], sizeof a) != 0 || std::memcmp(&b, &by_hand[row.b], sizeof b) != 0;
+    changes += pushed != last ? 1 : 0;
+    last = pushed;
+  }
+  CHECK(5 * changes >= rows.size());  // often enough that the solver would take the branch-free form
+  for (const bool branch_free : {false, true}) {
+    CAPTURE(branch_free);
+    std::vector<engine::BodyState> states = pile.states;
+    CHECK(engine::detail::PropagateShock(rows, states, moved, 240.0, 0.005, branch_free) == changes);
+    CHECK(SameBits(states, by_hand));
+  }
+}
+
 TEST_CASE("shock bands planned again for other rows are planned afresh", "[parallel][solver]") {
   // The plan's scratch is kept between steps: a plan for a smaller pile first leaves nothing
   // behind that the next one reads.

@@ -183,9 +183,15 @@ template class ShockRowWriter<LinearConstraint>;
 template void WriteShockRows(std::span<const SubstepConstraint>, Vec2, ShockScratch*, WorkerPool*);
 template void WriteShockRows(std::span<const LinearConstraint>, Vec2, ShockScratch*, WorkerPool*);
 
-void PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states, std::span<const Vec2> moved,
-                    double inv_h, double linear_slop) {
-  for (const ShockRow& row : rows) PropagateRow(row, states, moved, inv_h, linear_slop);
+std::size_t PropagateShock(std::span<const ShockRow> rows, std::span<BodyState> states, std::span<const Vec2> moved,
+                           double inv_h, double linear_slop, bool branch_free) {
+  PushChanges changes;
+  if (branch_free) {
+    for (const ShockRow& row : rows) changes.Add(PropagateRow<true>(row, states, moved, inv_h, linear_slop));
+  } else {
+    for (const ShockRow& row : rows) changes.Add(PropagateRow<false>(row, states, moved, inv_h, linear_slop));
+  }
+  return changes.count;
 }
 
 }  // namespace engine::detail

@@ -144,16 +144,16 @@ std::size_t ShockSchedule::WaitCount() const {
 void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
                         std::span<const Vec2> moved, double inv_h, double linear_slop) {
   if (bands_ == 1 || pool.Threads() < bands_) {
-    PropagateShock(rows, states, moved, inv_h, linear_slop);
+    form_.Saw(PropagateShock(rows, states, moved, inv_h, linear_slop, form_.BranchFree()), rows.size());
     return;
   }
   for (int band = 0; band < bands_; ++band) progress_[band].next.store(0, std::memory_order_relaxed);
-  pool.RunOnAll([&](int band) {
-    if (band >= bands_) return;
+  const auto run_band = [&]<bool kBranchFree>(int band) {
     const std::vector<Wait>& waits = waits_by_band_[static_cast<std::size_t>(band)];
     auto wait = waits.begin();
     std::atomic<std::uint32_t>& mine = progress_[band].next;
     std::uint32_t position = 0;
+    PushChanges changes;
     for (std::uint32_t k = band_start_[band]; k < band_start_[band + 1]; ++k, ++position) {
       for (; wait != waits.end() && wait->position == position; ++wait) {
         const std::atomic<std::uint32_t>& theirs = progress_[wait->thread].next;
@@ -161,13 +161,26 @@ void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::s
         SpinThenWait(theirs, [&] { return theirs.load(std::memory_order_acquire) > row; });
       }
       const std::uint32_t r = band_rows_[k];
-      PropagateRow(rows[r], states, moved, inv_h, linear_slop);
+      changes.Add(PropagateRow<kBranchFree>(rows[r], states, moved, inv_h, linear_slop));
       if (awaited_[r]) {
         mine.store(r + 1, std::memory_order_release);
         mine.notify_all();
       }
     }
+    progress_[band].push_changes = changes.count;
+  };
+  const bool branch_free = form_.BranchFree();
+  pool.RunOnAll([&](int band) {
+    if (band >= bands_) return;
+    if (branch_free) {
+      run_band.template operator()<true>(band);
+    } else {
+      run_band.template operator()<false>(band);
+    }
   });
+  std::size_t changes = 0;
+  for (int band = 0; band < bands_; ++band) changes += progress_[band].push_changes;
+  form_.Saw(changes, rows.size());
 }
 
 }  // namespace engine::detail

@@ -56,6 +56,7 @@ class ShockSchedule {
   /// A thread's progress (the row after the last one others wait on), a cache line to itself.
   struct alignas(64) Progress {
     std::atomic<std::uint32_t> next{0};
+    std::size_t push_changes = 0;  ///< the band's PushChanges in the last pass
   };
 
   /// What FindWaits reads of a row: its bodies and which it writes (a sixth of a ShockRow).
@@ -75,6 +76,7 @@ class ShockSchedule {
   std::vector<std::vector<Wait>> waits_by_band_;  ///< each band's, in position order
   std::vector<std::uint8_t> awaited_;      ///< per row: another thread waits on it
   std::unique_ptr<Progress[]> progress_;
+  ShockRowForm form_;                      ///< the next pass's form, from the last one's rows
   std::size_t progress_count_ = 0;
   // Plan's scratch, kept between steps.
   std::vector<std::uint32_t> band_of_, fill_, last_write_, last_touch_, waited_, need_;

@@ -236,9 +236,10 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   // restitutions written apart) by the threads on their own parts of the contacts (`pool`), or
   // on one thread beside the shock plan.
   const auto any_bounce = [&](WorkerPool* pool) {
-    return plan.impact_pass && (looked ? look.found.load()
-                                       : AnyImpact<C>(constraints, order_.slot, context.contacts,
-                                                      contact_restitutions_, context.states, accelerations_, def, pool));
+    if (!plan.impact_pass) return false;
+    if (looked) return look.found.load();
+    return AnyImpact<C>(constraints, order_.slot, context.contacts, contact_restitutions_, context.states,
+                        accelerations_, def, pool);
   };
   const auto resolve_impacts = [&](bool bounces) {
     impact_lags_.clear();
@@ -470,8 +471,8 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
-                                    count, moved_.data(), start.turned.data(), push.linear.data(), push.angular.data(), plan.push_out_rate,
-                                    def.max_push_out_speed, def.linear_slop);
+                                    count, moved_.data(), start.turned.data(), push.linear.data(), push.angular.data(),
+                                    plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       } else {
         plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),
                             plan.push_out_rate, def.max_push_out_speed, def.linear_slop);

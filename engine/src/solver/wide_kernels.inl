@@ -110,7 +110,8 @@ void SolveBlocks(LinearBlock* blocks, std::size_t count, BodyState* states, cons
   }
 }
 
-void PushOutBlocks(LinearBlock* blocks, std::size_t count, const Vec2* moved, Vec2* push, double push_out_rate, double max_push_out_speed, double linear_slop) {
+void PushOutBlocks(LinearBlock* blocks, std::size_t count, const Vec2* moved, Vec2* push, double push_out_rate,
+                   double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
   double* push_velocities = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
@@ -119,8 +120,11 @@ void PushOutBlocks(LinearBlock* blocks, std::size_t count, const Vec2* moved, Ve
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const Lanes nx = Lanes::Load(k.normal_x + o), ny = Lanes::Load(k.normal_y + o);
       const Lanes s = SeparationNow(k, o, moved, nx, ny);
-      // Overlap within the slop is left alone: those lanes write back the velocities they read.
+      // Overlap within the slop is left alone: a block with none past it is passed over (in a
+      // resting pile, always), and in the others those lanes write back the velocities they read
+      // (a store a lane by whether it pushed was mispredicted in a settling pour).
       const Mask within_slop = s >= -slop;
+      if (Bits(within_slop) == (1u << Lanes::kCount) - 1) continue;
       const Lanes wanted = rate * -(s + slop);
       const Lanes target = Select(max_speed < wanted, max_speed, wanted);
       Lanes vax, vay, vbx, vby;
