@@ -140,9 +140,13 @@ inline bool PropagateRow(const ShockRow& row, std::span<BodyState> states, std::
   const Vec2 pushed_a = va - (impulse * row.inv_mass_a) * n;
   const Vec2 pushed_b = vb + (impulse * row.inv_mass_b) * n;
   if constexpr (kBranchFree) {
-    const bool moves_a = push & (row.inv_mass_a != 0.0), moves_b = push & (row.inv_mass_b != 0.0);
-    a.velocity = {ChooseBits(moves_a, pushed_a.x, va.x), ChooseBits(moves_a, pushed_a.y, va.y)};
-    b.velocity = {ChooseBits(moves_b, pushed_b.x, vb.x), ChooseBits(moves_b, pushed_b.y, vb.y)};
+    // A body the row holds fixed is not written even with its own velocity: other bands read it
+    // meanwhile (a race), and a static body is never written. Its write goes aside instead.
+    Vec2 aside;
+    Vec2* const into_a = row.inv_mass_a != 0.0 ? &a.velocity : &aside;
+    Vec2* const into_b = row.inv_mass_b != 0.0 ? &b.velocity : &aside;
+    *into_a = {ChooseBits(push, pushed_a.x, va.x), ChooseBits(push, pushed_a.y, va.y)};
+    *into_b = {ChooseBits(push, pushed_b.x, vb.x), ChooseBits(push, pushed_b.y, vb.y)};
   } else {
     if (row.inv_mass_a != 0.0) a.velocity = pushed_a;
     if (row.inv_mass_b != 0.0) b.velocity = pushed_b;
