@@ -2,6 +2,7 @@
 // S10), rotating stacks against the solver's thresholds, and no angular work when nothing turns.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bench/stress_scenes.h"
@@ -156,6 +157,36 @@ TEST_CASE("a disc rolls down a 30° incline at ⅔·g·sin θ without slipping",
   // Rolling: the contact point is at rest, v = ω·r (rolling down to the left turns it
   // counter-clockwise: ω positive).
   CHECK(std::abs(v1 - world.State({1}).angular_velocity * r) <= 1e-3 * v1);
+}
+
+TEST_CASE("a disc rolling on a flat floor keeps its height, speed and spin", "[rotation][rolling]") {
+  // Rolling without slipping on level ground, no rolling resistance: v and ω·r stay what they
+  // were, and the disc stays r above the floor. A circle's contact points lie on the line
+  // through its centre, so its own turn moves them along its outline without changing the gap;
+  // counting the turn into the gap (as a box's corner must) had the disc find ρ(1 − cos θ) of
+  // room each step: at 5 m/s it sank 5.9 mm and slowed 0.4 % in 10 s.
+  const double r = 0.25;
+  for (const double v : {3.0, 5.0, 10.0}) {
+    engine::WorldDef def;
+    def.rotation = true;
+    def.sleeping = false;
+    engine::World world(def);
+    world.CreateBody(WithMaterial(Static(Box({0, -0.5}, {400, 1})), 0, 0.6));
+    engine::BodyDef disc = WithMaterial(Circle({-150, r}, r, {v, 0}), 0, 0.6);
+    disc.angular_velocity = -v / r;  // rolling to the right turns it clockwise
+    const engine::BodyId id = world.CreateBody(disc);
+    double deepest = 0.0;
+    for (int step = 0; step < 600; ++step) {
+      world.Step();
+      deepest = std::max(deepest, r - world.State(id).position.y);
+    }
+    const engine::BodyState& end = world.State(id);
+    INFO("v " << v << " m/s: sank " << deepest * 1e3 << " mm, speed " << end.velocity.x << ", ω·r "
+              << -end.angular_velocity * r);
+    CHECK(deepest <= 0.5e-3);
+    CHECK(end.velocity.x == Approx(v).epsilon(1e-4));
+    CHECK(-end.angular_velocity * r == Approx(v).epsilon(1e-4));
+  }
 }
 
 TEST_CASE("rotating stacks meet the solver's thresholds", "[rotation][stability]") {

@@ -109,6 +109,10 @@ bool SubstepSolver::AllRound(std::span<const BodyPair> contacts, std::span<const
   return std::ranges::all_of(contacts, [&](const BodyPair& c) { return round(c.a) && round(c.b); });
 }
 
+bool SubstepSolver::TurnsAnchors(const BodyInfo& info) {
+  return info.inv_inertia != 0.0 && info.shape.type != ShapeType::kCircle;
+}
+
 bool SubstepSolver::ShockPropagates(const WorldDef& def) {
   return def.substep_features.shock_propagation && Length(def.gravity) > 0.0;
 }
@@ -128,9 +132,13 @@ SubstepPlan SubstepSolver::Plan(const StepContext& context) {
                       std::find(loaded_.begin(), loaded_.end(), 1) == loaded_.end();
   plan.block_solver = features.block_solver;
   plan.check_forces = context.forces.BeyondGravity();
-  // How far bodies turned is for the contacts' separations: a jointed net without contacts
-  // would turn every body twice a substep for nothing.
-  plan.track_turning = def.rotation && !context.contacts.empty();
+  // How far bodies turned is for the contacts' separations, and only where a turn moves a
+  // contact's points (TurnsAnchors): a jointed net without contacts, or a pile of circles,
+  // would turn every body twice a substep for nothing. (Counting a circle's turn in, a disc
+  // rolling at 5 m/s found ρ(1 − cos θ) of room each step and sank 5.9 mm into the floor.)
+  plan.track_turning = def.rotation && std::ranges::any_of(context.contact_pairs, [&](const BodyPair& c) {
+    return TurnsAnchors(context.infos[c.a]) || TurnsAnchors(context.infos[c.b]);
+  });
   plan.h = def.dt / def.substeps;
   plan.inv_h = 1.0 / plan.h;
   // Remove the same fraction of the overlap per step as the sequential-impulse solver does,
@@ -300,13 +308,15 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     unturned_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       angles_before_[i] = context.states[i].angle;
-      unturned_[i] = context.infos[i].inv_inertia == 0.0;
+      unturned_[i] = !TurnsAnchors(context.infos[i]);
     }
     turns_.assign(n, std::numeric_limits<double>::quiet_NaN());  // no turn worked out yet
     UpdateTurned(context);  // nothing has turned yet this step
+  } else if (def.rotation) {  // no contact's points turn off its bodies' centres' lines
+    turned_.assign(n, Rot{});
   }
   const StepStart start{context.start_positions,
-                        plan.track_turning ? std::span<const Rot>(turned_) : std::span<const Rot>()};
+                        def.rotation ? std::span<const Rot>(turned_) : std::span<const Rot>()};
   // Nothing reads positions between a substep's push-out and the next substep's free step,
   // except the turns' update.
   bool push_carried = false;

@@ -30,7 +30,7 @@ struct SubstepPlan {
   bool energy_limit;       ///< no applied force acts: the contacts may only take energy out
   bool block_solver;       ///< two-point turning contacts solved together (switch)
   bool check_forces;       ///< forces beyond gravity act: they may overflow, checked each substep
-  bool track_turning;      ///< rotation is on and there are contacts: they follow how far bodies have turned
+  bool track_turning;      ///< a contact's body turns its points (TurnsAnchors): they follow how far it turned
   double h;                ///< the substep, s
   double inv_h;
   double push_out_rate;    ///< 1/s: the fraction of the overlap pushed out per second of a substep
@@ -73,6 +73,10 @@ class SubstepSolver {
   /// Whether every moving body in a contact (its bodies, NarrowPhase::ContactPairs) is a circle:
   /// its contacts push through its centre.
   static bool AllRound(std::span<const BodyPair> contacts, std::span<const BodyInfo> infos);
+  /// Whether a body's turn moves its contact points off the line through its centre, so that
+  /// its contacts' separations must follow the turn: a body that turns, and is not a circle
+  /// (a circle's points lie on the line through its centre, whatever its turn).
+  static bool TurnsAnchors(const BodyInfo& info);
   /// What carries over from step to step (the contacts the direct solve took last step), for
   /// snapshots (snapshot/world_snapshot.cpp).
   void Save(ByteWriter& out) const;
