@@ -21,7 +21,9 @@ namespace engine::detail {
 /// of a contact now follows from these and the contact's anchors.
 struct StepStart {
   std::span<const Vec2> positions;
-  std::span<const Rot> turned;  ///< rotation since the step's start; empty without rotation
+  /// Each body's rotation since the step's start; empty where no contact's body turns its
+  /// points (SubstepSolver::TurnsAnchors), the anchors then fixed.
+  std::span<const Rot> turned;
 };
 
 // The passes take either kind of constraint: SubstepConstraint where something can turn,
@@ -72,7 +74,9 @@ inline double CurrentSeparation(const C& sc, const P& p, std::span<const BodySta
   Vec2 moved = (states[sc.b].position - start.positions[sc.b]) -
                (states[sc.a].position - start.positions[sc.a]);
   if constexpr (kCanTurn<C>) {
-    if (sc.angular) {
+    if (sc.angular && start.turned.empty()) {  // no body's turn moves its points (TurnsAnchors)
+      moved = moved + p.anchor_b - p.anchor_a;
+    } else if (sc.angular) {
       moved = moved + Rotate(start.turned[sc.b], p.anchor_b) - Rotate(start.turned[sc.a], p.anchor_a);
     }
   }

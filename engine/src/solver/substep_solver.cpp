@@ -312,11 +312,10 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     }
     turns_.assign(n, std::numeric_limits<double>::quiet_NaN());  // no turn worked out yet
     UpdateTurned(context);  // nothing has turned yet this step
-  } else if (def.rotation) {  // no contact's points turn off its bodies' centres' lines
-    turned_.assign(n, Rot{});
   }
+  // Without turns (no contact's body turns its points) the anchors stay fixed for the step.
   const StepStart start{context.start_positions,
-                        def.rotation ? std::span<const Rot>(turned_) : std::span<const Rot>()};
+                        plan.track_turning ? std::span<const Rot>(turned_) : std::span<const Rot>()};
   // Nothing reads positions between a substep's push-out and the next substep's free step,
   // except the turns' update.
   bool push_carried = false;
@@ -459,7 +458,7 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
-                                 states.data(), moved_.data(), start.turned.data(), plan.inv_h,
+                                 states.data(), moved_.data(), start.turned.empty() ? nullptr : start.turned.data(), plan.inv_h,
                                  plan.block_solver);
       } else {
         plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
@@ -481,7 +480,7 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
-                                    count, moved_.data(), start.turned.data(), push.linear.data(), push.angular.data(),
+                                    count, moved_.data(), start.turned.empty() ? nullptr : start.turned.data(), push.linear.data(), push.angular.data(),
                                     plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       } else {
         plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),

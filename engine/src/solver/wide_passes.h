@@ -26,7 +26,8 @@ struct WidePasses {
                    double max_push_out_speed, double linear_slop);
   // The same for turning contacts (angular SubstepConstraints), `seconds` the blocks' second
   // points (WideTurningConstraints::second_points, from the same block on), `turned` each body's
-  // rotation since the step's start; `block_solve` as SubstepPlan's.
+  // rotation since the step's start (null where no body's turn moves its points: the anchors
+  // stay fixed); `block_solve` as SubstepPlan's.
   void (*turning_warm_start)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states);
   void (*turning_solve)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h, bool block_solve);

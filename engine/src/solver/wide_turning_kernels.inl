@@ -82,26 +82,38 @@ struct PlaceLanes {
   Lanes tac, tas, tbc, tbs;  ///< each body's turn since then
 };
 
-// `moved`: each body's move since the step's start (MeasureMoves).
+// `moved`: each body's move since the step's start (MeasureMoves); `turned` (kTurns) each
+// body's turn since then.
+template <bool kTurns>
 [[gnu::always_inline]] inline PlaceLanes GatherPlaces(const TurningBlock& k, int o, const Vec2* moved,
                                                       const Rot* turned) {
-  const double* turns = &turned[0].c;
   Lanes max, may, mbx, mby;
   PlaceLanes q;
   Gather(&moved[0].x, kVec2Stride, k.a + o, &max, &may);
   Gather(&moved[0].x, kVec2Stride, k.b + o, &mbx, &mby);
-  Gather(turns, kVec2Stride, k.a + o, &q.tac, &q.tas);
-  Gather(turns, kVec2Stride, k.b + o, &q.tbc, &q.tbs);
+  if constexpr (kTurns) {
+    const double* turns = &turned[0].c;
+    Gather(turns, kVec2Stride, k.a + o, &q.tac, &q.tas);
+    Gather(turns, kVec2Stride, k.b + o, &q.tbc, &q.tbs);
+  }
   q.mx = mbx - max;
   q.my = mby - may;
   return q;
 }
 
-// base + Dot((moved + Rotate(turn_b, r_b)) − Rotate(turn_a, r_a), n).
+// base + Dot((moved + Rotate(turn_b, r_b)) − Rotate(turn_a, r_a), n); without turns (kTurns
+// false: no body's turn moves its points), base + Dot((moved + r_b) − r_a, n).
+template <bool kTurns>
 [[gnu::always_inline]] inline Lanes SeparationAt(const PlaceLanes& q, const PointLanes& p, const PairLanes& c) {
-  const Lanes x = (q.mx + (q.tbc * p.rbx - q.tbs * p.rby)) - (q.tac * p.rax - q.tas * p.ray);
-  const Lanes y = (q.my + (q.tbs * p.rbx + q.tbc * p.rby)) - (q.tas * p.rax + q.tac * p.ray);
-  return p.base_separation + (x * c.nx + y * c.ny);
+  if constexpr (kTurns) {
+    const Lanes x = (q.mx + (q.tbc * p.rbx - q.tbs * p.rby)) - (q.tac * p.rax - q.tas * p.ray);
+    const Lanes y = (q.my + (q.tbs * p.rbx + q.tbc * p.rby)) - (q.tas * p.rax + q.tac * p.ray);
+    return p.base_separation + (x * c.nx + y * c.ny);
+  } else {
+    const Lanes x = (q.mx + p.rbx) - p.rax;
+    const Lanes y = (q.my + p.rby) - p.ray;
+    return p.base_separation + (x * c.nx + y * c.ny);
+  }
 }
 
 void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states) {
@@ -159,18 +171,18 @@ void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, st
 
 // One block's lanes [o, o + Lanes::kCount) of TurningSolveBlocks, `kTwo` whether any has a second
 // point (`second`): a template, so that the lanes of circles are compiled without it.
-template <bool kTwo>
+template <bool kTwo, bool kTurns>
 [[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningPointLanes& second, int o,
                                                      BodyState* states, const Vec2* moved, const Rot* turned,
                                                      Lanes inv_h, bool block_solve) {
   const PairLanes c = LoadPair(k, o);
   const Lanes tx = -c.ny, ty = c.nx;
-  const PlaceLanes q = GatherPlaces(k, o, moved, turned);
+  const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
   // Without a second point, p1 stands in for it where the arithmetic needs a value and is
   // never kept.
   const PointLanes p0 = LoadPoint(k.first, o), p1 = kTwo ? LoadPoint(second, o) : p0;
-  const Lanes min_vn0 = -Max0(SeparationAt(q, p0, c)) * inv_h;
-  const Lanes min_vn1 = kTwo ? -Max0(SeparationAt(q, p1, c)) * inv_h : Lanes(0.0);
+  const Lanes min_vn0 = -Max0(SeparationAt<kTurns>(q, p0, c)) * inv_h;
+  const Lanes min_vn1 = kTwo ? -Max0(SeparationAt<kTurns>(q, p1, c)) * inv_h : Lanes(0.0);
   const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
 
   // Both normals together, where two points allow (the block solver).
@@ -239,22 +251,34 @@ template <bool kTwo>
   ScatterMotion(states, k.b + o, b, c.moving_b);
 }
 
-void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+template <bool kTurns>
+void SolveTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       if (Bits(Lanes::Load(k.two_points + o) != Lanes(0.0)) != 0) {
-        SolveTurningLanes<true>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
+        SolveTurningLanes<true, kTurns>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       } else {  // circles have one point: their second is skipped whole
-        SolveTurningLanes<false>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
+        SolveTurningLanes<false, kTurns>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       }
     }
   }
 }
 
-void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+// `turned` null: no body's turn moves its points (the anchors stay where they were).
+void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve) {
+  if (turned) {
+    SolveTurningBlocks<true>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
+  } else {
+    SolveTurningBlocks<false>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
+  }
+}
+
+template <bool kTurns>
+void PushOutTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
                           const Rot* turned, Vec2* push, double* push_angular,
                           double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
@@ -265,7 +289,7 @@ void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std:
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const PairLanes c = LoadPair(k, o);
-      const PlaceLanes q = GatherPlaces(k, o, moved, turned);
+      const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
       // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
       Lanes vax, vay, vbx, vby;
       Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
@@ -275,7 +299,7 @@ void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std:
       const int points = Bits(c.two) != 0 ? 2 : 1;
       for (int point = 0; point < points; ++point) {
         const PointLanes p = LoadPoint(point == 0 ? k.first : seconds[i], o);
-        const Lanes s = SeparationAt(q, p, c);
+        const Lanes s = SeparationAt<kTurns>(q, p, c);
         // Overlap within the slop is left alone.
         unsigned active = ~Bits(s >= -slop) & all;
         if (point == 1) active &= Bits(c.two);
@@ -304,5 +328,18 @@ void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std:
       ScatterOne(push_angular, 1, k.a + o, wa, written_a);
       ScatterOne(push_angular, 1, k.b + o, wb, written_b);
     }
+  }
+}
+
+// `turned` null: no body's turn moves its points.
+void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+                          const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
+                          double max_push_out_speed, double linear_slop) {
+  if (turned) {
+    PushOutTurningBlocks<true>(blocks, seconds, count, moved, turned, push, push_angular, push_out_rate,
+                               max_push_out_speed, linear_slop);
+  } else {
+    PushOutTurningBlocks<false>(blocks, seconds, count, moved, turned, push, push_angular, push_out_rate,
+                                max_push_out_speed, linear_slop);
   }
 }
