@@ -14,6 +14,13 @@ struct CosSin {
   double s = 0.0;
 };
 
+/// The larger of a and b, as `a > b ? a : b`: b where they are equal (±0 included) or either is
+/// NaN. One instruction on x86-64 (maxsd), and the same answer on every machine, where
+/// std::fmax is a call into libm and orders −0 and +0 as each machine's library does.
+inline double Larger(double a, double b) { return a > b ? a : b; }
+/// The smaller of a and b, as `a < b ? a : b` (b where they are equal or either is NaN).
+inline double Smaller(double a, double b) { return a < b ? a : b; }
+
 namespace portable_detail {
 
 // π/2 = kPiOver2A + kPiOver2B + kPiOver2C to 95 bits. A and B hold 21 significant bits each, so

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "narrow_phase/collide.h"
+#include "engine/portable_math.h"
 
 namespace engine {
 
@@ -45,7 +46,7 @@ double MaxSeparation(const BoxFrame& reference, const BoxFrame& other, int* face
   for (int i = 0; i < 4; ++i) {
     double deepest = INFINITY;
     for (const Vec2& corner : other.corners) {
-      deepest = std::fmin(deepest, Dot(reference.normals[i], corner - reference.corners[i]));
+      deepest = Smaller(deepest, Dot(reference.normals[i], corner - reference.corners[i]));
     }
     if (deepest > best) best = deepest, *face = i;
   }
