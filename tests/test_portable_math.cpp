@@ -260,3 +260,22 @@ TEST_CASE("portable Exp is within 1 ulp of e^x, overflows and underflows where l
   CHECK(engine::Exp(-740.0) > 0.0);  // subnormal, not flushed
   CHECK(std::abs(engine::Exp(-740.0) - std::exp(-740.0)) <= std::ldexp(1.0, -1074));
 }
+
+TEST_CASE("Larger and Smaller: a > b ? a : b and a < b ? a : b, signed zeros and NaN included",
+          "[portable_math]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(engine::Larger(1.0, 2.0) == 2.0);
+  CHECK(engine::Larger(-1.0, -2.0) == -1.0);
+  CHECK(engine::Smaller(1.0, 2.0) == 1.0);
+  CHECK(engine::Smaller(-1.0, -2.0) == -2.0);
+  // Equal: the second, whichever zero it is (std::fmax may give either, by machine).
+  CHECK(std::signbit(engine::Larger(0.0, -0.0)));
+  CHECK_FALSE(std::signbit(engine::Larger(-0.0, 0.0)));
+  CHECK(std::signbit(engine::Smaller(0.0, -0.0)));
+  CHECK_FALSE(std::signbit(engine::Smaller(-0.0, 0.0)));
+  // NaN on either side: the second.
+  CHECK(engine::Larger(nan, 3.0) == 3.0);
+  CHECK(std::isnan(engine::Larger(3.0, nan)));
+  CHECK(engine::Smaller(nan, 3.0) == 3.0);
+  CHECK(std::isnan(engine::Smaller(3.0, nan)));
+}
