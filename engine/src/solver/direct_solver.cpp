@@ -4,6 +4,7 @@
 #include "solver/direct_solver.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +12,13 @@
 #include "solver/cholesky.h"
 
 namespace engine::detail {
+
+bool IsHeavyPair(const SubstepConstraint& sc, std::span<const BodyInfo> infos) {
+  if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) return false;
+  const double heavier = std::max(infos[sc.a].mass, infos[sc.b].mass);
+  const double lighter = std::min(infos[sc.a].mass, infos[sc.b].mass);
+  return heavier >= kDirectMassRatio * lighter;
+}
 
 namespace {
 
@@ -33,13 +41,6 @@ constexpr int kMaxSolves = 4;
 constexpr double kLimitTolerance = 1e-6;
 
 enum : std::uint8_t { kFree, kAtLower, kAtUpper };
-
-bool IsHeavyPair(const SubstepConstraint& sc, std::span<const BodyInfo> infos) {
-  if (!sc.angular || sc.inv_mass_a == 0.0 || sc.inv_mass_b == 0.0) return false;
-  const double heavier = std::max(infos[sc.a].mass, infos[sc.b].mass);
-  const double lighter = std::min(infos[sc.a].mass, infos[sc.b].mass);
-  return heavier >= kDirectMassRatio * lighter;
-}
 
 // A row's Jacobian: direction d, and the arms' r × d for A and B.
 struct Jacobian {
@@ -577,12 +578,9 @@ void ResetFactorSlots(DirectSolver* s) {
 }
 
 bool BuildIslands(std::span<const SubstepConstraint> constraints, std::span<const BodyInfo> infos,
-                  DirectSolver* s) {
+                  DirectSolver* s, bool any_heavy) {
   ClearIslands(s);
-  if (std::none_of(constraints.begin(), constraints.end(),
-                   [&](const SubstepConstraint& sc) { return IsHeavyPair(sc, infos); })) {
-    return false;  // the common case: nothing more to do, nothing allocated
-  }
+  if (!any_heavy) return false;  // the common case: nothing more to do, nothing allocated
   FlagHeavyIslands(constraints, infos, s);
   const ContactGroups groups = GroupByIsland(constraints, s);
   for (std::size_t i = 0; i < groups.count.size(); ++i) {
@@ -618,10 +616,12 @@ void HandOff(std::span<SubstepConstraint> constraints, DirectSolver* s) {
 }  // namespace
 
 bool PrepareDirectSolve(std::span<SubstepConstraint> constraints, std::span<const BodyInfo> infos,
-                        DirectSolver* s) {
+                        DirectSolver* s, bool any_heavy) {
+  assert(any_heavy == std::any_of(constraints.begin(), constraints.end(),
+                                  [&](const SubstepConstraint& sc) { return IsHeavyPair(sc, infos); }));
   s->previous_pairs.swap(s->pairs);
   s->pairs.clear();
-  const bool any = BuildIslands(constraints, infos, s);
+  const bool any = BuildIslands(constraints, infos, s, any_heavy);
   if (!s->previous_pairs.empty()) HandOff(constraints, s);
   return any;
 }

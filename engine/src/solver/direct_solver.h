@@ -84,11 +84,16 @@ struct DirectSolver {
   std::vector<BodyState> saved;
 };
 
+/// Whether a contact between turning bodies joins two of which one is at least kDirectMassRatio
+/// times the other's mass: its island takes the direct solve.
+bool IsHeavyPair(const SubstepConstraint& sc, std::span<const BodyInfo> infos);
+
 /// Finds the islands that need a direct solve (at most kDirectMaxRows rows) and builds their
 /// effective-mass matrices for this step; false when there are none. A contact solved directly
-/// last step and left to Gauss-Seidel now loses its warm-start impulses.
+/// last step and left to Gauss-Seidel now loses its warm-start impulses. `any_heavy`: whether
+/// any constraint is a heavy pair (IsHeavyPair), as preparing them found (ConstraintKinds).
 bool PrepareDirectSolve(std::span<SubstepConstraint> constraints, std::span<const BodyInfo> infos,
-                        DirectSolver* solver);
+                        DirectSolver* solver, bool any_heavy);
 
 /// After the Gauss-Seidel passes of a substep: replaces the impulses of each prepared island's
 /// contacts with the exact answer, so that no contact approaches (beyond what its gap allows)

@@ -4,6 +4,7 @@
 #include "solver/substep_passes.h"
 
 #include "solver/block_solver.h"
+#include "solver/direct_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,7 +82,8 @@ void FillCentreRow(const Contact& c, double inv_mass_a, double inv_mass_b, Row* 
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<LinearConstraint>* constraints, WorkerPool* pool, ImpactLook* look) {
+                               std::vector<LinearConstraint>* constraints, WorkerPool* pool, ImpactLook* look,
+                               ConstraintKinds* /*kinds*/) {
   constraints->resize(contacts.size());
   ForEachIndex(pool, contacts.size(), kMinSharedContacts, [&](std::uint32_t i) {
     PrepareLinearConstraints(contacts, slot, infos, *constraints, i, i + 1);
@@ -104,7 +106,8 @@ void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const
 template <>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<SubstepConstraint>* constraints, WorkerPool* pool, ImpactLook* look) {
+                               std::vector<SubstepConstraint>* constraints, WorkerPool* pool, ImpactLook* look,
+                               ConstraintKinds* kinds) {
   // Filled in place, every field a constraint reads set (a point past point_count is never read):
   // copying each one in would cost a call to memcpy apiece.
   constraints->resize(contacts.size());
@@ -140,6 +143,8 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
       }
     }
     if (look) look->Look(sc, c, states);
+    if (kinds && !sc.angular) kinds->not_turning.store(true, std::memory_order_relaxed);
+    if (kinds && IsHeavyPair(sc, infos)) kinds->heavy.store(true, std::memory_order_relaxed);
   });
 }
 

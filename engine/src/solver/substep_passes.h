@@ -2,6 +2,7 @@
 // what the step does before and after them. Each takes either kind of constraint. Internal.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <type_traits>
@@ -45,15 +46,26 @@ inline constexpr std::uint32_t kMinSharedContacts = 4096;
 /// Bodies are shared among threads from these many: fewer cost more to hand out than they save.
 inline constexpr std::uint32_t kMinSharedBodies = 2048;
 
+/// What the step's SubstepConstraints hold, found as they are prepared, so that no pass over
+/// them asks again: a pair that cannot turn (shock propagation takes those; the turning lanes
+/// take none), and a heavy pair (IsHeavyPair: the direct solve's). Set by whichever thread meets
+/// one, never cleared within a step.
+struct ConstraintKinds {
+  std::atomic<bool> not_turning{false};
+  std::atomic<bool> heavy{false};
+};
+
 /// One constraint per contact, with the impulses carried over from the last step; contact i's
 /// goes to `slot[i]` (the solve order, ColourContacts). `states` give the bodies' centres, to
 /// turn contact points into anchors. `pool`: threads to share the contacts among (each
 /// constraint is written by its contact alone; from kMinSharedContacts, in ForEachIndex's runs).
 /// `look`: where not null, each contact is also looked at for an impact (ImpactLook).
+/// `kinds`: where not null (SubstepConstraints), what kinds of constraint were met.
 template <typename C>
 void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,
                                std::span<const BodyInfo> infos, std::span<const BodyState> states,
-                               std::vector<C>* constraints, WorkerPool* pool = nullptr, ImpactLook* look = nullptr);
+                               std::vector<C>* constraints, WorkerPool* pool = nullptr, ImpactLook* look = nullptr,
+                               ConstraintKinds* kinds = nullptr);
 /// The same for contacts [begin, end) alone, into constraints already the contacts' number; and
 /// where `restitutions` is not empty (the contacts' number), each contact's restitution there.
 void PrepareLinearConstraints(std::span<const Contact> contacts, std::span<const std::uint32_t> slot,

@@ -177,18 +177,21 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   // as each is, while its contact and bodies are at hand.
   ImpactLook look{accelerations_, def};
   const bool looked = !constraints_prepared_ && def.substep_features.impact_pass;
+  ConstraintKinds kinds;  // what the turning constraints hold, found as they are prepared
   if (!constraints_prepared_) {
     PrepareSubstepConstraints(context.contacts, order_.slot, context.infos, context.states, constraints_vector,
-                              &context.pool, looked ? &look : nullptr);
+                              &context.pool, looked ? &look : nullptr, &kinds);
   }
   const std::span<C> constraints = *constraints_vector;
   SubstepPlan plan = Plan(context);
+  const bool all_turn = !kinds.not_turning.load(std::memory_order_relaxed);
   if constexpr (kCanTurn<C>) {
     plan.direct_solve = def.substep_features.direct_solve &&
-                        PrepareDirectSolve(constraints, context.infos, &direct_solver_);
+                        PrepareDirectSolve(constraints, context.infos, &direct_solver_,
+                                           kinds.heavy.load(std::memory_order_relaxed));
     // Shock propagation takes only pairs that cannot turn: where every contact turns (every
     // moving body can), it has nothing to do.
-    plan.shock_propagation &= std::any_of(constraints.begin(), constraints.end(), [](const C& c) { return !Turns(c); });
+    plan.shock_propagation &= !all_turn;
   }
   constexpr std::uint32_t kBlocksPerRun = 64;
   // In lanes, from here to the substeps' end (the scaled warm start sums over all contacts, and
@@ -257,7 +260,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   };
   bool pack_turning = false;
   if constexpr (kCanTurn<C>) {
-    pack_turning = lanes && !plan.direct_solve && WideTurningConstraints::Fits(constraints, order_);
+    pack_turning = lanes && !plan.direct_solve && WideTurningConstraints::Fits(order_, all_turn);
     if (pack_turning) plan.wide = &WidePassesFor(def.substep_features.lanes);
   }
   const auto pack_turning_blocks = [&] {

@@ -148,13 +148,13 @@ void PackColours(std::span<const Constraint> constraints, const ContactOrder& co
 }  // namespace
 
 bool WideTurningConstraints::Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order) {
+  return Fits(order, std::ranges::all_of(constraints, [](const SubstepConstraint& c) { return c.angular; }));
+}
+
+bool WideTurningConstraints::Fits(const ContactOrder& order, bool all_angular) {
   const bool by_colour = order.strips == 0 && order.parallel_groups > 0;
   const bool in_strips = order.strips > 0 && order.strips <= 2 * static_cast<std::uint32_t>(kBlockLanes);
-  if (!by_colour && !in_strips) return false;
-  for (const SubstepConstraint& c : constraints) {
-    if (!c.angular) return false;
-  }
-  return true;
+  return (by_colour || in_strips) && all_angular;
 }
 
 void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints,

@@ -129,6 +129,9 @@ struct WideTurningConstraints {
   /// Whether the wide passes can take these constraints: every one angular (a pair that cannot
   /// turn takes the centres' row, other arithmetic) and the order in strips or by colour.
   static bool Fits(std::span<const SubstepConstraint> constraints, const ContactOrder& order);
+  /// The same, told whether every constraint is angular (`all_angular`, as preparing them
+  /// found: ConstraintKinds).
+  static bool Fits(const ContactOrder& order, bool all_angular);
   void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& contact_order);
   /// As WideConstraints::StoreImpulses (a lane with one point stores none for its second).
   void StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
