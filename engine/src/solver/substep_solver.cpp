@@ -186,6 +186,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
   SubstepPlan plan = Plan(context);
   const bool all_turn = !kinds.not_turning.load(std::memory_order_relaxed);
   if constexpr (kCanTurn<C>) {
+    assert(!constraints_prepared_);  // so `kinds` is this step's
     plan.direct_solve = def.substep_features.direct_solve &&
                         PrepareDirectSolve(constraints, context.infos, &direct_solver_,
                                            kinds.heavy.load(std::memory_order_relaxed));
@@ -458,11 +459,11 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
                               const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
+    const Rot* turned = start.turned.empty() ? nullptr : start.turned.data();  // null: no turns
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
-                                 states.data(), moved_.data(), start.turned.empty() ? nullptr : start.turned.data(), plan.inv_h,
-                                 plan.block_solver);
+                                 states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver);
       } else {
         plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
       }
@@ -480,10 +481,11 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
   const WorldDef& def = context.def;
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
+    const Rot* turned = start.turned.empty() ? nullptr : start.turned.data();  // null: no turns
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
-                                    count, moved_.data(), start.turned.empty() ? nullptr : start.turned.data(), push.linear.data(), push.angular.data(),
+                                    count, moved_.data(), turned, push.linear.data(), push.angular.data(),
                                     plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       } else {
         plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),
