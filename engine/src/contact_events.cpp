@@ -54,13 +54,15 @@ ContactBeginEvent BeginOf(const Contact& c, double approach, const Bodies& bodie
 
 }  // namespace
 
-void ContactEvents::RecordStartVelocities(std::span<const BodyState> states) {
+void ContactEvents::RecordStartVelocities(std::span<const BodyState> states, WorkerPool& pool) {
   start_velocities_.resize(states.size());
   start_angular_velocities_.resize(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i) {
+  // Each thread its share of the bodies, whose states its core wrote last (on thread 0 alone,
+  // half came from the other core: 27 kcyc a step of the 4 000-circle pour on two threads).
+  ForEachIndex(&pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
     start_velocities_[i] = states[i].velocity;
     start_angular_velocities_[i] = states[i].angular_velocity;
-  }
+  });
 }
 
 void ContactEvents::Update(std::span<const Contact> contacts, const Bodies& bodies,

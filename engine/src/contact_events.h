@@ -22,7 +22,7 @@ class ContactEvents {
   /// Before the solver: the bodies' starting velocities, for the approach speed of the contacts
   /// that begin (a copy per body: cheaper than an approach speed per contact, most of which
   /// go on touching and need none).
-  void RecordStartVelocities(std::span<const BodyState> states);
+  void RecordStartVelocities(std::span<const BodyState> states, WorkerPool& pool);
   /// After the solver: a contact touches if the solver pushed on it or its bodies were within
   /// the linear slop; the touching pairs that are new begin, the ones gone end (`awake`: per
   /// body, whether it moved this step; a pair of bodies at rest stays touching). The approach

@@ -8,9 +8,6 @@ namespace engine::detail {
 
 namespace {
 
-// Bodies are shared among threads from this many: fewer cost more to hand out than they save.
-constexpr std::uint32_t kMinSharedBodies = 2048;
-
 void Offset(std::span<const BodyState> base, std::span<const std::uint8_t> moving, bool rotation, double c,
             std::span<const Vec2> k_velocity, std::span<const double> k_angular_velocity,
             std::span<const Vec2> k_linear, std::span<const double> k_angular,

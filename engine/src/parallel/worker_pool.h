@@ -148,6 +148,10 @@ class WorkerPool {
   bool stopping_ = false;
 };
 
+/// Passes over the bodies are shared among threads from these many: fewer cost more to hand out
+/// than they save.
+inline constexpr std::uint32_t kMinSharedBodies = 2048;
+
 /// body(i) for every i in [0, count): shared among `pool`'s threads from `min_count` indices
 /// (WorkerPool::ParallelFor), on the calling thread alone where there is no pool.
 template <typename Body>

@@ -43,8 +43,6 @@ inline const LinearConstraint& Point(const LinearConstraint& c, int) { return c;
 
 /// Contacts are shared among threads from these many: fewer cost more to hand out than they save.
 inline constexpr std::uint32_t kMinSharedContacts = 4096;
-/// Bodies are shared among threads from these many: fewer cost more to hand out than they save.
-inline constexpr std::uint32_t kMinSharedBodies = 2048;
 
 /// What the step's SubstepConstraints hold, found as they are prepared, so that no pass over
 /// them asks again: a pair that cannot turn (shock propagation takes those; the turning lanes
