@@ -33,8 +33,9 @@ void SetLead(const Constraint& c, BodyIndex* body, BodyIndex* fixed) {
   *fixed = a_fixed ? c.a : kNoBody;
 }
 
-// Lane `lane` of a turning block and of its second points (zero for a one-point contact).
-void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningPointLanes* second, int lane) {
+// Lane `lane` of a turning block and of its second points (zero for a one-point contact), with
+// the block solver's K.
+void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes* second, int lane) {
   block->a[lane] = static_cast<std::int32_t>(c.a);
   block->b[lane] = static_cast<std::int32_t>(c.b);
   block->two_points[lane] = c.point_count == 2 ? 1.0 : 0.0;
@@ -59,6 +60,19 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningPointLanes*
     lanes.anchor_b_x[lane] = p.anchor_b.x;
     lanes.anchor_b_y[lane] = p.anchor_b.y;
   }
+  // The block solver's K and what it divides by, as SolveTwoPoints works them out.
+  const bool two = c.point_count == 2;
+  const TwoPointMass k = two ? NormalMass(c, c.points[0], c.points[1], c.inv_mass_a, c.inv_mass_b, c.inv_inertia_a,
+                                          c.inv_inertia_b)
+                             : TwoPointMass{};
+  const double det = k.k11 * k.k22 - k.k12 * k.k12;
+  second->k11[lane] = k.k11;
+  second->k12[lane] = k.k12;
+  second->k22[lane] = k.k22;
+  second->det[lane] = det;
+  second->inv_det[lane] = two ? 1.0 / det : 0.0;
+  second->inv_k11[lane] = two ? 1.0 / k.k11 : 0.0;
+  second->inv_k22[lane] = two ? 1.0 / k.k22 : 0.0;
 }
 
 using Runs = std::span<const std::pair<std::uint32_t, std::uint32_t>>;

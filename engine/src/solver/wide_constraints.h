@@ -88,6 +88,20 @@ struct alignas(32) TurningPointLanes {
   double anchor_b_y[kBlockLanes];
 };
 
+/// The second points of four turning contacts, with what the block solver reads of both
+/// (SolveTwoPoints): K = J·M⁻¹·Jᵀ of the two normals (NormalMass), its determinant and the
+/// reciprocals the solve multiplies by, fixed for the step (the anchors are), so worked out as
+/// the blocks are packed instead of in every velocity pass. Zero in a lane with one point.
+struct alignas(32) TurningSecondLanes : TurningPointLanes {
+  double k11[kBlockLanes];
+  double k12[kBlockLanes];
+  double k22[kBlockLanes];
+  double det[kBlockLanes];      ///< k11·k22 − k12·k12
+  double inv_det[kBlockLanes];  ///< 1 / det
+  double inv_k11[kBlockLanes];  ///< 1 / k11
+  double inv_k22[kBlockLanes];  ///< 1 / k22
+};
+
 /// Four SubstepConstraints whose bodies can turn (`angular`), field by field, with their first
 /// points; their second points are kept apart (WideTurningConstraints::second_points). Padding
 /// lanes are zero throughout, on body 0.
@@ -119,7 +133,7 @@ struct WideTurningConstraints {
   /// that the passes over circles, which have one point, never fetch these lines: a third of the
   /// bytes (with them in the blocks, the turning 4 000-circle pour's warm start took 1.27 times as
   /// long, its push-out 1.33, its solve 1.06).
-  std::vector<TurningPointLanes> second_points;
+  std::vector<TurningSecondLanes> second_points;
   ContactOrder order;                ///< the four sets' ends, in blocks (strips = 2)
   std::vector<std::uint32_t> lane_of;  ///< as WideConstraints::lane_of
   /// As WideConstraints' (in a colour order only).

@@ -28,10 +28,10 @@ struct WidePasses {
   // points (WideTurningConstraints::second_points, from the same block on), `turned` each body's
   // rotation since the step's start (null where no body's turn moves its points: the anchors
   // stay fixed); `block_solve` as SubstepPlan's.
-  void (*turning_warm_start)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states);
-  void (*turning_solve)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+  void (*turning_warm_start)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states);
+  void (*turning_solve)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h, bool block_solve);
-  void (*turning_push_out)(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+  void (*turning_push_out)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                            const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                            double max_push_out_speed, double linear_slop);
   // Revolute joints' point rows (JointSolver's warm start, Solve and PushOut for them).

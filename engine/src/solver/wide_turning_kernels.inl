@@ -116,7 +116,7 @@ template <bool kTurns>
   }
 }
 
-void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states) {
+void TurningWarmStartBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states) {
   constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
@@ -149,19 +149,23 @@ void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, st
 }
 
 // SolveTwoPoints for the lanes: the new impulses (x1, x2) and the lanes where a case fit.
-[[gnu::always_inline]] inline Mask SolveTwoPointsLanes(Lanes k11, Lanes k12, Lanes k22, Lanes a1, Lanes a2, Lanes vn1,
-                                                       Lanes vn2, Lanes t1, Lanes t2, Lanes* x1, Lanes* x2) {
+// K, its determinant and reciprocals from the packed second points (TurningSecondLanes).
+[[gnu::always_inline]] inline Mask SolveTwoPointsLanes(const TurningSecondLanes& q, int o, Lanes a1, Lanes a2,
+                                                       Lanes vn1, Lanes vn2, Lanes t1, Lanes t2, Lanes* x1,
+                                                       Lanes* x2) {
   const Lanes zero(0.0);
-  const Lanes det = k11 * k22 - k12 * k12;
+  const Lanes k11 = Lanes::Load(q.k11 + o), k12 = Lanes::Load(q.k12 + o), k22 = Lanes::Load(q.k22 + o);
+  const Lanes det = Lanes::Load(q.det + o);
   const Mask conditioned = k11 * k11 < Lanes(1000.0) * det;
   const Lanes b1 = (vn1 - t1) - (k11 * a1 + k12 * a2);
   const Lanes b2 = (vn2 - t2) - (k12 * a1 + k22 * a2);
-  const Lanes y1 = (-k22 * b1 + k12 * b2) / det;
-  const Lanes y2 = (k12 * b1 - k11 * b2) / det;
+  const Lanes inv_det = Lanes::Load(q.inv_det + o);
+  const Lanes y1 = (-k22 * b1 + k12 * b2) * inv_det;
+  const Lanes y2 = (k12 * b1 - k11 * b2) * inv_det;
   const Mask both = (y1 >= zero) & (y2 >= zero);
-  const Lanes z1 = -b1 / k11;
+  const Lanes z1 = -b1 * Lanes::Load(q.inv_k11 + o);
   const Mask first = (z1 >= zero) & (k12 * z1 + b2 >= zero);
-  const Lanes z2 = -b2 / k22;
+  const Lanes z2 = -b2 * Lanes::Load(q.inv_k22 + o);
   const Mask second = (z2 >= zero) & (k12 * z2 + b1 >= zero);
   const Mask neither = (b1 >= zero) & (b2 >= zero);
   *x1 = Select(both, y1, Select(first, z1, zero));
@@ -172,7 +176,7 @@ void TurningWarmStartBlocks(TurningBlock* blocks, TurningPointLanes* seconds, st
 // One block's lanes [o, o + Lanes::kCount) of TurningSolveBlocks, `kTwo` whether any has a second
 // point (`second`): a template, so that the lanes of circles are compiled without it.
 template <bool kTwo, bool kTurns>
-[[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningPointLanes& second, int o,
+[[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningSecondLanes& second, int o,
                                                      BodyState* states, const Vec2* moved, const Rot* turned,
                                                      Lanes inv_h, bool block_solve) {
   const PairLanes c = LoadPair(k, o);
@@ -191,14 +195,7 @@ template <bool kTwo, bool kTurns>
   Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
   if (kTwo && block_solve) {
     const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
-    // NormalMass.
-    const Lanes r1a = p0.rax * c.ny - p0.ray * c.nx, r1b = p0.rbx * c.ny - p0.rby * c.nx;
-    const Lanes r2a = p1.rax * c.ny - p1.ray * c.nx, r2b = p1.rbx * c.ny - p1.rby * c.nx;
-    const Lanes m = c.ima + c.imb;
-    const Lanes k11 = (m + c.iia * r1a * r1a) + c.iib * r1b * r1b;
-    const Lanes k12 = (m + c.iia * r1a * r2a) + c.iib * r1b * r2b;
-    const Lanes k22 = (m + c.iia * r2a * r2a) + c.iib * r2b * r2b;
-    blocked = c.two & SolveTwoPointsLanes(k11, k12, k22, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
+    blocked = c.two & SolveTwoPointsLanes(second, o, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
                                           min_vn1, &xb0, &xb1);
     const Lanes d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
     ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
@@ -252,7 +249,7 @@ template <bool kTwo, bool kTurns>
 }
 
 template <bool kTurns>
-void SolveTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+void SolveTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
@@ -268,7 +265,7 @@ void SolveTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::s
 }
 
 // `turned` null: no body's turn moves its points (the anchors stay where they were).
-void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, BodyState* states,
+void TurningSolveBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h, bool block_solve) {
   if (turned) {
     SolveTurningBlocks<true>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
@@ -278,7 +275,7 @@ void TurningSolveBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::s
 }
 
 template <bool kTurns>
-void PushOutTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+void PushOutTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                           const Rot* turned, Vec2* push, double* push_angular,
                           double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
@@ -332,7 +329,7 @@ void PushOutTurningBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std:
 }
 
 // `turned` null: no body's turn moves its points.
-void TurningPushOutBlocks(TurningBlock* blocks, TurningPointLanes* seconds, std::size_t count, const Vec2* moved,
+void TurningPushOutBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                           const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                           double max_push_out_speed, double linear_slop) {
   if (turned) {
