@@ -174,16 +174,9 @@ bool WideTurningConstraints::Fits(const ContactOrder& order, bool all_angular) {
 void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints,
                                   const ContactOrder& contact_order) {
   assert(Fits(constraints, contact_order));
-  const auto put = [&](const SubstepConstraint& c, std::uint32_t block, int lane) {
-    PutLane(c, &blocks[block], &second_points[block], lane);
-    if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
-  };
   if (contact_order.strips == 0) {  // a colour order
-    LayoutColours(contact_order, &order, &blocks, &lane_of);
-    second_points.resize(blocks.size());
-    lead_body.resize(blocks.size());
-    lead_fixed.resize(blocks.size());
-    PackColours(constraints, contact_order, order, 0, static_cast<std::uint32_t>(blocks.size()), put, &lane_of);
+    Layout(contact_order);
+    PackBlocks(constraints, contact_order, 0, static_cast<std::uint32_t>(blocks.size()));
     return;
   }
   const StripGroups groups(static_cast<int>(contact_order.strips));
@@ -222,6 +215,22 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   }
   order.group_ends.push_back(static_cast<std::uint32_t>(next));
   assert(next == blocks.size());
+}
+
+void WideTurningConstraints::Layout(const ContactOrder& colours) {
+  LayoutColours(colours, &order, &blocks, &lane_of);
+  second_points.resize(blocks.size());
+  lead_body.resize(blocks.size());
+  lead_fixed.resize(blocks.size());
+}
+
+void WideTurningConstraints::PackBlocks(std::span<const SubstepConstraint> constraints, const ContactOrder& colours,
+                                        std::uint32_t begin, std::uint32_t end) {
+  const auto put = [&](const SubstepConstraint& c, std::uint32_t block, int lane) {
+    PutLane(c, &blocks[block], &second_points[block], lane);
+    if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
+  };
+  PackColours(constraints, colours, order, begin, end, put, &lane_of);
 }
 
 void WideTurningConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,

@@ -147,6 +147,12 @@ struct WideTurningConstraints {
   /// found: ConstraintKinds).
   static bool Fits(const ContactOrder& order, bool all_angular);
   void Pack(std::span<const SubstepConstraint> constraints, const ContactOrder& contact_order);
+  /// As WideConstraints::Layout, for a colour order (with the second points' lanes).
+  void Layout(const ContactOrder& colours);
+  /// As WideConstraints::PackBlocks: blocks [begin, end) of a colour order's layout, each
+  /// writing only its own lanes, so that threads may fill parts side by side.
+  void PackBlocks(std::span<const SubstepConstraint> constraints, const ContactOrder& colours, std::uint32_t begin,
+                  std::uint32_t end);
   /// As WideConstraints::StoreImpulses (a lane with one point stores none for its second).
   void StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
                      WorkerPool* pool = nullptr) const;
