@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "forces/force_model.h"
+#include "solver/contact_graph_memo.h"
 #include "solver/contact_order.h"
 #include "solver/direct_solver.h"
 #include "solver/pile_height.h"
@@ -149,6 +150,11 @@ class SubstepSolver {
   std::vector<std::uint8_t> pushed_;
   DirectSolver direct_solver_;                          ///< islands with a large mass ratio
   ShockScratch shock_scratch_;
+  /// The contact graph order_ and the shock levels were last found from (by colour, in a world
+  /// that cannot turn): a step with the same graph keeps them.
+  ContactGraphMemo graph_;
+  /// This step's graph is the last one's: order_ and the levels are kept.
+  bool same_graph_ = false;
   bool shock_levels_built_ = false;                     ///< this step's levels found beside the colouring
   bool constraints_prepared_ = false;                   ///< and the constraints filled after it
   std::vector<PileExtent> pile_runs_;  ///< per run of the constraints filled beside the levels
