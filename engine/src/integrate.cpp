@@ -127,6 +127,19 @@ void RungeKutta4Step(const ForceModel& forces, std::span<const BodyState> states
 void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<BodyState> states, double h,
                       FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
   const std::size_t n = states.size();
+  const double alpha = 0.0;
+  if (semi_implicit) {
+    // MoveBodies moves a body by its velocity alone under semi-implicit Euler: the free motion
+    // is left unwritten (four stores a body each substep).
+    ForEachIndex(pool, n, kMinSharedBodies, [&](std::uint32_t i) {
+      if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
+      if (!forces.moving[i]) return;
+      const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
+      states[i].velocity = states[i].velocity + a * h;
+      if (forces.rotation) states[i].angular_velocity = states[i].angular_velocity + alpha * h;
+    });
+    return;
+  }
   m->velocity.resize(n);
   m->drift.resize(n);
   m->angular_velocity.resize(n);
@@ -134,13 +147,12 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
   const auto step = [&](std::uint32_t i) {
     if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
     const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
-    const double alpha = 0.0;
     const Vec2 v0 = states[i].velocity;
     const double w0 = states[i].angular_velocity;
     m->velocity[i] = v0 + a * h;
     m->angular_velocity[i] = w0 + alpha * h;
-    m->drift[i] = semi_implicit ? m->velocity[i] : v0;
-    m->angular_drift[i] = semi_implicit ? m->angular_velocity[i] : w0;
+    m->drift[i] = v0;  // explicit Euler moves by the velocity the step began with
+    m->angular_drift[i] = w0;
     if (!forces.moving[i]) return;
     states[i].velocity = m->velocity[i];
     if (forces.rotation) states[i].angular_velocity = m->angular_velocity[i];

@@ -17,7 +17,8 @@ namespace engine::detail {
 /// One free step of every moving body, as velocities: where the integrator would leave the
 /// velocity (`velocity`), and the mean velocity it would move the body with over the step
 /// (`drift`, so that x_{n+1} = x_n + h·drift). Contacts then change the velocity, and the body
-/// moves by that change too (MoveBodies).
+/// moves by that change too (MoveBodies). Under semi-implicit Euler, which moves a body by its
+/// velocity alone, the step with gravity alone (the usual one) leaves it unwritten.
 struct FreeMotion {
   std::vector<Vec2> velocity;
   std::vector<Vec2> drift;
