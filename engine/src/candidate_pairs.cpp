@@ -29,8 +29,9 @@ constexpr double kPairQuotaPerAspect = 4;
 // Fewer bodies than this have their bounds found on one thread.
 constexpr std::uint32_t kMinSharedBounds = 2048;
 
-// How far a body may reach within a step, m: contacts within it are speculative.
-double SpeculativeMargin(const WorldDef& def, const BodyState& state, const BodyInfo& info,
+// How far a body may reach within a step, m: contacts within it are speculative. `fall`: how
+// far gravity alone carries a body in the step, |g|·dt·dt (found once a step, not per body).
+double SpeculativeMargin(const WorldDef& def, double fall, const BodyState& state, const BodyInfo& info,
                          const BodyGeometry* geometry, bool awake) {
   const double speculative = 0.5 * kSpeculativeSlops * def.linear_slop;
   if (!awake) return speculative;
@@ -40,7 +41,7 @@ double SpeculativeMargin(const WorldDef& def, const BodyState& state, const Body
   // contacts), and the impact pass places the bounce at the moment of impact.
   const double dt = def.dt;
   const Shape& shape = info.shape;
-  const double motion = Length(state.velocity) * dt + Length(def.gravity) * dt * dt;
+  const double motion = Length(state.velocity) * dt + fall;
   const double outer = shape.type == ShapeType::kCircle ? shape.radius
                        : shape.type == ShapeType::kBox  ? Length(shape.half_extents)
                                                         : geometry->reach;
@@ -100,9 +101,11 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
   bounds_.resize(n);
   margins_.resize(n);
   const bool parts = bodies.with_parts > 0;
+  const double fall = Length(def.gravity) * def.dt * def.dt;
   pool.ParallelFor(static_cast<std::uint32_t>(n), kMinSharedBounds, [&](BodyIndex id) {
     const BodyGeometry* geometry = parts ? bodies.geometries[id].get() : nullptr;
-    margins_[id] = speculative ? SpeculativeMargin(def, bodies.states[id], bodies.infos[id], geometry, awake[id] != 0)
+    margins_[id] = speculative ? SpeculativeMargin(def, fall, bodies.states[id], bodies.infos[id], geometry,
+                                                   awake[id] != 0)
                                : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
     const AABB b = parts ? BoundsOf(bodies, id) : BodyBounds(bodies.infos[id].shape, bodies.states[id]);
