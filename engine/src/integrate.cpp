@@ -125,7 +125,7 @@ void RungeKutta4Step(const ForceModel& forces, std::span<const BodyState> states
 // the copy back), body by body in one loop, the bodies shared among threads. Five passes over
 // the bodies became one.
 void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<BodyState> states, double h,
-                      FreeMotion* m, WorkerPool* pool, const PushVelocities* carried, const MoveRecord* record) {
+                      FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
   const std::size_t n = states.size();
   const double alpha = 0.0;
   if (semi_implicit) {
@@ -133,7 +133,6 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
     // is left unwritten (four stores a body each substep).
     ForEachIndex(pool, n, kMinSharedBodies, [&](std::uint32_t i) {
       if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
-      if (record) record->Note(states, i);
       if (!forces.moving[i]) return;
       const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
       states[i].velocity = states[i].velocity + a * h;
@@ -147,7 +146,6 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
   m->angular_drift.resize(n);
   const auto step = [&](std::uint32_t i) {
     if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
-    if (record) record->Note(states, i);
     const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
     const Vec2 v0 = states[i].velocity;
     const double w0 = states[i].angular_velocity;
@@ -183,17 +181,15 @@ void DampStiffDrag(const ForceModel& forces, std::span<const BodyState> states, 
 }  // namespace
 
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* m, WorkerPool* pool, const PushVelocities* carried, const MoveRecord* record) {
+              double h, FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
   const bool euler = integrator == Integrator::kSemiImplicitEuler || integrator == Integrator::kExplicitEuler;
   if (euler && !forces.BeyondGravity()) {
-    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool, carried, record);
+    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool, carried);
     return;
   }
-  if (carried || record) {  // forces read positions: every body moves first
-    ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
-      if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
-      if (record) record->Note(states, i);
-    });
+  if (carried) {  // forces read positions: every body moves first
+    ForEachIndex(pool, states.size(), kMinSharedBodies,
+                 [&](std::uint32_t i) { MoveBodyByPush(states, *carried, forces.rotation, h, i); });
   }
   StartFreeStep(forces, states, m);
   switch (integrator) {
@@ -221,19 +217,17 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
-                bool rotation, const FreeMotion& m, double h, WorkerPool* pool, const MoveRecord* record) {
+                bool rotation, const FreeMotion& m, double h, WorkerPool* pool) {
   ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
+    if (!moving[i]) return;
     BodyState& s = states[i];
-    if (moving[i]) {
-      if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {
-        s.position += s.velocity * h;
-        if (rotation) s.angle += s.angular_velocity * h;
-      } else {
-        s.position += (m.drift[i] + (s.velocity - m.velocity[i])) * h;
-        if (rotation) s.angle += (m.angular_drift[i] + (s.angular_velocity - m.angular_velocity[i])) * h;
-      }
+    if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {
+      s.position += s.velocity * h;
+      if (rotation) s.angle += s.angular_velocity * h;
+    } else {
+      s.position += (m.drift[i] + (s.velocity - m.velocity[i])) * h;
+      if (rotation) s.angle += (m.angular_drift[i] + (s.angular_velocity - m.angular_velocity[i])) * h;
     }
-    if (record) record->Note(states, i);
   });
 }
 

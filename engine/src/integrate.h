@@ -50,17 +50,6 @@ inline void MoveBodyByPush(std::span<BodyState> states, PushVelocities push, boo
   }
 }
 
-/// Each body's move since the step's start, moved[i] = position − start_positions[i], noted by
-/// a pass over the bodies that moves them, in that pass (the solver's MeasureMoves, without a
-/// pass of its own).
-struct MoveRecord {
-  std::span<const Vec2> start_positions;
-  std::span<Vec2> moved;
-  void Note(std::span<const BodyState> states, std::size_t i) const {
-    moved[i] = states[i].position - start_positions[i];
-  }
-};
-
 /// Computes the free step of length h from `states` and sets each moving body's velocity to its
 /// end-of-step value (positions stay, for the contact solver to see).
 /// `pool`: threads to share the bodies among where gravity alone acts under an Euler step (each
@@ -68,10 +57,8 @@ struct MoveRecord {
 /// `carried`: push velocities the last substep left to move by (MoveBodyByPush with this h,
 /// `forces.rotation`), applied to every body before the free step: in the same pass over the
 /// bodies where gravity alone acts under an Euler step, which reads no position.
-/// `record`: notes every body's move once the carried push has moved it.
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* motion, WorkerPool* pool = nullptr, const PushVelocities* carried = nullptr,
-              const MoveRecord* record = nullptr);
+              double h, FreeMotion* motion, WorkerPool* pool = nullptr, const PushVelocities* carried = nullptr);
 
 /// Moves every moving body: by h·drift, plus h times whatever the contacts changed its velocity
 /// by since FreeStep. Semi-implicit Euler moves by h·v exactly, and so does a body a contact
@@ -79,11 +66,9 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 /// step, so h·v is where it leaves the body. The higher-order drift would move a body held at
 /// rest by its contacts by −½·a·h² a step (Verlet, midpoint, RK4; −a·h² for explicit Euler):
 /// hovering over the floor and creeping against a push that friction holds.
-/// `pool`: threads to share the bodies among (each body's move is its own). `record`: notes
-/// every body's move (the ones that do not move too).
+/// `pool`: threads to share the bodies among (each body's move is its own).
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
-                bool rotation, const FreeMotion& motion, double h, WorkerPool* pool = nullptr,
-                const MoveRecord* record = nullptr);
+                bool rotation, const FreeMotion& motion, double h, WorkerPool* pool = nullptr);
 
 }  // namespace engine::detail

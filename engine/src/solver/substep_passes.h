@@ -155,8 +155,7 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states,
 /// Each body's move since the step's start, `moved[i]` = position − start: the separations the
 /// wide passes and shock propagation measure follow from it (one Vec2 a body read, where the
 /// position and the start had been two; the same subtraction, so the same bits). Made after
-/// each change of the positions that those passes read: the substep solver notes the moves in
-/// the passes that make them instead (MoveRecord). `pool`: threads to share the bodies among.
+/// each change of the positions that those passes read. `pool`: threads to share the bodies among.
 void MeasureMoves(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
                   WorkerPool* pool = nullptr);
 

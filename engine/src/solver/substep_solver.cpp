@@ -383,16 +383,16 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   const WarmStartImpulses warm{warm_free_, warm_free_angular_};
   const PushVelocities push{push_velocities_, push_angular_velocities_};
 
-  // The lanes and shock propagation measure separations from the bodies' moves (moved_), noted
-  // as the passes over the bodies move them: passes of their own took 3 % of a pyramid of base
-  // 40's step.
-  const bool lanes_measure = plan.wide != nullptr;
-  const MoveRecord record{context.start_positions, moved_};
   FreeStep(def.integrator, context.forces, states, h, &context.free_motion, &context.pool,
-           push_carried ? &push : nullptr, lanes_measure || plan.shock_propagation ? &record : nullptr);
+           push_carried ? &push : nullptr);
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
+  // The lanes and shock propagation measure separations from the bodies' moves.
+  const bool lanes_measure = plan.wide != nullptr;
+  if (lanes_measure || plan.shock_propagation) {
+    MeasureMoves(states, context.start_positions, moved_, &context.pool);
+  }
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
   JointSolver* joints = context.joints;
   if (joints) joints->Begin(states, h, true);  // springs, then the joints' warm start
@@ -419,9 +419,9 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   }
   if (joints) joints->MarkBodies(&pushed_);
-  MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool,
-             lanes_measure ? &record : nullptr);
+  MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
   if (plan.track_turning) UpdateTurned(context);
+  if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, &context.pool);
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {

@@ -160,7 +160,7 @@ class SubstepSolver {
   std::vector<PileExtent> pile_runs_;  ///< per run of the constraints filled beside the levels
   int pile_passes_ = 1;  ///< this step's velocity passes (PassesForPile), found beside the colouring
   std::vector<ShockRow> shock_rows_;
-  std::vector<Vec2> moved_;                             ///< per body: its move (MoveRecord), as last noted
+  std::vector<Vec2> moved_;                             ///< per body: MeasureMoves, as last made
   ShockSchedule shock_schedule_;                        ///< shock_rows_ shared among the threads
 };
 
