@@ -304,19 +304,22 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
     if (blocks_to_pack > 0) cut_by_bodies();
   } else {
     const bool bounces = any_bounce(&context.pool);
-    if (pack_turning && constraints.size() >= kMinSideBySideConstraints && order_.strips == 0) {
-      // A colour order's blocks packed by both threads, each its middle-cut share of every
-      // colour (ForEachThreadsShare), close to the share it will solve (BodyCut), as the
-      // axis-aligned blocks are: packed whole on the worker beside the impacts, which most steps
-      // have none of, they kept thread 0 waiting 650 kcyc a step of the turning 4 000-circle pour.
-      resolve_impacts(bounces);
-      wide_turning_.Layout(order_);
-      ForEachThreadsShare(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
-        if constexpr (kCanTurn<C>) wide_turning_.PackBlocks(constraints, order_, begin, end);
-      }, kBlockLanes);
-    } else if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
-      // The packing only reads the constraints, the impacts only write velocities (and lags).
-      context.pool.RunSideBySide([&] { resolve_impacts(bounces); }, pack_turning_blocks);
+    if (pack_turning && constraints.size() >= kMinSideBySideConstraints) {
+      if (order_.strips == 0) {
+        // A colour order's blocks packed by both threads, each its middle-cut share of every
+        // colour (ForEachThreadsShare), close to the share it will solve (BodyCut), as the
+        // axis-aligned blocks are: packed whole on the worker beside the impacts, which most
+        // steps have none of, they kept thread 0 waiting 650 kcyc a step of the turning
+        // 4 000-circle pour.
+        resolve_impacts(bounces);
+        wide_turning_.Layout(order_);
+        ForEachThreadsShare(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
+          if constexpr (kCanTurn<C>) wide_turning_.PackBlocks(constraints, order_, begin, end);
+        }, kBlockLanes);
+      } else {
+        // The packing only reads the constraints, the impacts only write velocities (and lags).
+        context.pool.RunSideBySide([&] { resolve_impacts(bounces); }, pack_turning_blocks);
+      }
     } else {
       shock_plan();
       resolve_impacts(bounces);
