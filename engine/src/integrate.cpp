@@ -131,12 +131,16 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
   if (semi_implicit) {
     // MoveBodies moves a body by its velocity alone under semi-implicit Euler: the free motion
     // is left unwritten (four stores a body each substep).
-    ForEachIndex(pool, n, kMinSharedBodies, [&](std::uint32_t i) {
-      if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
-      if (!forces.moving[i]) return;
-      const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
+    const bool push_carried = carried != nullptr, rotation = forces.rotation;
+    const PushVelocities push = push_carried ? *carried : PushVelocities{};
+    const std::span<const std::uint8_t> moving = forces.moving;
+    const Vec2 gravity = forces.def.gravity;
+    ForEachIndex(pool, n, kMinSharedBodies, [=](std::uint32_t i) {  // by value: see ForEachIndex
+      if (push_carried) MoveBodyByPush(states, push, rotation, h, i);
+      if (!moving[i]) return;
+      const Vec2 a = moving[i] == kAwake ? gravity : Vec2{};
       states[i].velocity = states[i].velocity + a * h;
-      if (forces.rotation) states[i].angular_velocity = states[i].angular_velocity + alpha * h;
+      if (rotation) states[i].angular_velocity = states[i].angular_velocity + alpha * h;
     });
     return;
   }
@@ -218,7 +222,7 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
                 bool rotation, const FreeMotion& m, double h, WorkerPool* pool) {
-  ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
+  ForEachIndex(pool, states.size(), kMinSharedBodies, [=, &m](std::uint32_t i) {  // by value: see ForEachIndex
     if (!moving[i]) return;
     BodyState& s = states[i];
     if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {

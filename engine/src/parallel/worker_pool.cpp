@@ -21,14 +21,13 @@ WorkerPool::~WorkerPool() {
   for (std::thread& worker : workers_) worker.join();
 }
 
-void WorkerPool::Run(const std::function<void(int chunk)>& job) {
-  job_ = &job;
+void WorkerPool::Run(JobRef job) {
+  job_ = job;
   pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
   generation_.fetch_add(1, std::memory_order_release);
   generation_.notify_all();
   job(0);
   SpinThenWait(pending_, [this] { return pending_.load(std::memory_order_acquire) == 0; });
-  job_ = nullptr;
 }
 
 void WorkerPool::Work(int chunk) {
@@ -37,7 +36,7 @@ void WorkerPool::Work(int chunk) {
     SpinThenWait(generation_, [&] { return generation_.load(std::memory_order_acquire) != seen; });
     seen = generation_.load(std::memory_order_acquire);
     if (stopping_) return;
-    (*job_)(chunk);
+    job_(chunk);
     if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
   }
 }

@@ -549,7 +549,7 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states, const 
 }
 
 void ClearPush(PushVelocities push, WorkerPool* pool) {
-  ForEachIndex(pool, std::max(push.linear.size(), push.angular.size()), kMinSharedBodies, [&](std::uint32_t i) {
+  ForEachIndex(pool, std::max(push.linear.size(), push.angular.size()), kMinSharedBodies, [=](std::uint32_t i) {
     if (i < push.linear.size()) push.linear[i] = {};
     if (i < push.angular.size()) push.angular[i] = 0.0;
   });
@@ -557,13 +557,13 @@ void ClearPush(PushVelocities push, WorkerPool* pool) {
 
 void MeasureMoves(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
                   WorkerPool* pool) {
-  ForEachIndex(pool, states.size(), kMinSharedBodies,
-               [&](std::uint32_t i) { moved[i] = states[i].position - start_positions[i]; });
+  ForEachIndex(pool, states.size(), kMinSharedBodies,  // by value: see ForEachIndex
+               [=](std::uint32_t i) { moved[i] = states[i].position - start_positions[i]; });
 }
 
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
   ForEachIndex(pool, states.size(), kMinSharedBodies,
-               [&](std::uint32_t i) { MoveBodyByPush(states, push, rotation, h, i); });
+               [=](std::uint32_t i) { MoveBodyByPush(states, push, rotation, h, i); });
 }
 
 template <typename C>
