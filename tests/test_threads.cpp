@@ -301,6 +301,53 @@ TEST_CASE("strip order: the groups solved side by side share no moving body, and
   CHECK(inside_strips > contacts.size() * 8 / 10);
 }
 
+TEST_CASE("strip order: the strips of a pyramid hold about as many contacts each, cut alike on any number of threads",
+          "[parallel][solver]") {
+  // A pyramid is tall in its middle and low at its sides. Strips of equal width gave the outer
+  // strips of a pyramid of base 40 70 contacts each and the middle ones 460, and the lanes that
+  // solve four strips side by side waited on the longest (three lanes in five busy). Cut where
+  // they hold as many contact ends each, only the contacts that move to the edges between
+  // strips keep them apart. The cut counts in integers: the same with any number of threads.
+  for (const int base : {40, 100}) {
+    engine::WorldDef def;
+    def.rotation = true;
+    def.sleeping = false;
+    engine::World world(def);
+    stress::AddPyramid(world, base);
+    world.Step();
+    const std::vector<engine::Contact>& contacts = world.Contacts();
+    std::vector<engine::BodyInfo> infos;
+    std::vector<engine::BodyState> states;
+    for (std::size_t i = 0; i < world.BodyCount(); ++i) {
+      const engine::BodyId id{static_cast<engine::BodyIndex>(i)};
+      infos.push_back(world.Info(id));
+      states.push_back(world.State(id));
+    }
+    engine::detail::ContactOrder one;
+    one.InStrips(contacts, infos, states, def.gravity);
+    std::uint32_t fewest = ~0u, most = 0;
+    for (int g = 0; g < engine::detail::ContactOrder::kStrips; ++g) {
+      const std::uint32_t size = one.group_ends[g] - (g == 0 ? 0 : one.group_ends[g - 1]);
+      fewest = std::min(fewest, size);
+      most = std::max(most, size);
+    }
+    const std::uint32_t inside = one.group_ends[engine::detail::ContactOrder::kStrips - 1];
+    INFO("base " << base << ": " << contacts.size() << " contacts, " << inside << " inside strips of "
+                 << fewest << " to " << most);
+    CHECK(most <= 3 * fewest / 2);
+    CHECK(inside >= contacts.size() * 3 / 4);
+    // Past kMinSharedContacts the threads count their parts of the contacts apart.
+    if (base == 100) REQUIRE(contacts.size() >= engine::detail::kMinSharedContacts);
+    for (const int threads : {2, 3}) {
+      engine::detail::WorkerPool pool(threads);
+      engine::detail::ContactOrder shared;
+      shared.InStrips(contacts, infos, states, def.gravity, &pool);
+      CHECK(shared.slot == one.slot);
+      CHECK(shared.group_ends == one.group_ends);
+    }
+  }
+}
+
 TEST_CASE("a pile that sleeps, then is woken by a falling ball, steps to the same bits on one and two threads",
           "[parallel][sleep]") {
   // 3 000 circles at rest on a floor between walls that overlap it (static pairs): past 4 096

@@ -54,9 +54,10 @@ struct StripGroups {
 };
 
 /// Contact order within strips: the moving bodies' span along `across` is cut into `strips`
-/// equal strips by where each body's centre is (`states`); a contact whose moving bodies lie in
-/// one strip goes to that strip's group, one across an edge to the edge's, the rest to the
-/// last (StripGroups), each in contact order; `group_ends` gets each group's end.
+/// strips holding about as many contacts each, by where each body's centre is (`states`); a
+/// contact whose moving bodies lie in one strip goes to that strip's group, one across an edge
+/// to the edge's, the rest to the last (StripGroups), each in contact order; `group_ends` gets
+/// each group's end.
 ///
 /// Why: a turning stack converges in contact order where it was built bottom-up, and a colour
 /// order loses that (ContactOrder::AsFound); but contact order is one chain of dependent
