@@ -15,6 +15,7 @@
 #include "engine/world.h"
 #include "narrow_phase/narrow_phase.h"
 #include "parallel/worker_pool.h"
+#include "solver/constraint_groups.h"
 #include "solver/contact_order.h"
 #include "solver/substep_solver.h"
 #include "world_builders.h"
@@ -202,6 +203,32 @@ TEST_CASE("a pile of bodies made of parts steps to the same bits on one and two 
   const std::uint64_t one = PartsPileHash(1);
   CHECK(PartsPileHash(2) == one);
   CHECK(PartsPileHash(3) == one);
+}
+
+TEST_CASE("turning pyramids of boxes step to the same bits on one, two and three threads", "[parallel][solver]") {
+  // Boxes that turn go in strips (StripContacts), shared among the threads from
+  // kMinSharedTurningConstraints: base 20 (590 contacts) lies between it and
+  // kMinSharedConstraints, base 40 (2 380) too, as blocks of four lanes.
+  const auto hash = [](int base, int threads, std::size_t* contacts) {
+    engine::WorldDef def;
+    def.rotation = true;
+    def.sleeping = false;
+    def.threads = threads;
+    engine::World world(def);
+    stress::AddPyramid(world, base);
+    for (int s = 0; s < 60; ++s) world.Step();
+    *contacts = world.Contacts().size();
+    return world.StateHash();
+  };
+  for (const int base : {20, 40}) {
+    INFO("base " << base);
+    std::size_t contacts = 0;
+    const std::uint64_t one = hash(base, 1, &contacts);
+    CHECK(contacts >= engine::detail::kMinSharedTurningConstraints);
+    CHECK(contacts < engine::detail::kMinSharedConstraints);
+    CHECK(hash(base, 2, &contacts) == one);
+    CHECK(hash(base, 3, &contacts) == one);
+  }
 }
 
 TEST_CASE("no two contacts of a colour share a moving body, and the groups cover every contact once",
