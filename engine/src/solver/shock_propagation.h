@@ -107,8 +107,25 @@ inline double ChooseBits(bool set, double if_set, double if_clear) {
                                (std::bit_cast<std::uint64_t>(if_clear) & ~mask));
 }
 
-/// One row of PropagateShock; returns whether it pushed. A body the row holds fixed (inverse
-/// mass 0) keeps its velocity, so that threads may share the bodies a pile stands on.
+/// The part of a row that reads no velocity: how fast its pair may approach this substep, and
+/// whether it is within the slop at all. Worked out from the moves alone, so a thread waiting
+/// for the rows below its own can work out its rows' gaps meanwhile (ShockSchedule::Run).
+struct ShockGap {
+  double min_vn;  ///< the least relative normal velocity allowed
+  bool live;      ///< the pair is not past the slop apart, so the row may push
+};
+
+/// `moved`: each body's move since the step's start (MeasureMoves), made from the positions now.
+inline ShockGap GapOf(const ShockRow& row, std::span<const Vec2> moved, double inv_h, double linear_slop) {
+  const double s = row.base_separation + Dot(moved[row.b] - moved[row.a], row.normal);
+  // Overlap still being pushed out is the solver's (its push-out speed, carried up a stack
+  // here, could not be taken back later); a gap may close this far.
+  return {-std::max(s, 0.0) * inv_h, !(s < -linear_slop)};
+}
+
+/// One row of PropagateShock given its gap (GapOf); returns whether it pushed. A body the row
+/// holds fixed (inverse mass 0) keeps its velocity, so that threads may share the bodies a pile
+/// stands on.
 ///
 /// Two forms, the same bits. Where whether a row pushes is as good as random (in the settled
 /// 4 000-circle pour a quarter of the rows push, and 29 % push where the row before did not or
@@ -118,21 +135,17 @@ inline double ChooseBits(bool set, double if_set, double if_clear) {
 /// the answer changes at 7 % of the rows), the branch is nearly always right and the
 /// branch-free form only costs (that pyramid took 6 % longer a step with it).
 template <bool kBranchFree>
-inline bool PropagateRow(const ShockRow& row, std::span<BodyState> states, std::span<const Vec2> moved,
-                         double inv_h, double linear_slop) {
+inline bool PushRow(const ShockRow& row, ShockGap gap, std::span<BodyState> states) {
   BodyState& a = states[row.a];
   BodyState& b = states[row.b];
   const Vec2 n = row.normal;
-  const double s = row.base_separation + Dot(moved[row.b] - moved[row.a], n);
-  // Overlap still being pushed out is the solver's (its push-out speed, carried up a stack
-  // here, could not be taken back later); a gap may close this far.
-  const double min_vn = -std::max(s, 0.0) * inv_h;
+  const double min_vn = gap.min_vn;
   // Sinking is a motion of the centres, and the solve's residue here is pure sinking: it is
   // caught whole.
   const Vec2 va = a.velocity, vb = b.velocity;
   const double vn = Dot(vb - va, n);
   // Written as negations, so that a NaN pushes (it compares false both ways).
-  const bool push = !(s < -linear_slop) & !(vn >= min_vn);
+  const bool push = gap.live & !(vn >= min_vn);
   if constexpr (!kBranchFree) {
     if (!push) return false;
   }
@@ -152,6 +165,13 @@ inline bool PropagateRow(const ShockRow& row, std::span<BodyState> states, std::
     if (row.inv_mass_b != 0.0) b.velocity = pushed_b;
   }
   return push;
+}
+
+/// One row of PropagateShock, its gap and its push.
+template <bool kBranchFree>
+inline bool PropagateRow(const ShockRow& row, std::span<BodyState> states, std::span<const Vec2> moved,
+                         double inv_h, double linear_slop) {
+  return PushRow<kBranchFree>(row, GapOf(row, moved, inv_h, linear_slop), states);
 }
 
 /// How often, along the rows, whether a row pushes changes: about how often a branch on it is

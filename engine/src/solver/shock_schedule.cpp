@@ -11,6 +11,8 @@ namespace engine::detail {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// How many rows' gaps a waiting band works out between looks at the row it waits for.
+constexpr std::uint32_t kGapsBetweenLooks = 16;
 
 // The body a row moves: the upper one, or b of two on one level (both move).
 BodyIndex MovedBody(const ShockRow& row) { return row.inv_mass_b != 0.0 ? row.b : row.a; }
@@ -148,20 +150,36 @@ void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::s
     return;
   }
   for (int band = 0; band < bands_; ++band) progress_[band].next.store(0, std::memory_order_relaxed);
+  gaps_.resize(rows.size());
   const auto run_band = [&]<bool kBranchFree>(int band) {
     const std::vector<Wait>& waits = waits_by_band_[static_cast<std::size_t>(band)];
     auto wait = waits.begin();
     std::atomic<std::uint32_t>& mine = progress_[band].next;
+    const std::uint32_t first = band_start_[band], past = band_start_[band + 1];
+    // While a band waits for another's rows (a pile's ids rise with its height, and so do the
+    // bands: the later ones wait for the rows below theirs), it works out the gaps of the rows
+    // ahead of it, a third of a row's work: [first, gapped) are known.
+    std::uint32_t gapped = first;
     std::uint32_t position = 0;
     PushChanges changes;
-    for (std::uint32_t k = band_start_[band]; k < band_start_[band + 1]; ++k, ++position) {
+    for (std::uint32_t k = first; k < past; ++k, ++position) {
       for (; wait != waits.end() && wait->position == position; ++wait) {
         const std::atomic<std::uint32_t>& theirs = progress_[wait->thread].next;
         const std::uint32_t row = wait->row;
-        SpinThenWait(theirs, [&] { return theirs.load(std::memory_order_acquire) > row; });
+        const auto passed = [&] { return theirs.load(std::memory_order_acquire) > row; };
+        gapped = std::max(gapped, k);
+        while (!passed()) {
+          if (gapped == past) {
+            SpinThenWait(theirs, passed);
+            break;
+          }
+          const std::uint32_t end = std::min(past, gapped + kGapsBetweenLooks);
+          for (; gapped < end; ++gapped) gaps_[gapped] = GapOf(rows[band_rows_[gapped]], moved, inv_h, linear_slop);
+        }
       }
       const std::uint32_t r = band_rows_[k];
-      changes.Add(PropagateRow<kBranchFree>(rows[r], states, moved, inv_h, linear_slop));
+      const ShockGap gap = k < gapped ? gaps_[k] : GapOf(rows[r], moved, inv_h, linear_slop);
+      changes.Add(PushRow<kBranchFree>(rows[r], gap, states));
       if (awaited_[r]) {
         mine.store(r + 1, std::memory_order_release);
         mine.notify_all();

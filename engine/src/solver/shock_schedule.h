@@ -75,6 +75,7 @@ class ShockSchedule {
   std::vector<std::uint32_t> band_start_;  ///< per band: where its rows begin (one past: the end)
   std::vector<std::vector<Wait>> waits_by_band_;  ///< each band's, in position order
   std::vector<std::uint8_t> awaited_;      ///< per row: another thread waits on it
+  std::vector<ShockGap> gaps_;             ///< per row, in band_rows_' order: its gap (Run)
   std::unique_ptr<Progress[]> progress_;
   ShockRowForm form_;                      ///< the next pass's form, from the last one's rows
   std::size_t progress_count_ = 0;
