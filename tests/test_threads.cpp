@@ -333,8 +333,9 @@ TEST_CASE("strip order: the strips of a pyramid hold about as many contacts each
   // A pyramid is tall in its middle and low at its sides. Strips of equal width gave the outer
   // strips of a pyramid of base 40 70 contacts each and the middle ones 460, and the lanes that
   // solve four strips side by side waited on the longest (three lanes in five busy). Cut where
-  // they hold as many contact ends each, only the contacts that move to the edges between
-  // strips keep them apart. The cut counts in integers: the same with any number of threads.
+  // they hold about as many contacts each (the ends weighed by how many of their strip's stay
+  // inside it), only the contacts across the edges between strips keep them apart. The cut
+  // counts in integers: the same with any number of threads.
   for (const int base : {40, 100}) {
     engine::WorldDef def;
     def.rotation = true;

@@ -56,50 +56,92 @@ void ColourContacts(std::span<const BodyPair> contacts, std::span<const BodyInfo
 
 namespace {
 
+// The strip of each bin, cut where the strips hold about as much of `weights` (one a bin) each,
+// a strip never more than one past its neighbour's.
+std::vector<std::uint8_t> CutStrips(std::span<const double> weights, int strips) {
+  double total = 0.0;
+  for (const double w : weights) total += w;
+  std::vector<std::uint8_t> strip_of_bin(weights.size());
+  double before = 0.0;  // the weight of the bins below
+  int strip = 0;
+  for (std::size_t bin = 0; bin < weights.size(); ++bin) {
+    // The strip where the bin's middle falls, at most one past the last bin's.
+    const int at = total > 0.0 ? static_cast<int>((before + 0.5 * weights[bin]) / total * strips)
+                               : static_cast<int>(bin) / kStripBinsPerStrip;
+    strip = std::min({std::max(strip, at), strip + 1, strips - 1});
+    strip_of_bin[bin] = static_cast<std::uint8_t>(strip);
+    before += weights[bin];
+  }
+  return strip_of_bin;
+}
+
 // The strip of each bin (bin_of: a body's bin of `bins` along the strips' direction), cut where
-// the strips hold about as many contact ends of moving bodies each, a strip never more than one
-// past its neighbour's: strips of equal width left three lanes in five busy in a pyramid of base
-// 40, whose outer strips hold few contacts. The ends are counted in integers, over each thread's
-// part of the contacts and then summed: the same cut with any number of threads.
+// the strips hold about as many contacts each: strips of equal width left three lanes in five
+// busy in a pyramid of base 40, whose outer strips hold few contacts. First cut by the contact
+// ends of moving bodies each bin holds; but a narrow strip loses more of its contacts to the
+// edges than a wide one, so the ends are then weighed by how many of their strip's ends
+// belong to contacts inside it, and cut again. Counted over each thread's part of the contacts
+// and then summed, in integers: the same cut with any number of threads.
 template <typename BinOf>
 std::vector<std::uint8_t> StripOfBin(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                      std::span<const BodyState> states, const BinOf& bin_of, int bins, int strips,
                                      WorkerPool* pool) {
   const std::size_t parts = pool && contacts.size() >= kMinSharedContacts ? pool->Threads() : 1;
+  const auto on_parts = [&](auto&& part_fn) {
+    if (parts == 1) {
+      part_fn(std::size_t{0});
+    } else {
+      pool->RunOnAll([&](int thread) { part_fn(static_cast<std::size_t>(thread)); });
+    }
+  };
+  const auto part_range = [&](std::size_t part) {
+    return std::pair{contacts.size() * part / parts, contacts.size() * (part + 1) / parts};
+  };
   const auto width = static_cast<std::size_t>(bins);
   std::vector<std::uint32_t> counts(parts * width, 0);  // a row of bins a part: a line shared at most
-  const auto count_part = [&](std::size_t part) {
+  on_parts([&](std::size_t part) {
     std::uint32_t* count = counts.data() + part * width;
-    const std::size_t end = contacts.size() * (part + 1) / parts;
-    for (std::size_t i = contacts.size() * part / parts; i < end; ++i) {
+    const auto [begin, end] = part_range(part);
+    for (std::size_t i = begin; i < end; ++i) {
       for (const BodyIndex b : {contacts[i].a, contacts[i].b}) {
         if (!HasInfiniteMass(infos[b])) ++count[bin_of(states[b])];
       }
     }
-  };
-  if (parts == 1) {
-    count_part(0);
-  } else {
-    pool->RunOnAll([&](int thread) { count_part(static_cast<std::size_t>(thread)); });
-  }
-  std::uint64_t total = 0;
+  });
+  std::vector<double> weights(width);
   for (std::size_t bin = 0; bin < width; ++bin) {
     for (std::size_t part = 1; part < parts; ++part) counts[bin] += counts[part * width + bin];
-    total += counts[bin];
+    weights[bin] = counts[bin];
   }
-  std::vector<std::uint8_t> strip_of_bin(width);
-  std::uint64_t before = 0;  // ends in the bins below
-  int strip = 0;
+  const std::vector<std::uint8_t> first_cut = CutStrips(weights, strips);
+  // Each strip's ends, and those of them in contacts inside it.
+  const auto rows = static_cast<std::size_t>(strips);
+  std::vector<std::uint64_t> inside(parts * rows * 2, 0);
+  on_parts([&](std::size_t part) {
+    std::uint64_t* row = inside.data() + part * rows * 2;
+    const auto [begin, end] = part_range(part);
+    for (std::size_t i = begin; i < end; ++i) {
+      const BodyIndex a = contacts[i].a, b = contacts[i].b;
+      const bool moves_a = !HasInfiniteMass(infos[a]), moves_b = !HasInfiniteMass(infos[b]);
+      const int sa = moves_a ? first_cut[static_cast<std::size_t>(bin_of(states[a]))] : -1;
+      const int sb = moves_b ? first_cut[static_cast<std::size_t>(bin_of(states[b]))] : -1;
+      const bool whole = !moves_a || !moves_b || sa == sb;
+      for (const int strip : {sa, sb}) {
+        if (strip < 0) continue;
+        row[2 * strip] += 1;
+        row[2 * strip + 1] += whole ? 1 : 0;
+      }
+    }
+  });
+  for (std::size_t k = 0; k < rows * 2; ++k) {
+    for (std::size_t part = 1; part < parts; ++part) inside[k] += inside[part * rows * 2 + k];
+  }
   for (std::size_t bin = 0; bin < width; ++bin) {
-    // The strip where the bin's middle end falls, at most one past the last bin's.
-    const std::uint64_t middle = 2 * before + counts[bin];
-    const auto at = total == 0 ? static_cast<int>(bin) / kStripBinsPerStrip
-                               : static_cast<int>(middle * static_cast<std::uint64_t>(strips) / (2 * total));
-    strip = std::min({std::max(strip, at), strip + 1, strips - 1});
-    strip_of_bin[bin] = static_cast<std::uint8_t>(strip);
-    before += counts[bin];
+    const std::size_t strip = first_cut[bin];
+    const std::uint64_t ends = inside[2 * strip], kept = inside[2 * strip + 1];
+    if (ends > 0) weights[bin] *= static_cast<double>(kept) / static_cast<double>(ends);
   }
-  return strip_of_bin;
+  return CutStrips(weights, strips);
 }
 
 }  // namespace
