@@ -269,6 +269,61 @@ TEST_CASE("shock bands planned again for other rows are planned afresh", "[paral
   }
 }
 
+TEST_CASE("shock bands move their share of the bodies once no later band touches it, to the bits of moving after",
+          "[parallel][solver]") {
+  // Run's `after`: each band's thread moves its share of the bodies (and measures their moves)
+  // as soon as its band is done and no other band's row will touch that share again. The result
+  // must be the bits of the whole pass first and the moves after it; each band's `after` runs
+  // once. Gaps that differ row to row (as above), so that the moves measured matter.
+  Pile pile = MakePile(60, 40);
+  for (std::size_t i = 0; i < pile.constraints.size(); ++i) {
+    pile.constraints[i].base_separation = 0.002 * static_cast<double>(static_cast<int>(i * 37 % 9) - 4);
+  }
+  std::vector<engine::detail::ShockRow> rows;
+  engine::detail::ShockScratch scratch;
+  engine::detail::BuildShockRows<engine::LinearConstraint>(pile.constraints, pile.infos, {0.0, 1.0}, &scratch,
+                                                           &rows);
+  const double h = 1.0 / 240.0;
+  const auto move = [&](std::vector<engine::BodyState>& states, std::vector<engine::Vec2>& moved, std::uint32_t begin,
+                        std::uint32_t end) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (pile.infos[i].is_static) continue;
+      states[i].position += states[i].velocity * h;
+    }
+    engine::detail::MeasureMovesIn(states, pile.start_positions, moved, begin, end);
+  };
+  const auto n = static_cast<std::uint32_t>(pile.states.size());
+  // One thread: the pass, then every body moved.
+  std::vector<engine::BodyState> one = pile.states;
+  std::vector<engine::Vec2> one_moved(n);
+  engine::detail::MeasureMoves(one, pile.start_positions, one_moved);
+  for (int substep = 0; substep < 4; ++substep) {
+    engine::detail::PropagateShock(rows, one, one_moved, 240.0, 0.005, true);
+    move(one, one_moved, 0, n);
+  }
+  for (const int threads : {2, 3, 4}) {
+    CAPTURE(threads);
+    engine::detail::WorkerPool pool(threads);
+    engine::detail::ShockSchedule schedule;
+    schedule.Plan(rows, n, threads);
+    REQUIRE(schedule.SharedAmong(pool));
+    std::vector<engine::BodyState> states = pile.states;
+    std::vector<engine::Vec2> moved(n);
+    engine::detail::MeasureMoves(states, pile.start_positions, moved);
+    std::vector<int> calls(static_cast<std::size_t>(threads), 0);
+    auto after = [&](int band) {
+      ++calls[static_cast<std::size_t>(band)];
+      move(states, moved, engine::detail::ShareBegin(n, threads, band), engine::detail::ShareBegin(n, threads, band + 1));
+    };
+    for (int substep = 0; substep < 4; ++substep) {
+      schedule.Run(pool, rows, states, moved, 240.0, 0.005, engine::detail::JobRef(after));
+    }
+    CHECK(std::count(calls.begin(), calls.end(), 4) == threads);
+    CHECK(SameBits(states, one));
+    CHECK(std::memcmp(moved.data(), one_moved.data(), n * sizeof(engine::Vec2)) == 0);
+  }
+}
+
 TEST_CASE("a pile held by shock propagation stops sinking onto its floor", "[solver]") {
   // The independent expectation: every body rests on the floor through its column, so after the
   // pass no supporting contact approaches (vn >= 0 along every vertical row, base separation 0).

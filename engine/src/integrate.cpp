@@ -219,20 +219,35 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
   }
 }
 
+namespace {
+
+void MoveBody(Integrator integrator, std::span<BodyState> states, std::span<const std::uint8_t> moving,
+              std::span<const std::uint8_t> pushed, bool rotation, const FreeMotion& m, double h, std::uint32_t i) {
+  if (!moving[i]) return;
+  BodyState& s = states[i];
+  if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {
+    s.position += s.velocity * h;
+    if (rotation) s.angle += s.angular_velocity * h;
+  } else {
+    s.position += (m.drift[i] + (s.velocity - m.velocity[i])) * h;
+    if (rotation) s.angle += (m.angular_drift[i] + (s.angular_velocity - m.angular_velocity[i])) * h;
+  }
+}
+
+}  // namespace
+
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
                 bool rotation, const FreeMotion& m, double h, WorkerPool* pool) {
   ForEachIndex(pool, states.size(), kMinSharedBodies, [=, &m](std::uint32_t i) {  // by value: see ForEachIndex
-    if (!moving[i]) return;
-    BodyState& s = states[i];
-    if (integrator == Integrator::kSemiImplicitEuler || (!pushed.empty() && pushed[i])) {
-      s.position += s.velocity * h;
-      if (rotation) s.angle += s.angular_velocity * h;
-    } else {
-      s.position += (m.drift[i] + (s.velocity - m.velocity[i])) * h;
-      if (rotation) s.angle += (m.angular_drift[i] + (s.angular_velocity - m.angular_velocity[i])) * h;
-    }
+    MoveBody(integrator, states, moving, pushed, rotation, m, h, i);
   });
+}
+
+void MoveBodiesIn(Integrator integrator, std::span<BodyState> states, std::span<const std::uint8_t> moving,
+                  std::span<const std::uint8_t> pushed, bool rotation, const FreeMotion& m, double h,
+                  std::uint32_t begin, std::uint32_t end) {
+  for (std::uint32_t i = begin; i < end; ++i) MoveBody(integrator, states, moving, pushed, rotation, m, h, i);
 }
 
 }  // namespace engine::detail

@@ -70,5 +70,9 @@ void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodySta
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
                 bool rotation, const FreeMotion& motion, double h, WorkerPool* pool = nullptr);
+/// MoveBodies for the bodies [begin, end) alone, on the calling thread.
+void MoveBodiesIn(Integrator integrator, std::span<BodyState> states, std::span<const std::uint8_t> moving,
+                  std::span<const std::uint8_t> pushed, bool rotation, const FreeMotion& motion, double h,
+                  std::uint32_t begin, std::uint32_t end);
 
 }  // namespace engine::detail

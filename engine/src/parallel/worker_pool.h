@@ -26,6 +26,8 @@ class JobRef {
       : job_(const_cast<void*>(static_cast<const void*>(&job))),
         call_([](void* job, int thread) { (*static_cast<Job*>(job))(thread); }) {}
   void operator()(int thread) const { call_(job_, thread); }
+  /// Whether it refers to a job (a default-made JobRef does not).
+  explicit operator bool() const { return call_ != nullptr; }
 
  private:
   void* job_ = nullptr;

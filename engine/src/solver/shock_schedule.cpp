@@ -2,6 +2,7 @@
 #include "solver/shock_schedule.h"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "parallel/spin_wait.h"
@@ -29,6 +30,20 @@ void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count,
   }
   AssignBands(rows, body_count);
   FindWaits(body_count);
+  // The last row of each band that touches a body of another band's share: awaited, so that
+  // its band reports passing it.
+  last_touch_of_share_.assign(bands * bands, kNone);
+  for (const std::uint32_t r : crossings_) {
+    const Touch& row = touches_[r];
+    const std::uint32_t band = band_of_[r];
+    for (const BodyIndex body : {row.a, row.b}) {
+      const auto share = static_cast<std::size_t>(shares_.Of(body));
+      if (share != band) last_touch_of_share_[share * bands + band] = r;  // crossings_ ascend
+    }
+  }
+  for (const std::uint32_t r : last_touch_of_share_) {
+    if (r != kNone) awaited_[r] = 1;
+  }
 }
 
 // Each row to the band whose share of the bodies holds the body it moves; each band's rows in
@@ -144,7 +159,8 @@ std::size_t ShockSchedule::WaitCount() const {
 }
 
 void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
-                        std::span<const Vec2> moved, double inv_h, double linear_slop) {
+                        std::span<const Vec2> moved, double inv_h, double linear_slop, JobRef after) {
+  assert(!after || SharedAmong(pool));
   if (bands_ == 1 || pool.Threads() < bands_) {
     form_.Saw(PropagateShock(rows, states, moved, inv_h, linear_slop, form_.BranchFree()), rows.size());
     return;
@@ -186,6 +202,14 @@ void ShockSchedule::Run(WorkerPool& pool, std::span<const ShockRow> rows, std::s
       }
     }
     progress_[band].push_changes = changes.count;
+    if (!after) return;
+    for (int other = 0; other < bands_; ++other) {
+      const std::uint32_t row = last_touch_of_share_[static_cast<std::size_t>(band * bands_ + other)];
+      if (row == kNone) continue;
+      const std::atomic<std::uint32_t>& theirs = progress_[other].next;
+      SpinThenWait(theirs, [&] { return theirs.load(std::memory_order_acquire) > row; });
+    }
+    after(band);
   };
   const bool branch_free = form_.BranchFree();
   pool.RunOnAll([&](int band) {

@@ -42,9 +42,16 @@ class ShockSchedule {
   std::uint32_t BandOf(std::size_t r) const { return bands_ == 1 ? 0 : band_of_[r]; }
   /// How many waits Plan found (0 when the pass stays on one thread).
   std::size_t WaitCount() const;
-  /// PropagateShock over the rows Plan saw, on the pool's threads.
+  /// Whether Run shares the rows among all of `pool`'s threads, a band to each thread and a
+  /// thread's band the rows that move its share of the bodies (BodyShares).
+  bool SharedAmong(const WorkerPool& pool) const { return bands_ > 1 && bands_ == pool.Threads(); }
+  /// PropagateShock over the rows Plan saw, on the pool's threads. With SharedAmong(pool),
+  /// `after` (if any) is called on each band's thread, with the band, once its band is done and
+  /// no other band's row will touch a body of its share again: a pass over that share's bodies
+  /// that reads their velocities and writes anything but the velocities and the moves `moved`
+  /// holds for the others can go there, while the later bands still run.
   void Run(WorkerPool& pool, std::span<const ShockRow> rows, std::span<BodyState> states,
-           std::span<const Vec2> moved, double inv_h, double linear_slop);
+           std::span<const Vec2> moved, double inv_h, double linear_slop, JobRef after = {});
 
  private:
   /// Before the thread's row at `position` in its list, thread `thread` must be past row `row`.
@@ -75,6 +82,9 @@ class ShockSchedule {
   std::vector<std::uint32_t> band_start_;  ///< per band: where its rows begin (one past: the end)
   std::vector<std::vector<Wait>> waits_by_band_;  ///< each band's, in position order
   std::vector<std::uint8_t> awaited_;      ///< per row: another thread waits on it
+  /// [band × bands + other]: the last row of band `other` that touches a body of `band`'s share
+  /// (kNone: none), which `band`'s thread waits past before Run's `after`.
+  std::vector<std::uint32_t> last_touch_of_share_;
   std::vector<ShockGap> gaps_;             ///< per row, in band_rows_' order: its gap (Run)
   std::unique_ptr<Progress[]> progress_;
   ShockRowForm form_;                      ///< the next pass's form, from the last one's rows

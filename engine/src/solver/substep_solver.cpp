@@ -409,9 +409,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   }
   if (joints) joints->SolveDirect(states, inv_h);
   if (plan.energy_limit) LimitContactEnergy(constraints, states, context.infos, energy_before, warm);
-  if (plan.shock_propagation) {
-    shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop);
-  }
+  // Which bodies the contacts pushed, from the impulses (the shock pass leaves them alone).
   if (plan.wide && def.integrator != Integrator::kSemiImplicitEuler) {
     if constexpr (kCanTurn<C>) {
       MarkPushedWide(wide_turning_, states.size(), &pushed_);
@@ -422,9 +420,29 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   }
   if (joints) joints->MarkBodies(&pushed_);
-  MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
-  if (plan.track_turning) UpdateTurned(context);
-  if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, &context.pool);
+  const auto move = [&](WorkerPool* pool) {
+    MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, pool);
+    if (plan.track_turning) UpdateTurned(context);
+    if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, pool);
+  };
+  // Shared shock propagation goes band after band where a pile's ids rise with its height: each
+  // thread moves its share of the bodies as soon as no later band will touch them, instead of
+  // waiting for the last band and for two more hand-offs.
+  const bool moves_after_bands = plan.shock_propagation && shock_schedule_.SharedAmong(context.pool) &&
+                                 !plan.track_turning && states.size() >= kMinSharedBodies;
+  if (moves_after_bands) {
+    const int threads = context.pool.Threads();
+    auto move_share = [&, threads](int band) {
+      const BodyIndex begin = ShareBegin(states.size(), threads, band);
+      const BodyIndex end = ShareBegin(states.size(), threads, band + 1);
+      MoveBodiesIn(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, begin, end);
+      if (lanes_measure) MeasureMovesIn(states, context.start_positions, moved_, begin, end);
+    };
+    shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop, JobRef(move_share));
+  } else {
+    if (plan.shock_propagation) shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop);
+    move(&context.pool);
+  }
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) {
