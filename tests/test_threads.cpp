@@ -22,6 +22,22 @@
 
 namespace {
 
+// Every body's info and state, in slot order, as the engine's internal passes take them.
+struct BodyLists {
+  std::vector<engine::BodyInfo> infos;
+  std::vector<engine::BodyState> states;
+};
+
+BodyLists BodiesOf(const engine::World& world) {
+  BodyLists bodies;
+  for (std::size_t i = 0; i < world.BodyCount(); ++i) {
+    const engine::BodyId id{static_cast<engine::BodyIndex>(i)};
+    bodies.infos.push_back(world.Info(id));
+    bodies.states.push_back(world.State(id));
+  }
+  return bodies;
+}
+
 // A pour of `count` circles into a box, stepped `steps` times: about 2.3 contacts a circle once
 // it lies, enough that the narrow phase and every colour of the solve are shared out.
 std::uint64_t PourHash(int count, bool rotation, int threads, int steps) {
@@ -279,13 +295,7 @@ TEST_CASE("strip order: the groups solved side by side share no moving body, and
   for (int s = 0; s < 90; ++s) world.Step();
   const std::vector<engine::Contact>& contacts = world.Contacts();
   REQUIRE(contacts.size() >= engine::detail::SubstepSolver::kMinStripContacts);
-  std::vector<engine::BodyInfo> infos;
-  std::vector<engine::BodyState> states;
-  for (std::size_t i = 0; i < world.BodyCount(); ++i) {
-    const engine::BodyId id{static_cast<engine::BodyIndex>(i)};
-    infos.push_back(world.Info(id));
-    states.push_back(world.State(id));
-  }
+  const auto [infos, states] = BodiesOf(world);
   engine::detail::ContactOrder order;
   order.InStrips(contacts, infos, states, def.gravity);
   const engine::detail::StripGroups groups(engine::detail::ContactOrder::kStrips);
@@ -344,13 +354,7 @@ TEST_CASE("strip order: the strips of a pyramid hold about as many contacts each
     stress::AddPyramid(world, base);
     world.Step();
     const std::vector<engine::Contact>& contacts = world.Contacts();
-    std::vector<engine::BodyInfo> infos;
-    std::vector<engine::BodyState> states;
-    for (std::size_t i = 0; i < world.BodyCount(); ++i) {
-      const engine::BodyId id{static_cast<engine::BodyIndex>(i)};
-      infos.push_back(world.Info(id));
-      states.push_back(world.State(id));
-    }
+    const auto [infos, states] = BodiesOf(world);
     engine::detail::ContactOrder one;
     one.InStrips(contacts, infos, states, def.gravity);
     std::uint32_t fewest = ~0u, most = 0;
