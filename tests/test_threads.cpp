@@ -45,6 +45,7 @@ std::uint64_t PourHash(int count, bool rotation, int threads, int steps) {
   def.rotation = rotation;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   engine::World world(def);
   stress::AddBoxedPour(world, count);
   for (int s = 0; s < steps; ++s) world.Step();
@@ -57,6 +58,7 @@ std::uint64_t PartsPileHash(int threads) {
   def.rotation = true;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   engine::World world(def);
   world.CreateBody(testing::Floor(100.0));
   // 3 600 bodies in rows of 90: past NarrowPhase's 4 096 pairs (and the strip order's 4 096
@@ -146,6 +148,7 @@ std::string PourEvents(int threads, std::size_t* most_contacts) {
   engine::WorldDef def;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   engine::World world(def);
   stress::AddBoxedPour(world, 2500);
   std::string log;
@@ -184,6 +187,7 @@ std::uint64_t StartsTurningHash(int threads, std::size_t* contacts_before) {
   def.rotation = true;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   engine::World world(def);
   stress::AddContainer(world, 12.0, 24.0);
   for (int i = 0; i < 2500; ++i) {
@@ -230,6 +234,7 @@ TEST_CASE("turning pyramids of boxes step to the same bits on one, two and three
     def.rotation = true;
     def.sleeping = false;
     def.threads = threads;
+    def.adapt_threads = false;  // the shared paths, even on a busy machine
     engine::World world(def);
     stress::AddPyramid(world, base);
     for (int s = 0; s < 60; ++s) world.Step();
@@ -389,6 +394,7 @@ TEST_CASE("a pile that sleeps, then is woken by a falling ball, steps to the sam
   const auto run = [](int threads, std::vector<std::size_t>* awake_counts) {
     engine::WorldDef def;
     def.threads = threads;
+    def.adapt_threads = false;  // the shared paths, even on a busy machine
     engine::World world(def);
     world.CreateBody(testing::Floor(70.0));
     world.CreateBody(testing::Static(testing::Box({-30.5, 2.0}, {1.0, 6.0})));

@@ -246,6 +246,7 @@ std::uint64_t NetHash(int lanes, int threads, engine::ContactSolver solver = eng
   def.rotation = true;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   def.substep_features.lanes = lanes;
   engine::World world(def);
   AddNet(world, 50, true);

@@ -256,6 +256,7 @@ std::uint64_t PourHash(int lanes, int threads, bool boxes, bool rotation = false
   def.rotation = rotation;
   def.sleeping = false;
   def.threads = threads;
+  def.adapt_threads = false;  // the shared paths, even on a busy machine
   def.substep_features.lanes = lanes;
   engine::World world(def);
   stress::AddBoxedPour(world, count);

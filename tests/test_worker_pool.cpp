@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <vector>
 
 #include "engine/world.h"
@@ -128,10 +130,53 @@ TEST_CASE("RunSideBySideThenShareAfterFirst: the shared runs see everything the 
   }
 }
 
+TEST_CASE("a pool whose worker does not run goes alone for a while, then shares again", "[parallel]") {
+  // Steps (BeginStep to EndStep) whose calling thread waits nearly all of each for a worker that
+  // stands still (here it sleeps 20 ms, as one whose core another program holds): after
+  // kMissingWorkerSteps of them in a row the pool runs its jobs on the calling thread alone for
+  // kAloneSteps steps, then shares them again, judging from the next step but one. The first
+  // step is never judged (the workers may be asleep).
+  using namespace std::chrono_literals;
+  engine::detail::WorkerPool pool(2);
+  REQUIRE(pool.Threads() == 2);
+  std::vector<int> ran(2, 0);
+  const auto stalled_step = [&] {
+    pool.BeginStep();
+    pool.RunOnAll([&](int thread) {
+      ++ran[static_cast<std::size_t>(thread)];
+      if (thread == 1) std::this_thread::sleep_for(20ms);
+    });
+    pool.EndStep();
+  };
+  const auto stalled_steps_until_alone = [&] {
+    for (int step = 0; step < engine::detail::kMissingWorkerSteps; ++step) {
+      REQUIRE(pool.Threads() == 2);
+      stalled_step();
+    }
+  };
+  stalled_step();  // the first step: not judged
+  stalled_steps_until_alone();
+  const int shared_steps = 1 + engine::detail::kMissingWorkerSteps;
+  CHECK(ran == std::vector<int>{shared_steps, shared_steps});
+  CHECK(pool.Threads() == 1);
+  for (int step = 0; step < engine::detail::kAloneSteps; ++step) {
+    REQUIRE(pool.Threads() == 1);
+    pool.BeginStep();
+    pool.RunOnAll([&](int thread) { ++ran[static_cast<std::size_t>(thread)]; });  // on the caller alone
+    pool.EndStep();
+  }
+  CHECK(ran == std::vector<int>{shared_steps + engine::detail::kAloneSteps, shared_steps});
+  CHECK(pool.Threads() == 2);
+  stalled_step();  // the first step shared again: not judged
+  stalled_steps_until_alone();
+  CHECK(pool.Threads() == 1);
+}
+
 TEST_CASE("a fluid steps to the same bits on one, two and three threads", "[parallel][fluid]") {
   const auto run = [](int threads) {
     engine::WorldDef def;
     def.threads = threads;
+    def.adapt_threads = false;  // the shared paths, even on a busy machine
     engine::World world(def);
     world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {6.0, 1.0})));
     engine::FluidDef water;  // 2 400 particles: enough that every pass is split
@@ -155,6 +200,7 @@ TEST_CASE("two fluids of different densities step to the same bits on one, two a
   const auto run = [](int threads) {
     engine::WorldDef def;
     def.threads = threads;
+    def.adapt_threads = false;  // the shared paths, even on a busy machine
     engine::World world(def);
     world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {6.0, 1.0})));
     engine::FluidDef oil;  // 2 400 particles in all: two chunks or more
@@ -179,6 +225,7 @@ TEST_CASE("20 000 effect particles move and bounce to the same bits on one, two 
   const auto run = [](int threads) {
     engine::WorldDef def;
     def.threads = threads;
+    def.adapt_threads = false;  // the shared paths, even on a busy machine
     engine::World world(def);
     world.CreateBody(testing::Static(testing::Box({0.0, -0.5}, {8.0, 1.0})));
     engine::BodyDef tilted = testing::Static(testing::Box({0.5, 1.0}, {2.0, 0.2}));

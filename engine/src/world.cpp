@@ -84,6 +84,18 @@ World::~World() = default;
 void World::Step() {
   Impl& w = *impl_;
   if (w.fault) return;
+  // The pool judges whether its threads ran alongside this step (WorldDef::adapt_threads).
+  struct PoolStep {
+    detail::WorkerPool* pool;
+    explicit PoolStep(detail::WorkerPool* p) : pool(p) {
+      if (pool) pool->BeginStep();
+    }
+    ~PoolStep() {
+      if (pool) pool->EndStep();
+    }
+    PoolStep(const PoolStep&) = delete;
+    PoolStep& operator=(const PoolStep&) = delete;
+  } pool_step(w.def.adapt_threads ? w.pool.get() : nullptr);
   detail::Bodies& bodies = w.bodies;
   w.events.Clear();  // keeps the lists' storage from step to step
   bodies.MarkStepStart();  // contacts measure how far bodies move from here

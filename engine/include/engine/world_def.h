@@ -81,6 +81,11 @@ struct WorldDef {
   /// same bits with any count: work is split only where no two pieces touch the same body or
   /// particle, and each piece's arithmetic runs in the same order on any thread.
   int threads = 1;
+  /// With threads > 1: where the other threads are kept from running for several steps in a row
+  /// (another program holds their cores: two threads on two cores, one of them busy, took 2.7
+  /// times one thread's time), step on the calling thread alone for a while, then try them again.
+  /// The state is the same bits either way. false: always share them.
+  bool adapt_threads = true;
   bool rotation = false;                ///< false: the axis-aligned game, no angular work at all
   Integrator integrator = Integrator::kSemiImplicitEuler;
   BroadPhaseType broad_phase = BroadPhaseType::kAuto;

@@ -24,21 +24,29 @@ inline constexpr int kSpinsBeforeYield = 20000;
 /// of the pour took 4.1-4.5 ms, and the dam break 8.0.
 inline constexpr auto kYieldBeforeSleep = std::chrono::microseconds(1000);
 
+/// The calling thread's time spent in SpinThenWait past its spinning (yielding or asleep),
+/// seconds, summed: WorkerPool reads its own thread's, to notice workers that are not running.
+inline thread_local double tl_seconds_waited_long = 0.0;
+
 /// Returns once done() is true, re-checked whenever `value` changes.
 template <typename T, typename Done>
 void SpinThenWait(const std::atomic<T>& value, Done&& done) {
   for (int spin = 0; spin < kSpinsBeforeYield; ++spin) {
     if (done()) return;
   }
-  const auto until = std::chrono::steady_clock::now() + kYieldBeforeSleep;
+  const auto start = std::chrono::steady_clock::now();
+  const auto waited = [start] {
+    tl_seconds_waited_long += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const auto until = start + kYieldBeforeSleep;
   for (int round = 0;; ++round) {
-    if (done()) return;
+    if (done()) return waited();
     std::this_thread::yield();
     if (round % 16 == 15 && std::chrono::steady_clock::now() > until) break;
   }
   for (;;) {
     const T seen = value.load(std::memory_order_acquire);
-    if (done()) return;
+    if (done()) return waited();
     value.wait(seen, std::memory_order_acquire);
   }
 }

@@ -21,6 +21,30 @@ WorkerPool::~WorkerPool() {
   for (std::thread& worker : workers_) worker.join();
 }
 
+void WorkerPool::BeginStep() {
+  step_start_ = std::chrono::steady_clock::now();
+  waited_before_ = tl_seconds_waited_long;
+}
+
+void WorkerPool::EndStep() {
+  if (workers_.empty()) return;
+  if (alone_steps_ > 0) {
+    if (--alone_steps_ == 0) judge_next_ = false;  // the workers wake from their sleep first
+    return;
+  }
+  if (!judge_next_) {
+    judge_next_ = true;
+    return;
+  }
+  const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start_).count();
+  const double waited = tl_seconds_waited_long - waited_before_;
+  missing_steps_ = waited > kMissingWorkerShare * step ? missing_steps_ + 1 : 0;
+  if (missing_steps_ == kMissingWorkerSteps) {
+    alone_steps_ = kAloneSteps;
+    missing_steps_ = 0;
+  }
+}
+
 void WorkerPool::Run(JobRef job) {
   job_ = job;
   pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);

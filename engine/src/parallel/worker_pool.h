@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <thread>
 #include <vector>
@@ -42,13 +43,24 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
-  int Threads() const { return static_cast<int>(workers_.size()) + 1; }
+  /// How many threads share the jobs: one while the pool runs alone (EndStep).
+  int Threads() const { return Alone() ? 1 : static_cast<int>(workers_.size()) + 1; }
+
+  /// Around each step: where the calling thread spends much of several steps in a row waiting
+  /// past its spinning for the other threads (kMissingWorkerSteps steps, each waiting
+  /// kMissingWorkerShare of it or more: a worker that does not run, its core held by another
+  /// program), the pool runs its jobs on the calling thread alone for the next kAloneSteps steps,
+  /// then shares them again (the first step after not judged). Every job gives the same bits on
+  /// any number of threads, so only the time changes: with another program busy on one of two
+  /// cores, the settled 4 000-circle pour took 2.69 ms/step on two threads, against 1.03 on one.
+  void BeginStep();
+  void EndStep();
 
   /// Calls job(thread) once on each of the Threads() threads (the caller's is 0); returns when
   /// all are done. For jobs whose threads meet at a SpinBarrier between parts.
   template <typename Job>
   void RunOnAll(Job&& job) {
-    if (workers_.empty()) {
+    if (Alone()) {
       job(0);
     } else {
       Run(JobRef(job));
@@ -59,7 +71,7 @@ class WorkerPool {
   /// first then second): for two tasks that write nothing the other reads or writes.
   template <typename First, typename Second>
   void RunSideBySide(First&& first, Second&& second) {
-    if (workers_.empty()) {
+    if (Alone()) {
       first();
       second();
       return;
@@ -78,7 +90,7 @@ class WorkerPool {
   template <typename First, typename Second, typename Shared>
   void RunSideBySideThenShare(First&& first, Second&& second, std::uint32_t count, std::uint32_t run,
                               Shared&& shared) {
-    if (workers_.empty()) {
+    if (Alone()) {
       first();
       second();
       for (std::uint32_t begin = 0; begin < count; begin += run) shared(begin, std::min(count, begin + run));
@@ -98,7 +110,7 @@ class WorkerPool {
   template <typename First, typename Second, typename Shared>
   void RunSideBySideThenShareAfterFirst(First&& first, Second&& second, std::uint32_t count, std::uint32_t run,
                                         Shared&& shared) {
-    if (workers_.empty()) {
+    if (Alone()) {
       RunSideBySideThenShare(first, second, count, run, shared);
       return;
     }
@@ -126,7 +138,7 @@ class WorkerPool {
   /// call, so each run must write only its own results.
   template <typename Body>
   void ParallelRuns(std::uint32_t count, std::uint32_t min_count, std::uint32_t run, Body&& body) {
-    if (workers_.empty() || count < min_count) {
+    if (Alone() || count < min_count) {
       for (std::uint32_t begin = 0; begin < count; begin += run) body(begin, std::min(count, begin + run));
       return;
     }
@@ -140,7 +152,7 @@ class WorkerPool {
   /// else split into Threads() chunks, the caller taking the first. Returns when all are done.
   template <typename Body>
   void ParallelFor(std::uint32_t count, std::uint32_t min_count, Body&& body) {
-    if (workers_.empty() || count < min_count) {
+    if (Alone() || count < min_count) {
       for (std::uint32_t i = 0; i < count; ++i) body(i);
       return;
     }
@@ -166,13 +178,29 @@ class WorkerPool {
 
   void Run(JobRef job);
   void Work(int chunk);
+  bool Alone() const { return workers_.empty() || alone_steps_ > 0; }
 
   std::vector<std::thread> workers_;
   JobRef job_;  ///< the current job: valid while Run runs
   std::atomic<std::uint64_t> generation_{0};  ///< bumped to hand out a job (or to stop)
   std::atomic<int> pending_{0};               ///< workers still on the current job
   bool stopping_ = false;
+  int alone_steps_ = 0;       ///< steps left to run alone (EndStep)
+  int missing_steps_ = 0;     ///< judged steps in a row that missed the workers
+  bool judge_next_ = false;   ///< whether EndStep judges this step (not the first, nor the first shared again)
+  std::chrono::steady_clock::time_point step_start_;
+  double waited_before_ = 0.0;  ///< tl_seconds_waited_long at the step's start
 };
+
+/// A step whose calling thread waited longer than this share of it past its spinning for the
+/// other threads missed them: two threads on two cores, one held by another busy program, waited
+/// about half of every step of the 4 000-circle pour; sharing as they should, 5 % on average and
+/// a few steps in a hundred past 30 % (an interrupt, a page fault), none twice in a row.
+inline constexpr double kMissingWorkerShare = 0.3;
+/// How many judged steps in a row must miss the workers before the pool runs alone.
+inline constexpr int kMissingWorkerSteps = 4;
+/// Steps run alone before trying the threads again.
+inline constexpr int kAloneSteps = 64;
 
 /// Passes over the bodies are shared among threads from these many: fewer cost more to hand out
 /// than they save.
