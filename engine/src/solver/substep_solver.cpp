@@ -420,11 +420,6 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     MarkPushed<C>(constraints, def.integrator, states.size(), &pushed_);
   }
   if (joints) joints->MarkBodies(&pushed_);
-  const auto move = [&](WorkerPool* pool) {
-    MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, pool);
-    if (plan.track_turning) UpdateTurned(context);
-    if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, pool);
-  };
   // Shared shock propagation goes band after band where a pile's ids rise with its height: each
   // thread moves its share of the bodies as soon as no later band will touch them, instead of
   // waiting for the last band and for two more hand-offs.
@@ -441,7 +436,9 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop, JobRef(move_share));
   } else {
     if (plan.shock_propagation) shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop);
-    move(&context.pool);
+    MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
+    if (plan.track_turning) UpdateTurned(context);
+    if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, &context.pool);
   }
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
