@@ -21,11 +21,6 @@ inline constexpr std::uint32_t kMinSharedGroup = 256;
 /// costs microseconds, and a pour of 1 000 circles (2 000 contacts) ran 1.26 times slower on
 /// two threads than on one when it was shared (bench_threads).
 inline constexpr std::uint32_t kMinSharedConstraints = 4096;
-/// As kMinSharedConstraints, for contacts where something turns: one costs about five times an
-/// axis-aligned one (17 ns a pass in a turning pyramid, 3.3 in an axis-aligned pour), so far
-/// fewer make a pass worth sharing. A turning pyramid of base 20 (590 contacts) on two threads:
-/// 0.54 ms/step unshared, 0.46 shared.
-inline constexpr std::uint32_t kMinSharedTurningConstraints = 512;
 
 /// The stretches a pass over `order`'s groups (not strips) goes through, in order: each group
 /// that is shared among the threads (below order.parallel_groups, so it shares no moving body,
@@ -89,13 +84,11 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
 /// moving body, the arithmetic on each body is that of the constraints in storage order, the
 /// same bits with any number of threads.
 /// `per_unit`: how many constraints one unit of `order` holds (the wide solver's blocks hold 4).
-/// `min_shared`: fewer constraints than this go to the first thread alone.
 template <typename Pass>
-void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1,
-                  std::uint32_t min_shared = kMinSharedConstraints) {
+void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || std::uint64_t{total} * per_unit < min_shared) {
+  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
     pass(std::uint32_t{0}, total);
     return;
   }
@@ -132,10 +125,10 @@ void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std:
 /// done before the next starts, and a run of groups that go whole to the first thread goes as one.
 template <typename Pass>
 void ForEachGroupByBodies(WorkerPool& pool, const ContactOrder& order, const BodyCut& cut, Pass&& pass,
-                          std::uint32_t per_unit = 1, std::uint32_t min_shared = kMinSharedConstraints) {
+                          std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || std::uint64_t{total} * per_unit < min_shared) {
+  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
     pass(std::uint32_t{0}, total);
     return;
   }

@@ -459,11 +459,10 @@ template <typename C, typename Pass>
 void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass) {
   const auto runs = [&](auto& wide) {
     const auto part = [&](std::uint32_t begin, std::uint32_t end) { pass(begin, std::size_t{end - begin}); };
-    const std::uint32_t min_shared = kCanTurn<C> ? kMinSharedTurningConstraints : kMinSharedConstraints;
     if (pool.Threads() > 1 && wide.order.strips == 0) {
-      ForEachGroupByBodies(pool, wide.order, wide.body_cut, part, kBlockLanes, min_shared);
+      ForEachGroupByBodies(pool, wide.order, wide.body_cut, part, kBlockLanes);
     } else {
-      ForEachGroup(pool, wide.order, part, kBlockLanes, min_shared);
+      ForEachGroup(pool, wide.order, part, kBlockLanes);
     }
   };
   if constexpr (kCanTurn<C>) {
