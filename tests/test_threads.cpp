@@ -38,14 +38,21 @@ BodyLists BodiesOf(const engine::World& world) {
   return bodies;
 }
 
-// A pour of `count` circles into a box, stepped `steps` times: about 2.3 contacts a circle once
-// it lies, enough that the narrow phase and every colour of the solve are shared out.
-std::uint64_t PourHash(int count, bool rotation, int threads, int steps) {
+// A world on `threads` threads that always shares its steps among them (the shared paths are
+// what these tests check, even on a busy machine), sleeping off, turning or not.
+engine::WorldDef SharedDef(int threads, bool rotation) {
   engine::WorldDef def;
   def.rotation = rotation;
   def.sleeping = false;
   def.threads = threads;
-  def.adapt_threads = false;  // the shared paths, even on a busy machine
+  def.adapt_threads = false;
+  return def;
+}
+
+// A pour of `count` circles into a box, stepped `steps` times: about 2.3 contacts a circle once
+// it lies, enough that the narrow phase and every colour of the solve are shared out.
+std::uint64_t PourHash(int count, bool rotation, int threads, int steps) {
+  const engine::WorldDef def = SharedDef(threads, rotation);
   engine::World world(def);
   stress::AddBoxedPour(world, count);
   for (int s = 0; s < steps; ++s) world.Step();
@@ -54,11 +61,7 @@ std::uint64_t PourHash(int count, bool rotation, int threads, int steps) {
 
 // Turning hexagons and boxes (bodies made of parts, the narrow phase's other loop) on a floor.
 std::uint64_t PartsPileHash(int threads) {
-  engine::WorldDef def;
-  def.rotation = true;
-  def.sleeping = false;
-  def.threads = threads;
-  def.adapt_threads = false;  // the shared paths, even on a busy machine
+  const engine::WorldDef def = SharedDef(threads, true);
   engine::World world(def);
   world.CreateBody(testing::Floor(100.0));
   // 3 600 bodies in rows of 90: past NarrowPhase's 4 096 pairs (and the strip order's 4 096
@@ -145,10 +148,7 @@ TEST_CASE("a pour steps to the same bits on one, two and three threads", "[paral
 // The contact events of a pour, step by step, as text: who began and ended touching, where, and
 // how fast (every bit of the numbers).
 std::string PourEvents(int threads, std::size_t* most_contacts) {
-  engine::WorldDef def;
-  def.sleeping = false;
-  def.threads = threads;
-  def.adapt_threads = false;  // the shared paths, even on a busy machine
+  const engine::WorldDef def = SharedDef(threads, false);
   engine::World world(def);
   stress::AddBoxedPour(world, 2500);
   std::string log;
@@ -183,11 +183,7 @@ TEST_CASE("a pour's contact events are the same on one, two and three threads", 
 // A pour of circles that cannot turn, in a world with rotation on, until a circle that can turn
 // drops in: the solver switches from the axis-aligned constraints to the turning ones mid-run.
 std::uint64_t StartsTurningHash(int threads, std::size_t* contacts_before) {
-  engine::WorldDef def;
-  def.rotation = true;
-  def.sleeping = false;
-  def.threads = threads;
-  def.adapt_threads = false;  // the shared paths, even on a busy machine
+  const engine::WorldDef def = SharedDef(threads, true);
   engine::World world(def);
   stress::AddContainer(world, 12.0, 24.0);
   for (int i = 0; i < 2500; ++i) {
@@ -229,11 +225,7 @@ TEST_CASE("a turning pyramid of boxes steps to the same bits on one, two and thr
   // Boxes that turn go in strips (StripContacts), each strip whole to one thread, from
   // kMinSharedConstraints contacts: a pyramid of base 60 has about 5 400.
   const auto hash = [](int threads, std::size_t* contacts) {
-    engine::WorldDef def;
-    def.rotation = true;
-    def.sleeping = false;
-    def.threads = threads;
-    def.adapt_threads = false;  // the shared paths, even on a busy machine
+    const engine::WorldDef def = SharedDef(threads, true);
     engine::World world(def);
     stress::AddPyramid(world, 60);
     for (int s = 0; s < 30; ++s) world.Step();
