@@ -80,29 +80,21 @@ std::vector<std::uint8_t> CutStrips(std::span<const double> weights, int strips)
 // busy in a pyramid of base 40, whose outer strips hold few contacts. First cut by the contact
 // ends of moving bodies each bin holds; but a narrow strip loses more of its contacts to the
 // edges than a wide one, so the ends are then weighed by how many of their strip's ends
-// belong to contacts inside it, and cut again. Counted over each thread's part of the contacts
-// and then summed, in integers: the same cut with any number of threads.
+// belong to contacts inside it, and cut again. Counted over runs of the contacts and then
+// summed, in integers: the same cut with any number of threads.
 template <typename BinOf>
 std::vector<std::uint8_t> StripOfBin(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
                                      std::span<const BodyState> states, const BinOf& bin_of, int bins, int strips,
                                      WorkerPool* pool) {
-  const std::size_t parts = pool && contacts.size() >= kMinSharedContacts ? pool->Threads() : 1;
-  const auto on_parts = [&](auto&& part_fn) {
-    if (parts == 1) {
-      part_fn(std::size_t{0});
-    } else {
-      pool->RunOnAll([&](int thread) { part_fn(static_cast<std::size_t>(thread)); });
-    }
-  };
-  const auto part_range = [&](std::size_t part) {
-    return std::pair{contacts.size() * part / parts, contacts.size() * (part + 1) / parts};
-  };
+  // Counted in runs of the contacts (ForEachRun), each run into a row of its own, then summed.
+  const auto n = static_cast<std::uint32_t>(contacts.size());
+  const std::uint32_t run = RunLength(pool, n, kMinSharedContacts);
+  const std::size_t runs = (n + run - 1) / run;
   const auto width = static_cast<std::size_t>(bins);
-  std::vector<std::uint32_t> counts(parts * width, 0);  // a row of bins a part: a line shared at most
-  on_parts([&](std::size_t part) {
-    std::uint32_t* count = counts.data() + part * width;
-    const auto [begin, end] = part_range(part);
-    for (std::size_t i = begin; i < end; ++i) {
+  std::vector<std::uint32_t> counts(std::max<std::size_t>(runs, 1) * width, 0);
+  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
+    std::uint32_t* count = counts.data() + std::size_t{begin / run} * width;
+    for (std::uint32_t i = begin; i < end; ++i) {
       for (const BodyIndex b : {contacts[i].a, contacts[i].b}) {
         if (!HasInfiniteMass(infos[b])) ++count[bin_of(states[b])];
       }
@@ -110,17 +102,16 @@ std::vector<std::uint8_t> StripOfBin(std::span<const Contact> contacts, std::spa
   });
   std::vector<double> weights(width);
   for (std::size_t bin = 0; bin < width; ++bin) {
-    for (std::size_t part = 1; part < parts; ++part) counts[bin] += counts[part * width + bin];
+    for (std::size_t r = 1; r < runs; ++r) counts[bin] += counts[r * width + bin];
     weights[bin] = counts[bin];
   }
   const std::vector<std::uint8_t> first_cut = CutStrips(weights, strips);
-  // Each strip's ends, and those of them in contacts inside it.
-  const auto rows = static_cast<std::size_t>(strips);
-  std::vector<std::uint64_t> inside(parts * rows * 2, 0);
-  on_parts([&](std::size_t part) {
-    std::uint64_t* row = inside.data() + part * rows * 2;
-    const auto [begin, end] = part_range(part);
-    for (std::size_t i = begin; i < end; ++i) {
+  // Each strip's ends, and those of them in contacts inside it: [strip][0] and [strip][1].
+  const auto per_run = static_cast<std::size_t>(strips) * 2;
+  std::vector<std::uint64_t> inside(std::max<std::size_t>(runs, 1) * per_run, 0);
+  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
+    std::uint64_t* row = inside.data() + std::size_t{begin / run} * per_run;
+    for (std::uint32_t i = begin; i < end; ++i) {
       const BodyIndex a = contacts[i].a, b = contacts[i].b;
       const bool moves_a = !HasInfiniteMass(infos[a]), moves_b = !HasInfiniteMass(infos[b]);
       const int sa = moves_a ? first_cut[static_cast<std::size_t>(bin_of(states[a]))] : -1;
@@ -133,8 +124,8 @@ std::vector<std::uint8_t> StripOfBin(std::span<const Contact> contacts, std::spa
       }
     }
   });
-  for (std::size_t k = 0; k < rows * 2; ++k) {
-    for (std::size_t part = 1; part < parts; ++part) inside[k] += inside[part * rows * 2 + k];
+  for (std::size_t k = 0; k < per_run; ++k) {
+    for (std::size_t r = 1; r < runs; ++r) inside[k] += inside[r * per_run + k];
   }
   for (std::size_t bin = 0; bin < width; ++bin) {
     const std::size_t strip = first_cut[bin];
