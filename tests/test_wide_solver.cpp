@@ -239,7 +239,7 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   MeasureMoves(out.states, scene.start_positions, moved);
   for (int pass = 0; pass < 2; ++pass) {
     passes.turning_solve(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(), moved.data(),
-                         turned, inv_h, true);
+                         turned, inv_h, true, pass == 0);
   }
   move();
   MeasureMoves(out.states, scene.start_positions, moved);

@@ -402,7 +402,7 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   WarmStartPass(context, constraints, plan, start);
   for (int pass = 0; pass < plan.passes; ++pass) {
     if (joints) joints->Solve(states, inv_h);
-    SolvePass(context, constraints, plan, start);
+    SolvePass(context, constraints, plan, start, pass == 0);
   }
   if constexpr (kCanTurn<C>) {
     if (plan.direct_solve) SolveDirect(&direct_solver_, constraints, states, start, inv_h);
@@ -497,14 +497,14 @@ void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints
 
 template <typename C>
 void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
-                              const StepStart& start) {
+                              const StepStart& start, bool first_pass) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
     const Rot* turned = start.turned.empty() ? nullptr : start.turned.data();  // null: no turns
     ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
-                                 states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver);
+                                 states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver, first_pass);
       } else {
         plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
       }

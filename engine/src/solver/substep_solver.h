@@ -113,9 +113,11 @@ class SubstepSolver {
   template <typename C>
   void WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                      const StepStart& start);
+  /// `first_pass`: the substep's first velocity pass (the wide turning lanes keep what it works
+  /// out from the moves for the later ones).
   template <typename C>
   void SolvePass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
-                 const StepStart& start);
+                 const StepStart& start, bool first_pass);
   template <typename C>
   void PushOutPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                    const StepStart& start, PushVelocities push);

@@ -86,6 +86,10 @@ struct alignas(32) TurningPointLanes {
   double anchor_a_y[kBlockLanes];
   double anchor_b_x[kBlockLanes];
   double anchor_b_y[kBlockLanes];
+  /// The least normal speed the point may take this substep (its gap over the substep, or 0),
+  /// worked out by the substep's first velocity pass from the moves and read by the others:
+  /// the moves change only between substeps.
+  double min_normal_speed[kBlockLanes];
 };
 
 /// The second points of four turning contacts, with what the block solver reads of both

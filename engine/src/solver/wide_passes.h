@@ -27,10 +27,12 @@ struct WidePasses {
   // The same for turning contacts (angular SubstepConstraints), `seconds` the blocks' second
   // points (WideTurningConstraints::second_points, from the same block on), `turned` each body's
   // rotation since the step's start (null where no body's turn moves its points: the anchors
-  // stay fixed); `block_solve` as SubstepPlan's.
+  // stay fixed); `block_solve` as SubstepPlan's. `first_pass`: the substep's first velocity pass,
+  // which works out each point's least normal speed from the moves (TurningPointLanes::
+  // min_normal_speed); the later ones read it, and need no `moved` or `turned`.
   void (*turning_warm_start)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states);
   void (*turning_solve)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
-                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve);
+                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve, bool first_pass);
   void (*turning_push_out)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                            const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                            double max_push_out_speed, double linear_slop);

@@ -174,19 +174,30 @@ void TurningWarmStartBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, s
 }
 
 // One block's lanes [o, o + Lanes::kCount) of TurningSolveBlocks, `kTwo` whether any has a second
-// point (`second`): a template, so that the lanes of circles are compiled without it.
-template <bool kTwo, bool kTurns>
+// point (`second`): a template, so that the lanes of circles are compiled without it. `kFirst`:
+// the substep's first pass, which works out the least normal speeds from the moves and keeps
+// them (min_normal_speed) for the later passes, which read them instead: the gathers of the
+// moves and turns and the separations were a fifth of a pass.
+template <bool kTwo, bool kTurns, bool kFirst>
 [[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningSecondLanes& second, int o,
                                                      BodyState* states, const Vec2* moved, const Rot* turned,
                                                      Lanes inv_h, bool block_solve) {
   const PairLanes c = LoadPair(k, o);
   const Lanes tx = -c.ny, ty = c.nx;
-  const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
   // Without a second point, p1 stands in for it where the arithmetic needs a value and is
   // never kept.
   const PointLanes p0 = LoadPoint(k.first, o), p1 = kTwo ? LoadPoint(second, o) : p0;
-  const Lanes min_vn0 = -Max0(SeparationAt<kTurns>(q, p0, c)) * inv_h;
-  const Lanes min_vn1 = kTwo ? -Max0(SeparationAt<kTurns>(q, p1, c)) * inv_h : Lanes(0.0);
+  Lanes min_vn0, min_vn1;
+  if constexpr (kFirst) {
+    const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
+    min_vn0 = -Max0(SeparationAt<kTurns>(q, p0, c)) * inv_h;
+    min_vn1 = kTwo ? -Max0(SeparationAt<kTurns>(q, p1, c)) * inv_h : Lanes(0.0);
+    min_vn0.Store(k.first.min_normal_speed + o);
+    if constexpr (kTwo) min_vn1.Store(second.min_normal_speed + o);
+  } else {
+    min_vn0 = Lanes::Load(k.first.min_normal_speed + o);
+    min_vn1 = kTwo ? Lanes::Load(second.min_normal_speed + o) : Lanes(0.0);
+  }
   const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
 
   // Both normals together, where two points allow (the block solver).
@@ -248,7 +259,7 @@ template <bool kTwo, bool kTurns>
   ScatterMotion(states, k.b + o, b, c.moving_b);
 }
 
-template <bool kTurns>
+template <bool kTurns, bool kFirst>
 void SolveTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
@@ -256,9 +267,9 @@ void SolveTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       if (Bits(Lanes::Load(k.two_points + o) != Lanes(0.0)) != 0) {
-        SolveTurningLanes<true, kTurns>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
+        SolveTurningLanes<true, kTurns, kFirst>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       } else {  // circles have one point: their second is skipped whole
-        SolveTurningLanes<false, kTurns>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
+        SolveTurningLanes<false, kTurns, kFirst>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
       }
     }
   }
@@ -266,11 +277,13 @@ void SolveTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::
 
 // `turned` null: no body's turn moves its points (the anchors stay where they were).
 void TurningSolveBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
-                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve) {
-  if (turned) {
-    SolveTurningBlocks<true>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
+                        const Vec2* moved, const Rot* turned, double inv_h, bool block_solve, bool first_pass) {
+  if (!first_pass) {  // the least normal speeds are known: neither moves nor turns are read
+    SolveTurningBlocks<false, false>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
+  } else if (turned) {
+    SolveTurningBlocks<true, true>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
   } else {
-    SolveTurningBlocks<false>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
+    SolveTurningBlocks<false, true>(blocks, seconds, count, states, moved, turned, inv_h, block_solve);
   }
 }
 
