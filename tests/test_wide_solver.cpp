@@ -1,4 +1,4 @@
-// The wide solver (SubstepFeatures::lanes): its passes at every width the processor has give the
+// The wide solver (SubstepFeatures::lanes): its passes at every width (and build) the processor has give the
 // bits of the one-at-a-time passes, on hand-made contacts with the awkward cases in them, and a
 // world steps to the same state hash at every width and thread count.
 #include <catch2/catch.hpp>
@@ -125,8 +125,9 @@ bool SameBits(const std::vector<T>& x, const std::vector<T>& y) {
 }
 
 // The substep's passes in the solver's order: warm start, two velocity passes, a move, push-out.
-// `lanes` 0: one at a time (substep_passes.cpp), else the wide passes of that width.
-Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order, int lanes) {
+// `wide_passes` null: one at a time (substep_passes.cpp), else those wide passes.
+Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order,
+                  const engine::detail::WidePasses* wide_passes) {
   using namespace engine::detail;
   Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, {}, scene.contacts};
   PrepareSubstepConstraints<LinearConstraint>(scene.contacts, order.slot, scene.infos, scene.states,
@@ -136,7 +137,7 @@ Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order,
   const auto move = [&] {  // as MoveBodies would, between the velocity passes and the push-out
     for (BodyState& s : out.states) s.position += (1.0 / inv_h) * s.velocity;
   };
-  if (lanes == 0) {
+  if (wide_passes == nullptr) {
     const std::span<LinearConstraint> all = out.constraints;
     WarmStartAll(all, std::span<BodyState>(out.states));
     for (int pass = 0; pass < 2; ++pass) SolveContacts(all, std::span<BodyState>(out.states), start, inv_h, false);
@@ -145,8 +146,7 @@ Outcome RunPasses(const Scene& scene, const engine::detail::ContactOrder& order,
     StoreImpulses<LinearConstraint>(all, order.slot, out.contacts, nullptr);
     return out;
   }
-  const WidePasses& passes = WidePassesFor(lanes);
-  REQUIRE(passes.lanes == lanes);
+  const WidePasses& passes = *wide_passes;
   WideConstraints wide;
   wide.Pack(out.constraints, order);
   const std::size_t blocks = wide.blocks.size();
@@ -204,7 +204,8 @@ Scene MakeTurningScene(unsigned seed) {
 
 // RunPasses for turning contacts in strip or colour order, block-solved; without `turns`, as where
 // no body's turn moves its points (the anchors fixed, no turns passed).
-Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order, int lanes, bool turns) {
+Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order,
+                         const engine::detail::WidePasses* wide_passes, bool turns) {
   using namespace engine::detail;
   Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, std::vector<double>(scene.states.size()),
               scene.contacts};
@@ -217,7 +218,7 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   const auto move = [&] {
     for (BodyState& s : out.states) s.position += (1.0 / inv_h) * s.velocity;
   };
-  if (lanes == 0) {
+  if (wide_passes == nullptr) {
     const std::span<SubstepConstraint> all = out.turning;
     WarmStartAll(all, std::span<BodyState>(out.states));
     for (int pass = 0; pass < 2; ++pass) SolveContacts(all, std::span<BodyState>(out.states), start, inv_h, true);
@@ -227,8 +228,7 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
     StoreImpulses<SubstepConstraint>(all, order.slot, out.contacts, nullptr);
     return out;
   }
-  const WidePasses& passes = WidePassesFor(lanes);
-  REQUIRE(passes.lanes == lanes);
+  const WidePasses& passes = *wide_passes;
   REQUIRE(WideTurningConstraints::Fits(out.turning, order));
   WideTurningConstraints wide;
   wide.Pack(out.turning, order);
@@ -279,16 +279,16 @@ TEST_CASE("wide solver: each width's passes give the bits of the one-at-a-time p
     order.ByColour(testing::BodiesOf(scene.contacts), scene.infos);
     // The hub's contacts ran out of colours: some share a body, and go one to a block.
     REQUIRE(order.group_ends.size() > order.parallel_groups);
-    const Outcome reference = RunPasses(scene, order, 0);
+    const Outcome reference = RunPasses(scene, order, nullptr);
     // The passes did something: velocities and impulses changed, and some pair was pushed.
     CHECK_FALSE(SameBits(reference.states, scene.states));
     CHECK_FALSE(SameBits(Impulses(reference.contacts), Impulses(scene.contacts)));  // impulses stored
     bool pushed = false;
     for (const Vec2 v : reference.push) pushed = pushed || v.x != 0.0 || v.y != 0.0;
     CHECK(pushed);
-    for (int lanes = 1; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
-      INFO("seed " << seed << ", " << lanes << " lanes");
-      const Outcome wide = RunPasses(scene, order, lanes);
+    for (const engine::detail::WidePasses* passes : engine::detail::RunnableWidePasses()) {
+      INFO("seed " << seed << ", " << passes->lanes << " lanes");
+      const Outcome wide = RunPasses(scene, order, passes);
       CHECK(SameBits(wide.states, reference.states));
       CHECK(SameBits(wide.push, reference.push));
       CHECK(SameBits(Impulses(wide.contacts), Impulses(reference.contacts)));
@@ -437,10 +437,10 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
     } else {
       order.InStrips(scene.contacts, scene.infos, scene.states, {0.0, -9.8});
     }
-    const Outcome turning = RunTurningPasses(scene, order, 0, true);
+    const Outcome turning = RunTurningPasses(scene, order, nullptr, true);
     for (const bool turns : {true, false}) {
       INFO((turns ? "with turns" : "without turns"));
-      const Outcome reference = turns ? turning : RunTurningPasses(scene, order, 0, false);
+      const Outcome reference = turns ? turning : RunTurningPasses(scene, order, nullptr, false);
       CHECK_FALSE(SameBits(reference.states, scene.states));
       CHECK_FALSE(SameBits(Impulses(reference.contacts), Impulses(scene.contacts)));  // impulses stored
       bool pushed = false;
@@ -448,9 +448,9 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
       CHECK(pushed);
       // The scene's bodies have turned: the separations, so the answers, differ with the turns.
       if (!turns) CHECK_FALSE(SameBits(reference.push, turning.push));
-      for (int lanes = 1; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
-        INFO("seed " << seed << ", " << lanes << " lanes");
-        const Outcome wide = RunTurningPasses(scene, order, lanes, turns);
+      for (const engine::detail::WidePasses* passes : engine::detail::RunnableWidePasses()) {
+        INFO("seed " << seed << ", " << passes->lanes << " lanes");
+        const Outcome wide = RunTurningPasses(scene, order, passes, turns);
         CHECK(SameBits(wide.states, reference.states));
         CHECK(SameBits(wide.push, reference.push));
         CHECK(SameBits(wide.push_angular, reference.push_angular));

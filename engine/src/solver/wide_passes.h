@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "engine/body.h"
 #include "joints/wide_joints.h"
@@ -53,5 +54,14 @@ const WidePasses& WidePassesFor(int lanes);
 const WidePasses& WidePasses1();
 const WidePasses& WidePasses2();  ///< x86-64 only (BALLBOX_WIDE_X86)
 const WidePasses& WidePasses4();  ///< x86-64 only; call only where the processor has AVX2
+/// WidePasses4 built with AVX-512VL's 32 registers: the same bits. x86-64 only; call only where
+/// the processor has AVX-512F and AVX-512VL (HasEvexRegisters).
+const WidePasses& WidePasses4Evex();
+/// Whether this processor runs WidePasses4Evex (false off x86-64).
+bool HasEvexRegisters();
+/// Every build of the passes this processor runs, narrowest first: 1 lane, 2 and 4 where it has
+/// them, and WidePasses4Evex after WidePasses4 where it has those (WidePassesFor hands out the
+/// last of each width).
+std::vector<const WidePasses*> RunnableWidePasses();
 
 }  // namespace engine::detail
