@@ -203,9 +203,13 @@ Scene MakeTurningScene(unsigned seed) {
 }
 
 // RunPasses for turning contacts in strip or colour order, block-solved; without `turns`, as where
-// no body's turn moves its points (the anchors fixed, no turns passed).
+// no body's turn moves its points (the anchors fixed, no turns passed). `twins` (strip order):
+// the warm start and the velocity passes take the even and the odd strips side by side (the
+// passes' twins), then the rest, as the solver does on one thread; kOddFirst hands the twins the
+// odd strips first (either run may be the longer).
+enum class Twins { kNone, kEvenFirst, kOddFirst };
 Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order,
-                         const engine::detail::WidePasses* wide_passes, bool turns) {
+                         const engine::detail::WidePasses* wide_passes, bool turns, Twins twins = Twins::kNone) {
   using namespace engine::detail;
   Outcome out{scene.states, std::vector<Vec2>(scene.states.size()), {}, {}, std::vector<double>(scene.states.size()),
               scene.contacts};
@@ -234,12 +238,28 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   wide.Pack(out.turning, order);
   const std::size_t blocks = wide.blocks.size();
   REQUIRE(wide.second_points.size() == blocks);
-  passes.turning_warm_start(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data());
+  const auto run = [&](std::size_t begin, std::size_t end) {
+    return TurningRun{wide.blocks.data() + begin, wide.second_points.data() + begin, end - begin};
+  };
+  // The even strips end where the odd ones start, and those where the rest start.
+  const bool twin = twins != Twins::kNone;
+  const std::size_t odd = twin ? wide.order.group_ends.at(0) : 0, rest = twin ? wide.order.group_ends.at(1) : 0;
+  const TurningRun one = twins == Twins::kOddFirst ? run(odd, rest) : run(0, odd);
+  const TurningRun two = twins == Twins::kOddFirst ? run(0, odd) : run(odd, rest);
+  if (twin) {
+    REQUIRE(wide.order.strips == 2);
+    passes.turning_warm_start_twin(one, two, out.states.data());
+  }
+  passes.turning_warm_start(wide.blocks.data() + rest, wide.second_points.data() + rest, blocks - rest,
+                            out.states.data());
   std::vector<Vec2> moved(out.states.size());  // the lanes read the moves since the start, as the solver makes them
   MeasureMoves(out.states, scene.start_positions, moved);
   for (int pass = 0; pass < 2; ++pass) {
-    passes.turning_solve(wide.blocks.data(), wide.second_points.data(), blocks, out.states.data(), moved.data(),
-                         turned, inv_h, true, pass == 0);
+    if (twin) {
+      passes.turning_solve_twin(one, two, out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
+    }
+    passes.turning_solve(wide.blocks.data() + rest, wide.second_points.data() + rest, blocks - rest,
+                         out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
   }
   move();
   MeasureMoves(out.states, scene.start_positions, moved);
@@ -449,12 +469,16 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
       // The scene's bodies have turned: the separations, so the answers, differ with the turns.
       if (!turns) CHECK_FALSE(SameBits(reference.push, turning.push));
       for (const engine::detail::WidePasses* passes : engine::detail::RunnableWidePasses()) {
-        INFO("seed " << seed << ", " << passes->lanes << " lanes");
-        const Outcome wide = RunTurningPasses(scene, order, passes, turns);
-        CHECK(SameBits(wide.states, reference.states));
-        CHECK(SameBits(wide.push, reference.push));
-        CHECK(SameBits(wide.push_angular, reference.push_angular));
-        CHECK(SameBits(Impulses(wide.contacts), Impulses(reference.contacts)));
+        // In strip order, also with the even and the odd strips side by side (twins), either first.
+        for (const Twins twins : {Twins::kNone, Twins::kEvenFirst, Twins::kOddFirst}) {
+          if (by_colour && twins != Twins::kNone) continue;
+          INFO("seed " << seed << ", " << passes->lanes << " lanes, twins " << static_cast<int>(twins));
+          const Outcome wide = RunTurningPasses(scene, order, passes, turns, twins);
+          CHECK(SameBits(wide.states, reference.states));
+          CHECK(SameBits(wide.push, reference.push));
+          CHECK(SameBits(wide.push_angular, reference.push_angular));
+          CHECK(SameBits(Impulses(wide.contacts), Impulses(reference.contacts)));
+        }
       }
     }
   }

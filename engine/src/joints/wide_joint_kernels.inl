@@ -23,7 +23,7 @@ struct JointLanes {
 }
 
 // PointVelocity: (b.v + Cross(b.w, r_b)) − (a.v + Cross(a.w, r_a)).
-[[gnu::always_inline]] inline void PointVelocityLanes(const JointLanes& j, const Motion& a, const Motion& b, Lanes* x,
+[[gnu::always_inline]] inline void PointVelocityLanes(const JointLanes& j, const Motion<Lanes>& a, const Motion<Lanes>& b, Lanes* x,
                                                       Lanes* y) {
   *x = (b.vx + -b.w * j.rby) - (a.vx + -a.w * j.ray);
   *y = (b.vy + b.w * j.rbx) - (a.vy + a.w * j.rax);
@@ -36,7 +36,7 @@ struct JointLanes {
 }
 
 // ApplyPoint.
-[[gnu::always_inline]] inline void ApplyPointLanes(const JointLanes& j, Lanes ix, Lanes iy, Motion* a, Motion* b) {
+[[gnu::always_inline]] inline void ApplyPointLanes(const JointLanes& j, Lanes ix, Lanes iy, Motion<Lanes>* a, Motion<Lanes>* b) {
   a->vx = a->vx - j.ma * ix;
   a->vy = a->vy - j.ma * iy;
   a->w = a->w - j.ia * (j.rax * iy - j.ray * ix);
@@ -51,7 +51,7 @@ void JointWarmStartBlocks(JointBlock* blocks, std::size_t count, BodyState* stat
     JointBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const JointLanes j = LoadJoint(k, o);
-      Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
+      Motion<Lanes> a = GatherMotion<Lanes>(states, k.a + o), b = GatherMotion<Lanes>(states, k.b + o);
       ApplyPointLanes(j, Lanes::Load(k.impulse_x + o), Lanes::Load(k.impulse_y + o), &a, &b);
       ScatterMotion(states, k.a + o, a, j.moving_a);
       ScatterMotion(states, k.b + o, b, j.moving_b);
@@ -66,7 +66,7 @@ void JointSolveBlocks(JointBlock* blocks, std::size_t count, BodyState* states, 
     JointBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const JointLanes j = LoadJoint(k, o);
-      Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
+      Motion<Lanes> a = GatherMotion<Lanes>(states, k.a + o), b = GatherMotion<Lanes>(states, k.b + o);
       Lanes vx, vy;
       PointVelocityLanes(j, a, b, &vx, &vy);
       vx = vx + inv_h * Lanes::Load(k.drift_x + o);
@@ -94,7 +94,7 @@ void JointPushOutBlocks(JointBlock* blocks, std::size_t count, Vec2* push, doubl
     JointBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
       const JointLanes j = LoadJoint(k, o);
-      Motion a, b;
+      Motion<Lanes> a, b;
       Gather(push_linear, kVec2Stride, k.a + o, &a.vx, &a.vy);
       Gather(push_linear, kVec2Stride, k.b + o, &b.vx, &b.vy);
       a.w = GatherOne(push_angular, 1, k.a + o);

@@ -76,6 +76,13 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
   });
 }
 
+/// Whether ForEachGroup calls its pass once, over all of `order`'s constraints on the calling
+/// thread: one thread, or too few constraints to share.
+inline bool GroupsStayOnOneThread(const WorkerPool& pool, const ContactOrder& order, std::uint32_t per_unit = 1) {
+  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
+  return pool.Threads() == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints;
+}
+
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
 /// every group is done before the next starts. In strip order, each strip goes whole to one
 /// thread, side by side, then each even edge, then each odd one, and the rest to the first.
@@ -88,7 +95,7 @@ template <typename Pass>
 void ForEachGroup(WorkerPool& pool, const ContactOrder& order, Pass&& pass, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
+  if (GroupsStayOnOneThread(pool, order, per_unit)) {
     pass(std::uint32_t{0}, total);
     return;
   }

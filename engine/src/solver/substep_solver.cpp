@@ -472,19 +472,40 @@ void SubstepSolver::ForEachBlockRun(WorkerPool& pool, Pass&& pass) {
   }
 }
 
+// The two runs of strips are two chains of blocks, each waiting for the velocities the block
+// before it wrote: worked on side by side, each runs while the other waits (wide_twin.inl). The
+// turning pyramid of base 40 on one thread 1.70 -> 1.48 ms/step (1.77 -> 1.56 with AVX2's 16
+// registers alone).
+template <typename C, typename TwinPass, typename Pass>
+bool SubstepSolver::TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass) {
+  if constexpr (!kCanTurn<C>) return false;
+  const ContactOrder& order = wide_turning_.order;
+  if (order.strips != 2 || !GroupsStayOnOneThread(pool, order, kBlockLanes)) return false;
+  const std::span<const std::uint32_t> ends = order.group_ends;  // the even strips', the odd, the rest
+  const auto run = [&](std::uint32_t begin, std::uint32_t end) {
+    return TurningRun{wide_turning_.blocks.data() + begin, wide_turning_.second_points.data() + begin,
+                      std::size_t{end - begin}};
+  };
+  twin(run(0, ends[0]), run(ends[0], ends[1]));
+  pass(ends[1], std::size_t{ends.back() - ends[1]});
+  return true;
+}
+
 template <typename C>
 void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                                   const StepStart& start) {
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
-    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
+    const auto pass = [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_warm_start(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
                                       count, states.data());
       } else {
         plan.wide->warm_start(wide_.blocks.data() + first, count, states.data());
       }
-    });
+    };
+    const auto twin = [&](TurningRun one, TurningRun two) { plan.wide->turning_warm_start_twin(one, two, states.data()); };
+    if (!TwinStrips<C>(context.pool, twin, pass)) ForEachBlockRun<C>(context.pool, pass);
   } else if (loaded_.empty()) {
     ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
       WarmStartAll(constraints.subspan(begin, end - begin), states);
@@ -501,14 +522,19 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
     const Rot* turned = start.turned.empty() ? nullptr : start.turned.data();  // null: no turns
-    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
+    const auto pass = [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_solve(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first, count,
                                  states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver, first_pass);
       } else {
         plan.wide->solve(wide_.blocks.data() + first, count, states.data(), moved_.data(), plan.inv_h);
       }
-    });
+    };
+    const auto twin = [&](TurningRun one, TurningRun two) {
+      plan.wide->turning_solve_twin(one, two, states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver,
+                                    first_pass);
+    };
+    if (!TwinStrips<C>(context.pool, twin, pass)) ForEachBlockRun<C>(context.pool, pass);
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

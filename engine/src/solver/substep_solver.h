@@ -125,6 +125,11 @@ class SubstepSolver {
   /// several threads, a colour order's groups cut by the bodies they move (BodyCut).
   template <typename C, typename Pass>
   void ForEachBlockRun(WorkerPool& pool, Pass&& pass);
+  /// Turning blocks (C) in strip order on one thread: twin(one, two) on the even and the odd
+  /// strips (the first two groups, which share no moving body) side by side, then pass(first,
+  /// count) on the rest; returns false, calling neither, anywhere else.
+  template <typename C, typename TwinPass, typename Pass>
+  bool TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;

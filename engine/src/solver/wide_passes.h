@@ -11,6 +11,13 @@
 
 namespace engine::detail {
 
+/// A run of turning blocks (WideTurningConstraints) and their second points.
+struct TurningRun {
+  TurningBlock* blocks;
+  TurningSecondLanes* seconds;
+  std::size_t count;
+};
+
 /// One width's passes. Each does, lane by lane, exactly the arithmetic of its one-at-a-time
 /// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint
 /// and for angular SubstepConstraints) or joint_solver.cpp (a revolute joint's point),
@@ -34,6 +41,11 @@ struct WidePasses {
   void (*turning_warm_start)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states);
   void (*turning_solve)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h, bool block_solve, bool first_pass);
+  // turning_warm_start and turning_solve over two runs that share no moving body (the even and
+  // the odd strips), worked on side by side (wide_twin.inl): the bits of one run after the other.
+  void (*turning_warm_start_twin)(TurningRun one, TurningRun two, BodyState* states);
+  void (*turning_solve_twin)(TurningRun one, TurningRun two, BodyState* states, const Vec2* moved, const Rot* turned,
+                             double inv_h, bool block_solve, bool first_pass);
   void (*turning_push_out)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                            const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                            double max_push_out_speed, double linear_slop);

@@ -2,6 +2,7 @@
 // same arithmetic as the wider lanes, so the same bits.
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "solver/wide_passes.h"
 
@@ -58,11 +59,13 @@ inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* ind
 }
 
 #include "solver/wide_kernels.inl"
+#include "solver/wide_twin.inl"
 #include "solver/wide_turning_kernels.inl"
 #include "joints/wide_joint_kernels.inl"
 
 constexpr WidePasses kPasses{1, WarmStartBlocks, SolveBlocks, PushOutBlocks,
-                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks,
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
+                             TurningSolveTwin,       TurningPushOutBlocks,
                              JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <emmintrin.h>
 
 #include <cstdint>
+#include <type_traits>
 
 #include "solver/wide_passes.h"
 
@@ -66,11 +67,13 @@ inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* ind
 }
 
 #include "solver/wide_kernels.inl"
+#include "solver/wide_twin.inl"
 #include "solver/wide_turning_kernels.inl"
 #include "joints/wide_joint_kernels.inl"
 
 constexpr WidePasses kPasses{2, WarmStartBlocks, SolveBlocks, PushOutBlocks,
-                             TurningWarmStartBlocks, TurningSolveBlocks, TurningPushOutBlocks,
+                             TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
+                             TurningSolveTwin,       TurningPushOutBlocks,
                              JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace

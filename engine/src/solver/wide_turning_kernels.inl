@@ -9,65 +9,119 @@
 constexpr std::size_t kOmegaOffset = 5;  // BodyState::angular_velocity after position, velocity, angle
 static_assert(sizeof(Rot) == 2 * sizeof(double));
 
-// A body's velocity and angular velocity, as the passes work on them.
-struct Motion {
-  Lanes vx, vy, w;
+// Twin blocks: a block of each of two runs, field by field (TwinPtr), read and written as one
+// by the passes below through Twin lanes.
+struct TwinPointLanes {
+  TwinPtr<double> base_separation, normal_mass, tangent_mass, normal_impulse, tangent_impulse;
+  TwinPtr<double> anchor_a_x, anchor_a_y, anchor_b_x, anchor_b_y, min_normal_speed;
+  TwinPointLanes(TurningPointLanes& x, TurningPointLanes& y)
+      : base_separation{x.base_separation, y.base_separation}, normal_mass{x.normal_mass, y.normal_mass},
+        tangent_mass{x.tangent_mass, y.tangent_mass}, normal_impulse{x.normal_impulse, y.normal_impulse},
+        tangent_impulse{x.tangent_impulse, y.tangent_impulse}, anchor_a_x{x.anchor_a_x, y.anchor_a_x},
+        anchor_a_y{x.anchor_a_y, y.anchor_a_y}, anchor_b_x{x.anchor_b_x, y.anchor_b_x},
+        anchor_b_y{x.anchor_b_y, y.anchor_b_y}, min_normal_speed{x.min_normal_speed, y.min_normal_speed} {}
 };
 
-[[gnu::always_inline]] inline Motion GatherMotion(BodyState* states, const std::int32_t* index) {
-  Motion m;
+struct TwinSecondLanes : TwinPointLanes {
+  TwinPtr<double> k11, k12, k22, det, inv_det, inv_k11, inv_k22;
+  TwinSecondLanes(TurningSecondLanes& x, TurningSecondLanes& y)
+      : TwinPointLanes(x, y), k11{x.k11, y.k11}, k12{x.k12, y.k12}, k22{x.k22, y.k22}, det{x.det, y.det},
+        inv_det{x.inv_det, y.inv_det}, inv_k11{x.inv_k11, y.inv_k11}, inv_k22{x.inv_k22, y.inv_k22} {}
+};
+
+struct TwinBlock {
+  TwinPtr<std::int32_t> a, b;
+  TwinPtr<double> two_points, normal_x, normal_y, inv_mass_a, inv_mass_b, inv_inertia_a, inv_inertia_b, friction;
+  TwinPointLanes first;
+  TwinBlock(TurningBlock& x, TurningBlock& y)
+      : a{x.a, y.a}, b{x.b, y.b}, two_points{x.two_points, y.two_points}, normal_x{x.normal_x, y.normal_x},
+        normal_y{x.normal_y, y.normal_y}, inv_mass_a{x.inv_mass_a, y.inv_mass_a}, inv_mass_b{x.inv_mass_b, y.inv_mass_b},
+        inv_inertia_a{x.inv_inertia_a, y.inv_inertia_a}, inv_inertia_b{x.inv_inertia_b, y.inv_inertia_b},
+        friction{x.friction, y.friction}, first(x.first, y.first) {}
+};
+
+// The passes' arithmetic below is written once for lanes `L`: a block's (Lanes, its fields read
+// through TurningBlock) or two blocks' (Twin, through TwinBlock).
+template <typename L>
+using MaskFor = decltype(L(0.0) < L(0.0));
+
+template <typename L>
+MaskFor<L> NoLanes() {
+  if constexpr (std::is_same_v<L, Twin>) {
+    return TwinMaskOf(0);
+  } else {
+    return MaskOf(0);
+  }
+}
+
+// A body's velocity and angular velocity, as the passes work on them.
+template <typename L>
+struct Motion {
+  L vx, vy, w;
+};
+
+template <typename L, typename Index>
+[[gnu::always_inline]] inline Motion<L> GatherMotion(BodyState* states, Index index) {
+  Motion<L> m;
   Gather(&states[0].position.x + kVelocityOffset, kStateStride, index, &m.vx, &m.vy);
   m.w = GatherOne(&states[0].position.x + kOmegaOffset, kStateStride, index);
   return m;
 }
 
-[[gnu::always_inline]] inline void ScatterMotion(BodyState* states, const std::int32_t* index, const Motion& m,
-                                                 unsigned write) {
+template <typename L, typename Index>
+[[gnu::always_inline]] inline void ScatterMotion(BodyState* states, Index index, const Motion<L>& m, unsigned write) {
   Scatter(&states[0].position.x + kVelocityOffset, kStateStride, index, m.vx, m.vy, write);
   ScatterOne(&states[0].position.x + kOmegaOffset, kStateStride, index, m.w, write);
 }
 
-[[gnu::always_inline]] inline Motion Select(Mask m, const Motion& if_set, const Motion& if_clear) {
+template <typename L>
+[[gnu::always_inline]] inline Motion<L> Select(MaskFor<L> m, const Motion<L>& if_set, const Motion<L>& if_clear) {
   return {Select(m, if_set.vx, if_clear.vx), Select(m, if_set.vy, if_clear.vy), Select(m, if_set.w, if_clear.w)};
 }
 
 // One point's lanes: its anchors and the fields the passes read.
+template <typename L>
 struct PointLanes {
-  Lanes rax, ray, rbx, rby;
-  Lanes base_separation, normal_mass, tangent_mass, normal_impulse, tangent_impulse;
+  L rax, ray, rbx, rby;
+  L base_separation, normal_mass, tangent_mass, normal_impulse, tangent_impulse;
 };
 
-[[gnu::always_inline]] inline PointLanes LoadPoint(const TurningPointLanes& p, int o) {
-  return {Lanes::Load(p.anchor_a_x + o),      Lanes::Load(p.anchor_a_y + o),   Lanes::Load(p.anchor_b_x + o),
-          Lanes::Load(p.anchor_b_y + o),      Lanes::Load(p.base_separation + o), Lanes::Load(p.normal_mass + o),
-          Lanes::Load(p.tangent_mass + o),    Lanes::Load(p.normal_impulse + o), Lanes::Load(p.tangent_impulse + o)};
+template <typename L, typename Point>
+[[gnu::always_inline]] inline PointLanes<L> LoadPoint(const Point& p, int o) {
+  return {L::Load(p.anchor_a_x + o),   L::Load(p.anchor_a_y + o),      L::Load(p.anchor_b_x + o),
+          L::Load(p.anchor_b_y + o),   L::Load(p.base_separation + o), L::Load(p.normal_mass + o),
+          L::Load(p.tangent_mass + o), L::Load(p.normal_impulse + o),  L::Load(p.tangent_impulse + o)};
 }
 
 // The lanes' fields of a block that every pass reads.
+template <typename L>
 struct PairLanes {
-  Lanes nx, ny, ima, imb, iia, iib;
+  L nx, ny, ima, imb, iia, iib;
   unsigned moving_a, moving_b;  ///< lanes whose body moves (WriteBack)
-  Mask two;                     ///< lanes with two points
+  MaskFor<L> two;               ///< lanes with two points
 };
 
-[[gnu::always_inline]] inline PairLanes LoadPair(const TurningBlock& k, int o) {
-  PairLanes p{Lanes::Load(k.normal_x + o),      Lanes::Load(k.normal_y + o),      Lanes::Load(k.inv_mass_a + o),
-              Lanes::Load(k.inv_mass_b + o),    Lanes::Load(k.inv_inertia_a + o), Lanes::Load(k.inv_inertia_b + o),
-              Moving(k.inv_mass_a + o),         Moving(k.inv_mass_b + o),         Lanes::Load(k.two_points + o) != Lanes(0.0)};
+template <typename L, typename Block>
+[[gnu::always_inline]] inline PairLanes<L> LoadPair(const Block& k, int o) {
+  PairLanes<L> p{L::Load(k.normal_x + o),   L::Load(k.normal_y + o),      L::Load(k.inv_mass_a + o),
+                 L::Load(k.inv_mass_b + o), L::Load(k.inv_inertia_a + o), L::Load(k.inv_inertia_b + o),
+                 Moving(k.inv_mass_a + o),  Moving(k.inv_mass_b + o),     L::Load(k.two_points + o) != L(0.0)};
   return p;
 }
 
 // Dot(RelativeVelocity(p, a, b), d): (b.v + Cross(b.w, r_b)) − (a.v + Cross(a.w, r_a)) along d.
-[[gnu::always_inline]] inline Lanes RelativeAlong(const PointLanes& p, const Motion& a, const Motion& b, Lanes dx,
-                                                  Lanes dy) {
-  const Lanes rx = (b.vx + -b.w * p.rby) - (a.vx + -a.w * p.ray);
-  const Lanes ry = (b.vy + b.w * p.rbx) - (a.vy + a.w * p.rax);
+template <typename L>
+[[gnu::always_inline]] inline L RelativeAlong(const PointLanes<L>& p, const Motion<L>& a, const Motion<L>& b, L dx,
+                                              L dy) {
+  const L rx = (b.vx + -b.w * p.rby) - (a.vx + -a.w * p.ray);
+  const L ry = (b.vy + b.w * p.rbx) - (a.vy + a.w * p.rax);
   return rx * dx + ry * dy;
 }
 
 // ApplyImpulse(sc, p, impulse, a, b).
-[[gnu::always_inline]] inline void ApplyAt(const PairLanes& c, const PointLanes& p, Lanes ix, Lanes iy, Motion* a,
-                                           Motion* b) {
+template <typename L>
+[[gnu::always_inline]] inline void ApplyAt(const PairLanes<L>& c, const PointLanes<L>& p, L ix, L iy, Motion<L>* a,
+                                           Motion<L>* b) {
   a->vx = a->vx - c.ima * ix;
   a->vy = a->vy - c.ima * iy;
   a->w = a->w - c.iia * (p.rax * iy - p.ray * ix);
@@ -77,18 +131,18 @@ struct PairLanes {
 }
 
 // The bodies' centres and turns, for the separations now (CurrentSeparation, angular).
+template <typename L>
 struct PlaceLanes {
-  Lanes mx, my;          ///< how far b's centre has moved from a's since the step's start
-  Lanes tac, tas, tbc, tbs;  ///< each body's turn since then
+  L mx, my;              ///< how far b's centre has moved from a's since the step's start
+  L tac, tas, tbc, tbs;  ///< each body's turn since then
 };
 
 // `moved`: each body's move since the step's start (MeasureMoves); `turned` (kTurns) each
 // body's turn since then.
-template <bool kTurns>
-[[gnu::always_inline]] inline PlaceLanes GatherPlaces(const TurningBlock& k, int o, const Vec2* moved,
-                                                      const Rot* turned) {
-  Lanes max, may, mbx, mby;
-  PlaceLanes q;
+template <typename L, bool kTurns, typename Block>
+[[gnu::always_inline]] inline PlaceLanes<L> GatherPlaces(const Block& k, int o, const Vec2* moved, const Rot* turned) {
+  L max, may, mbx, mby;
+  PlaceLanes<L> q;
   Gather(&moved[0].x, kVec2Stride, k.a + o, &max, &may);
   Gather(&moved[0].x, kVec2Stride, k.b + o, &mbx, &mby);
   if constexpr (kTurns) {
@@ -103,160 +157,190 @@ template <bool kTurns>
 
 // base + Dot((moved + Rotate(turn_b, r_b)) − Rotate(turn_a, r_a), n); without turns (kTurns
 // false: no body's turn moves its points), base + Dot((moved + r_b) − r_a, n).
-template <bool kTurns>
-[[gnu::always_inline]] inline Lanes SeparationAt(const PlaceLanes& q, const PointLanes& p, const PairLanes& c) {
+template <bool kTurns, typename L>
+[[gnu::always_inline]] inline L SeparationAt(const PlaceLanes<L>& q, const PointLanes<L>& p, const PairLanes<L>& c) {
   if constexpr (kTurns) {
-    const Lanes x = (q.mx + (q.tbc * p.rbx - q.tbs * p.rby)) - (q.tac * p.rax - q.tas * p.ray);
-    const Lanes y = (q.my + (q.tbs * p.rbx + q.tbc * p.rby)) - (q.tas * p.rax + q.tac * p.ray);
+    const L x = (q.mx + (q.tbc * p.rbx - q.tbs * p.rby)) - (q.tac * p.rax - q.tas * p.ray);
+    const L y = (q.my + (q.tbs * p.rbx + q.tbc * p.rby)) - (q.tas * p.rax + q.tac * p.ray);
     return p.base_separation + (x * c.nx + y * c.ny);
   } else {
-    const Lanes x = (q.mx + p.rbx) - p.rax;
-    const Lanes y = (q.my + p.rby) - p.ray;
+    const L x = (q.mx + p.rbx) - p.rax;
+    const L y = (q.my + p.rby) - p.ray;
     return p.base_separation + (x * c.nx + y * c.ny);
   }
 }
 
-void TurningWarmStartBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states) {
+// One block's lanes [o, o + L::kCount) of TurningWarmStartBlocks (or two blocks', Twin).
+template <typename L, typename Block, typename Second>
+[[gnu::always_inline]] inline void WarmStartTurningLanes(Block& k, Second& second, int o, BodyState* states) {
   constexpr double kSliding = 1.0 - 1e-9;  // as WarmImpulse
-  for (std::size_t i = 0; i < count; ++i) {
-    TurningBlock& k = blocks[i];
-    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
-      const PairLanes c = LoadPair(k, o);
-      const Lanes tx = -c.ny, ty = c.nx;
-      const Lanes edge_scale = Lanes(kSliding) * Lanes::Load(k.friction + o);
-      Motion a = GatherMotion(states, k.a + o), b = GatherMotion(states, k.b + o);
-      const int points = Bits(c.two) != 0 ? 2 : 1;  // circles have one: their second is skipped whole
-      for (int point = 0; point < points; ++point) {
-        const PointLanes p = LoadPoint(point == 0 ? k.first : seconds[i], o);
-        const Lanes slide = p.tangent_impulse * RelativeAlong(p, a, b, tx, ty);
-        const Lanes ti = Select((slide > Lanes(0.0)) & (Abs(p.tangent_impulse) >= edge_scale * p.normal_impulse),
-                                Lanes(0.0), p.tangent_impulse);
-        const Lanes ix = p.normal_impulse * c.nx + ti * tx, iy = p.normal_impulse * c.ny + ti * ty;
-        Motion a2 = a, b2 = b;
-        ApplyAt(c, p, ix, iy, &a2, &b2);
-        if (point == 0) {
-          ti.Store(k.first.tangent_impulse + o);
-          a = a2, b = b2;
-        } else {
-          Select(c.two, ti, p.tangent_impulse).Store(seconds[i].tangent_impulse + o);
-          a = Select(c.two, a2, a), b = Select(c.two, b2, b);
-        }
-      }
-      ScatterMotion(states, k.a + o, a, c.moving_a);
-      ScatterMotion(states, k.b + o, b, c.moving_b);
+  const PairLanes<L> c = LoadPair<L>(k, o);
+  const L tx = -c.ny, ty = c.nx;
+  const L edge_scale = L(kSliding) * L::Load(k.friction + o);
+  Motion<L> a = GatherMotion<L>(states, k.a + o), b = GatherMotion<L>(states, k.b + o);
+  const int points = Bits(c.two) != 0 ? 2 : 1;  // circles have one: their second is skipped whole
+  for (int point = 0; point < points; ++point) {
+    const PointLanes<L> p = point == 0 ? LoadPoint<L>(k.first, o) : LoadPoint<L>(second, o);
+    const L slide = p.tangent_impulse * RelativeAlong(p, a, b, tx, ty);
+    const L ti = Select((slide > L(0.0)) & (Abs(p.tangent_impulse) >= edge_scale * p.normal_impulse), L(0.0),
+                        p.tangent_impulse);
+    const L ix = p.normal_impulse * c.nx + ti * tx, iy = p.normal_impulse * c.ny + ti * ty;
+    Motion<L> a2 = a, b2 = b;
+    ApplyAt(c, p, ix, iy, &a2, &b2);
+    if (point == 0) {
+      ti.Store(k.first.tangent_impulse + o);
+      a = a2, b = b2;
+    } else {
+      Select(c.two, ti, p.tangent_impulse).Store(second.tangent_impulse + o);
+      a = Select<L>(c.two, a2, a), b = Select<L>(c.two, b2, b);
     }
   }
+  ScatterMotion(states, k.a + o, a, c.moving_a);
+  ScatterMotion(states, k.b + o, b, c.moving_b);
+}
+
+void TurningWarmStartBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) WarmStartTurningLanes<Lanes>(blocks[i], seconds[i], o, states);
+  }
+}
+
+// How many blocks two runs take side by side (Twin): as many as the shorter has.
+inline std::size_t TwinCount(TurningRun one, TurningRun two) { return one.count < two.count ? one.count : two.count; }
+
+// The runs' first TwinCount blocks side by side, then the rest of each on its own.
+void TurningWarmStartTwin(TurningRun one, TurningRun two, BodyState* states) {
+  const std::size_t both = TwinCount(one, two);
+  for (std::size_t i = 0; i < both; ++i) {
+    TwinBlock k(one.blocks[i], two.blocks[i]);
+    TwinSecondLanes second(one.seconds[i], two.seconds[i]);
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) WarmStartTurningLanes<Twin>(k, second, o, states);
+  }
+  TurningWarmStartBlocks(one.blocks + both, one.seconds + both, one.count - both, states);
+  TurningWarmStartBlocks(two.blocks + both, two.seconds + both, two.count - both, states);
 }
 
 // SolveTwoPoints for the lanes: the new impulses (x1, x2) and the lanes where a case fit.
 // K, its determinant and reciprocals from the packed second points (TurningSecondLanes).
-[[gnu::always_inline]] inline Mask SolveTwoPointsLanes(const TurningSecondLanes& q, int o, Lanes a1, Lanes a2,
-                                                       Lanes vn1, Lanes vn2, Lanes t1, Lanes t2, Lanes* x1,
-                                                       Lanes* x2) {
-  const Lanes zero(0.0);
-  const Lanes k11 = Lanes::Load(q.k11 + o), k12 = Lanes::Load(q.k12 + o), k22 = Lanes::Load(q.k22 + o);
-  const Lanes det = Lanes::Load(q.det + o);
-  const Mask conditioned = k11 * k11 < Lanes(1000.0) * det;
-  const Lanes b1 = (vn1 - t1) - (k11 * a1 + k12 * a2);
-  const Lanes b2 = (vn2 - t2) - (k12 * a1 + k22 * a2);
-  const Lanes inv_det = Lanes::Load(q.inv_det + o);
-  const Lanes y1 = (-k22 * b1 + k12 * b2) * inv_det;
-  const Lanes y2 = (k12 * b1 - k11 * b2) * inv_det;
-  const Mask both = (y1 >= zero) & (y2 >= zero);
-  const Lanes z1 = -b1 * Lanes::Load(q.inv_k11 + o);
-  const Mask first = (z1 >= zero) & (k12 * z1 + b2 >= zero);
-  const Lanes z2 = -b2 * Lanes::Load(q.inv_k22 + o);
-  const Mask second = (z2 >= zero) & (k12 * z2 + b1 >= zero);
-  const Mask neither = (b1 >= zero) & (b2 >= zero);
+template <typename L, typename Second>
+[[gnu::always_inline]] inline MaskFor<L> SolveTwoPointsLanes(const Second& q, int o, L a1, L a2, L vn1, L vn2, L t1,
+                                                             L t2, L* x1, L* x2) {
+  const L zero(0.0);
+  const L k11 = L::Load(q.k11 + o), k12 = L::Load(q.k12 + o), k22 = L::Load(q.k22 + o);
+  const L det = L::Load(q.det + o);
+  const MaskFor<L> conditioned = k11 * k11 < L(1000.0) * det;
+  const L b1 = (vn1 - t1) - (k11 * a1 + k12 * a2);
+  const L b2 = (vn2 - t2) - (k12 * a1 + k22 * a2);
+  const L inv_det = L::Load(q.inv_det + o);
+  const L y1 = (-k22 * b1 + k12 * b2) * inv_det;
+  const L y2 = (k12 * b1 - k11 * b2) * inv_det;
+  const MaskFor<L> both = (y1 >= zero) & (y2 >= zero);
+  const L z1 = -b1 * L::Load(q.inv_k11 + o);
+  const MaskFor<L> first = (z1 >= zero) & (k12 * z1 + b2 >= zero);
+  const L z2 = -b2 * L::Load(q.inv_k22 + o);
+  const MaskFor<L> second = (z2 >= zero) & (k12 * z2 + b1 >= zero);
+  const MaskFor<L> neither = (b1 >= zero) & (b2 >= zero);
   *x1 = Select(both, y1, Select(first, z1, zero));
   *x2 = Select(both, y2, Select(first, zero, Select(second, z2, zero)));
   return conditioned & (both | first | second | neither);
 }
 
-// One block's lanes [o, o + Lanes::kCount) of TurningSolveBlocks, `kTwo` whether any has a second
-// point (`second`): a template, so that the lanes of circles are compiled without it. `kFirst`:
-// the substep's first pass, which works out the least normal speeds from the moves and keeps
-// them (min_normal_speed) for the later passes, which read them instead: the gathers of the
-// moves and turns and the separations were a fifth of a pass.
-template <bool kTwo, bool kTurns, bool kFirst>
-[[gnu::always_inline]] inline void SolveTurningLanes(TurningBlock& k, TurningSecondLanes& second, int o,
-                                                     BodyState* states, const Vec2* moved, const Rot* turned,
-                                                     Lanes inv_h, bool block_solve) {
-  const PairLanes c = LoadPair(k, o);
-  const Lanes tx = -c.ny, ty = c.nx;
+// One block's lanes [o, o + L::kCount) of TurningSolveBlocks (or two blocks', Twin), `kTwo`
+// whether any has a second point (`second`): a template, so that the lanes of circles are
+// compiled without it. `kFirst`: the substep's first pass, which works out the least normal
+// speeds from the moves and keeps them (min_normal_speed) for the later passes, which read them
+// instead: the gathers of the moves and turns and the separations were a fifth of a pass.
+template <typename L, bool kTwo, bool kTurns, bool kFirst, typename Block, typename Second>
+[[gnu::always_inline]] inline void SolveTurningLanes(Block& k, Second& second, int o, BodyState* states,
+                                                     const Vec2* moved, const Rot* turned, L inv_h,
+                                                     bool block_solve) {
+  const PairLanes<L> c = LoadPair<L>(k, o);
+  const L tx = -c.ny, ty = c.nx;
   // Without a second point, p1 stands in for it where the arithmetic needs a value and is
   // never kept.
-  const PointLanes p0 = LoadPoint(k.first, o), p1 = kTwo ? LoadPoint(second, o) : p0;
-  Lanes min_vn0, min_vn1;
+  const PointLanes<L> p0 = LoadPoint<L>(k.first, o), p1 = kTwo ? LoadPoint<L>(second, o) : p0;
+  L min_vn0, min_vn1;
   if constexpr (kFirst) {
-    const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
+    const PlaceLanes<L> q = GatherPlaces<L, kTurns>(k, o, moved, turned);
     min_vn0 = -Max0(SeparationAt<kTurns>(q, p0, c)) * inv_h;
-    min_vn1 = kTwo ? -Max0(SeparationAt<kTurns>(q, p1, c)) * inv_h : Lanes(0.0);
+    min_vn1 = kTwo ? -Max0(SeparationAt<kTurns>(q, p1, c)) * inv_h : L(0.0);
     min_vn0.Store(k.first.min_normal_speed + o);
     if constexpr (kTwo) min_vn1.Store(second.min_normal_speed + o);
   } else {
-    min_vn0 = Lanes::Load(k.first.min_normal_speed + o);
-    min_vn1 = kTwo ? Lanes::Load(second.min_normal_speed + o) : Lanes(0.0);
+    min_vn0 = L::Load(k.first.min_normal_speed + o);
+    min_vn1 = kTwo ? L::Load(second.min_normal_speed + o) : L(0.0);
   }
-  const Motion a0 = GatherMotion(states, k.a + o), b0 = GatherMotion(states, k.b + o);
+  const Motion<L> a0 = GatherMotion<L>(states, k.a + o), b0 = GatherMotion<L>(states, k.b + o);
 
   // Both normals together, where two points allow (the block solver).
-  Mask blocked = MaskOf(0);  // none yet
-  Motion ab = a0, bb = b0;
-  Lanes xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
+  MaskFor<L> blocked = NoLanes<L>();  // none yet
+  Motion<L> ab = a0, bb = b0;
+  L xb0 = p0.normal_impulse, xb1 = p1.normal_impulse;
   if (kTwo && block_solve) {
-    const Lanes vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
-    blocked = c.two & SolveTwoPointsLanes(second, o, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
-                                          min_vn1, &xb0, &xb1);
-    const Lanes d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
+    const L vn0 = RelativeAlong(p0, a0, b0, c.nx, c.ny), vn1 = RelativeAlong(p1, a0, b0, c.nx, c.ny);
+    blocked = c.two & SolveTwoPointsLanes<L>(second, o, p0.normal_impulse, p1.normal_impulse, vn0, vn1, min_vn0,
+                                             min_vn1, &xb0, &xb1);
+    const L d0 = xb0 - p0.normal_impulse, d1 = xb1 - p1.normal_impulse;
     ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &ab, &bb);
     ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &ab, &bb);
   }
   // One point after the other, elsewhere (padding lanes, with no moving body, need neither).
-  Motion as = a0, bs = b0;
-  Lanes xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
+  Motion<L> as = a0, bs = b0;
+  L xs0 = p0.normal_impulse, xs1 = p1.normal_impulse;
   if (((c.moving_a | c.moving_b) & ~Bits(blocked)) != 0) {
-    const Lanes v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
+    const L v0 = RelativeAlong(p0, as, bs, c.nx, c.ny);
     xs0 = Max0(p0.normal_impulse + p0.normal_mass * (min_vn0 - v0));
-    const Lanes d0 = xs0 - p0.normal_impulse;
+    const L d0 = xs0 - p0.normal_impulse;
     ApplyAt(c, p0, d0 * c.nx, d0 * c.ny, &as, &bs);
     if constexpr (kTwo) {
-      Motion a1 = as, b1 = bs;
-      const Lanes v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
-      const Lanes new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
-      const Lanes d1 = new1 - p1.normal_impulse;
+      Motion<L> a1 = as, b1 = bs;
+      const L v1 = RelativeAlong(p1, a1, b1, c.nx, c.ny);
+      const L new1 = Max0(p1.normal_impulse + p1.normal_mass * (min_vn1 - v1));
+      const L d1 = new1 - p1.normal_impulse;
       ApplyAt(c, p1, d1 * c.nx, d1 * c.ny, &a1, &b1);
       xs1 = Select(c.two, new1, p1.normal_impulse);
-      as = Select(c.two, a1, as), bs = Select(c.two, b1, bs);
+      as = Select<L>(c.two, a1, as), bs = Select<L>(c.two, b1, bs);
     }
   }
-  Motion a = Select(blocked, ab, as), b = Select(blocked, bb, bs);
-  const Lanes n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
+  Motion<L> a = Select<L>(blocked, ab, as), b = Select<L>(blocked, bb, bs);
+  const L n0 = Select(blocked, xb0, xs0), n1 = Select(blocked, xb1, xs1);
   n0.Store(k.first.normal_impulse + o);
   if constexpr (kTwo) n1.Store(second.normal_impulse + o);
 
   // Coulomb friction at each point, within the cone of its normal impulse.
-  const Lanes friction = Lanes::Load(k.friction + o);
+  const L friction = L::Load(k.friction + o);
   for (int point = 0; point < (kTwo ? 2 : 1); ++point) {
-    const PointLanes& p = point == 0 ? p0 : p1;
-    const Lanes vt = RelativeAlong(p, a, b, tx, ty);
-    const Lanes max_friction = friction * (point == 0 ? n0 : n1);
-    const Lanes free = p.tangent_impulse - p.tangent_mass * vt;
-    const Lanes new_tangent =
-        Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
-    const Lanes d = new_tangent - p.tangent_impulse;
-    Motion a2 = a, b2 = b;
+    const PointLanes<L>& p = point == 0 ? p0 : p1;
+    const L vt = RelativeAlong(p, a, b, tx, ty);
+    const L max_friction = friction * (point == 0 ? n0 : n1);
+    const L free = p.tangent_impulse - p.tangent_mass * vt;
+    const L new_tangent = Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
+    const L d = new_tangent - p.tangent_impulse;
+    Motion<L> a2 = a, b2 = b;
     ApplyAt(c, p, d * tx, d * ty, &a2, &b2);
     if (point == 0) {
       new_tangent.Store(k.first.tangent_impulse + o);
       a = a2, b = b2;
     } else {
       Select(c.two, new_tangent, p.tangent_impulse).Store(second.tangent_impulse + o);
-      a = Select(c.two, a2, a), b = Select(c.two, b2, b);
+      a = Select<L>(c.two, a2, a), b = Select<L>(c.two, b2, b);
     }
   }
   ScatterMotion(states, k.a + o, a, c.moving_a);
   ScatterMotion(states, k.b + o, b, c.moving_b);
+}
+
+// A block's lanes (or two blocks', Twin) of TurningSolveBlocks, the circles' without their
+// second points.
+template <typename L, bool kTurns, bool kFirst, typename Block, typename Second>
+[[gnu::always_inline]] inline void SolveTurningBlockLanes(Block& k, Second& second, int o, BodyState* states,
+                                                          const Vec2* moved, const Rot* turned, L inv_h,
+                                                          bool block_solve) {
+  if (Bits(L::Load(k.two_points + o) != L(0.0)) != 0) {
+    SolveTurningLanes<L, true, kTurns, kFirst>(k, second, o, states, moved, turned, inv_h, block_solve);
+  } else {  // circles have one point: their second is skipped whole
+    SolveTurningLanes<L, false, kTurns, kFirst>(k, second, o, states, moved, turned, inv_h, block_solve);
+  }
 }
 
 template <bool kTurns, bool kFirst>
@@ -264,14 +348,41 @@ void SolveTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::
                         const Vec2* moved, const Rot* turned, double inv_h_scalar, bool block_solve) {
   const Lanes inv_h(inv_h_scalar);
   for (std::size_t i = 0; i < count; ++i) {
-    TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
-      if (Bits(Lanes::Load(k.two_points + o) != Lanes(0.0)) != 0) {
-        SolveTurningLanes<true, kTurns, kFirst>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
-      } else {  // circles have one point: their second is skipped whole
-        SolveTurningLanes<false, kTurns, kFirst>(k, seconds[i], o, states, moved, turned, inv_h, block_solve);
-      }
+      SolveTurningBlockLanes<Lanes, kTurns, kFirst>(blocks[i], seconds[i], o, states, moved, turned, inv_h,
+                                                    block_solve);
     }
+  }
+}
+
+// The runs' first TwinCount blocks side by side, then the rest of each on its own.
+template <bool kTurns, bool kFirst>
+void SolveTurningTwin(TurningRun one, TurningRun two, BodyState* states, const Vec2* moved, const Rot* turned,
+                      double inv_h, bool block_solve) {
+  const std::size_t both = TwinCount(one, two);
+  const Twin twin_inv_h(inv_h);
+  for (std::size_t i = 0; i < both; ++i) {
+    TwinBlock k(one.blocks[i], two.blocks[i]);
+    TwinSecondLanes second(one.seconds[i], two.seconds[i]);
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      SolveTurningBlockLanes<Twin, kTurns, kFirst>(k, second, o, states, moved, turned, twin_inv_h, block_solve);
+    }
+  }
+  SolveTurningBlocks<kTurns, kFirst>(one.blocks + both, one.seconds + both, one.count - both, states, moved, turned,
+                                     inv_h, block_solve);
+  SolveTurningBlocks<kTurns, kFirst>(two.blocks + both, two.seconds + both, two.count - both, states, moved, turned,
+                                     inv_h, block_solve);
+}
+
+// `turned` null: no body's turn moves its points (the anchors stay where they were).
+void TurningSolveTwin(TurningRun one, TurningRun two, BodyState* states, const Vec2* moved, const Rot* turned,
+                      double inv_h, bool block_solve, bool first_pass) {
+  if (!first_pass) {
+    SolveTurningTwin<false, false>(one, two, states, moved, turned, inv_h, block_solve);
+  } else if (turned) {
+    SolveTurningTwin<true, true>(one, two, states, moved, turned, inv_h, block_solve);
+  } else {
+    SolveTurningTwin<false, true>(one, two, states, moved, turned, inv_h, block_solve);
   }
 }
 
@@ -298,8 +409,8 @@ void PushOutTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std
   for (std::size_t i = 0; i < count; ++i) {
     TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
-      const PairLanes c = LoadPair(k, o);
-      const PlaceLanes q = GatherPlaces<kTurns>(k, o, moved, turned);
+      const PairLanes<Lanes> c = LoadPair<Lanes>(k, o);
+      const PlaceLanes<Lanes> q = GatherPlaces<Lanes, kTurns>(k, o, moved, turned);
       // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
       Lanes vax, vay, vbx, vby;
       Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
@@ -308,7 +419,7 @@ void PushOutTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std
       unsigned written_a = 0, written_b = 0;
       const int points = Bits(c.two) != 0 ? 2 : 1;
       for (int point = 0; point < points; ++point) {
-        const PointLanes p = LoadPoint(point == 0 ? k.first : seconds[i], o);
+        const PointLanes<Lanes> p = point == 0 ? LoadPoint<Lanes>(k.first, o) : LoadPoint<Lanes>(seconds[i], o);
         const Lanes s = SeparationAt<kTurns>(q, p, c);
         // Overlap within the slop is left alone.
         unsigned active = ~Bits(s >= -slop) & all;

@@ -1,0 +1,76 @@
+// Two runs of lanes worked on together (Twin): each operation done on one run's lanes and then on
+// the other's, side by side in the instruction stream. Included after wide_kernels.inl.
+//
+// Why: a turning strip's contacts follow one another body by body, so each block waits for the
+// velocities the block before it wrote, and a pass over one run of blocks is a chain of latencies
+// (in the turning pyramid of base 40 a substep's first velocity pass, which also gathers the
+// moves and turns and works out the separations, took no longer than the passes after it). Two
+// runs that share no moving body (the even and the odd strips) are two chains: interleaved
+// operation by operation, the processor works on one while the other waits. Each run's lanes
+// still see exactly their own operations in their own order: the same bits. (Interleaved block
+// by block instead, tried before, the strips were no faster: a block is several hundred
+// instructions, about as many as the processor looks ahead.)
+
+// Two pointers into two runs' blocks, moved together: `k.field + o` of a TwinBlock.
+template <typename T>
+struct TwinPtr {
+  T* one;
+  T* two;
+  TwinPtr operator+(int o) const { return {one + o, two + o}; }
+};
+
+struct TwinMask {
+  Mask one, two;
+};
+inline TwinMask operator&(TwinMask a, TwinMask b) { return {a.one & b.one, a.two & b.two}; }
+inline TwinMask operator|(TwinMask a, TwinMask b) { return {a.one | b.one, a.two | b.two}; }
+// The first run's lanes in the low bits, the second's above them.
+inline unsigned Bits(TwinMask m) { return Bits(m.one) | Bits(m.two) << Lanes::kCount; }
+inline TwinMask TwinMaskOf(unsigned bits) {
+  return {MaskOf(bits & ((1u << Lanes::kCount) - 1)), MaskOf(bits >> Lanes::kCount)};
+}
+
+struct Twin {
+  static constexpr int kCount = 2 * Lanes::kCount;
+  Lanes one, two;
+  Twin() = default;
+  Twin(Lanes a, Lanes b) : one(a), two(b) {}
+  explicit Twin(double x) : one(x), two(x) {}
+  static Twin Load(TwinPtr<double> p) { return {Lanes::Load(p.one), Lanes::Load(p.two)}; }
+  void Store(TwinPtr<double> p) const {
+    one.Store(p.one);
+    two.Store(p.two);
+  }
+};
+inline Twin operator+(Twin a, Twin b) { return {a.one + b.one, a.two + b.two}; }
+inline Twin operator-(Twin a, Twin b) { return {a.one - b.one, a.two - b.two}; }
+inline Twin operator*(Twin a, Twin b) { return {a.one * b.one, a.two * b.two}; }
+inline Twin operator-(Twin a) { return {-a.one, -a.two}; }
+inline TwinMask operator<(Twin a, Twin b) { return {a.one < b.one, a.two < b.two}; }
+inline TwinMask operator>(Twin a, Twin b) { return {a.one > b.one, a.two > b.two}; }
+inline TwinMask operator>=(Twin a, Twin b) { return {a.one >= b.one, a.two >= b.two}; }
+inline TwinMask operator!=(Twin a, Twin b) { return {a.one != b.one, a.two != b.two}; }
+inline Twin Select(TwinMask m, Twin if_set, Twin if_clear) {
+  return {Select(m.one, if_set.one, if_clear.one), Select(m.two, if_set.two, if_clear.two)};
+}
+inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
+[[gnu::always_inline]] inline Twin Max0(Twin x) { return {Max0(x.one), Max0(x.two)}; }
+
+inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin* x, Twin* y) {
+  Gather(base, stride, index.one, &x->one, &y->one);
+  Gather(base, stride, index.two, &x->two, &y->two);
+}
+inline void Scatter(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x, Twin y, unsigned write) {
+  Scatter(base, stride, index.one, x.one, y.one, write & ((1u << Lanes::kCount) - 1));
+  Scatter(base, stride, index.two, x.two, y.two, write >> Lanes::kCount);
+}
+inline Twin GatherOne(const double* base, std::size_t stride, TwinPtr<std::int32_t> index) {
+  return {GatherOne(base, stride, index.one), GatherOne(base, stride, index.two)};
+}
+inline void ScatterOne(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x, unsigned write) {
+  ScatterOne(base, stride, index.one, x.one, write & ((1u << Lanes::kCount) - 1));
+  ScatterOne(base, stride, index.two, x.two, write >> Lanes::kCount);
+}
+inline unsigned Moving(TwinPtr<double> inv_mass) {
+  return Moving(inv_mass.one) | Moving(inv_mass.two) << Lanes::kCount;
+}
