@@ -504,7 +504,9 @@ void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints
         plan.wide->warm_start(wide_.blocks.data() + first, count, states.data());
       }
     };
-    const auto twin = [&](TurningRun one, TurningRun two) { plan.wide->turning_warm_start_twin(one, two, states.data()); };
+    const auto twin = [&](TurningRun one, TurningRun two) {
+      plan.wide->turning_warm_start_twin(one, two, states.data());
+    };
     if (!TwinStrips<C>(context.pool, twin, pass)) ForEachBlockRun<C>(context.pool, pass);
   } else if (loaded_.empty()) {
     ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

@@ -38,12 +38,14 @@ inline Mask operator!=(Lanes a, Lanes b) { return {a.v != b.v}; }
 inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) { return m.lane ? if_set : if_clear; }
 inline Lanes Abs(Lanes a) { return Lanes(std::fabs(a.v)); }
 
-inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x, Lanes* y) {
+[[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,
+                                          Lanes* y) {
   const double* p = base + static_cast<std::size_t>(index[0]) * stride;
   *x = Lanes(p[0]);
   *y = Lanes(p[1]);
 }
-inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x, Lanes y,
+[[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                           Lanes y,
                     unsigned write) {
   if (!(write & 1u)) return;
   double* p = base + static_cast<std::size_t>(index[0]) * stride;
@@ -51,10 +53,11 @@ inline void Scatter(double* base, std::size_t stride, const std::int32_t* index,
   p[1] = y.v;
 }
 
-inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+[[gnu::always_inline]] inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
   return Lanes(base[static_cast<std::size_t>(index[0]) * stride]);
 }
-inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+[[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                              unsigned write) {
   if (write & 1u) base[static_cast<std::size_t>(index[0]) * stride] = x.v;
 }
 

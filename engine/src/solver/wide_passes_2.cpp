@@ -45,23 +45,26 @@ inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) {
 inline Lanes Abs(Lanes a) { return Lanes(_mm_andnot_pd(_mm_set1_pd(-0.0), a.v)); }
 
 // Two bodies' Vec2s (x, y at base + index·stride) into lanes of x and of y.
-inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x, Lanes* y) {
+[[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,
+                                          Lanes* y) {
   const __m128d v0 = _mm_loadu_pd(base + static_cast<std::size_t>(index[0]) * stride);
   const __m128d v1 = _mm_loadu_pd(base + static_cast<std::size_t>(index[1]) * stride);
   *x = Lanes(_mm_unpacklo_pd(v0, v1));
   *y = Lanes(_mm_unpackhi_pd(v0, v1));
 }
 // Back, for the lanes whose bit is set in `write`.
-inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x, Lanes y,
+[[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                           Lanes y,
                     unsigned write) {
   if (write & 1u) _mm_storeu_pd(base + static_cast<std::size_t>(index[0]) * stride, _mm_unpacklo_pd(x.v, y.v));
   if (write & 2u) _mm_storeu_pd(base + static_cast<std::size_t>(index[1]) * stride, _mm_unpackhi_pd(x.v, y.v));
 }
 
-inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+[[gnu::always_inline]] inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
   return Lanes(_mm_set_pd(base[static_cast<std::size_t>(index[1]) * stride], base[static_cast<std::size_t>(index[0]) * stride]));
 }
-inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+[[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                              unsigned write) {
   if (write & 1u) _mm_storel_pd(base + static_cast<std::size_t>(index[0]) * stride, x.v);
   if (write & 2u) _mm_storeh_pd(base + static_cast<std::size_t>(index[1]) * stride, x.v);
 }

@@ -50,7 +50,8 @@ inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) {
 inline Lanes Abs(Lanes a) { return Lanes(_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)); }
 
 // Four bodies' Vec2s (x, y at base + index·stride) into lanes of x and of y.
-inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x, Lanes* y) {
+[[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,
+                                          Lanes* y) {
   const __m128d v0 = _mm_loadu_pd(base + static_cast<std::size_t>(index[0]) * stride);
   const __m128d v1 = _mm_loadu_pd(base + static_cast<std::size_t>(index[1]) * stride);
   const __m128d v2 = _mm_loadu_pd(base + static_cast<std::size_t>(index[2]) * stride);
@@ -61,7 +62,8 @@ inline void Gather(const double* base, std::size_t stride, const std::int32_t* i
   *y = Lanes(_mm256_unpackhi_pd(even, odd));
 }
 // Back, for the lanes whose bit is set in `write`.
-inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x, Lanes y,
+[[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                           Lanes y,
                     unsigned write) {
   const __m256d even = _mm256_unpacklo_pd(x.v, y.v);  // x0 y0 x2 y2
   const __m256d odd = _mm256_unpackhi_pd(x.v, y.v);   // x1 y1 x3 y3
@@ -71,11 +73,12 @@ inline void Scatter(double* base, std::size_t stride, const std::int32_t* index,
   if (write & 8u) _mm_storeu_pd(base + static_cast<std::size_t>(index[3]) * stride, _mm256_extractf128_pd(odd, 1));
 }
 
-inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
+[[gnu::always_inline]] inline Lanes GatherOne(const double* base, std::size_t stride, const std::int32_t* index) {
   return Lanes(_mm256_set_pd(base[static_cast<std::size_t>(index[3]) * stride], base[static_cast<std::size_t>(index[2]) * stride],
                              base[static_cast<std::size_t>(index[1]) * stride], base[static_cast<std::size_t>(index[0]) * stride]));
 }
-inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x, unsigned write) {
+[[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, const std::int32_t* index, Lanes x,
+                                              unsigned write) {
   const __m128d low = _mm256_castpd256_pd128(x.v), high = _mm256_extractf128_pd(x.v, 1);
   if (write & 1u) _mm_storel_pd(base + static_cast<std::size_t>(index[0]) * stride, low);
   if (write & 2u) _mm_storeh_pd(base + static_cast<std::size_t>(index[1]) * stride, low);

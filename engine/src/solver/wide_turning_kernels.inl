@@ -35,9 +35,9 @@ struct TwinBlock {
   TwinPointLanes first;
   TwinBlock(TurningBlock& x, TurningBlock& y)
       : a{x.a, y.a}, b{x.b, y.b}, two_points{x.two_points, y.two_points}, normal_x{x.normal_x, y.normal_x},
-        normal_y{x.normal_y, y.normal_y}, inv_mass_a{x.inv_mass_a, y.inv_mass_a}, inv_mass_b{x.inv_mass_b, y.inv_mass_b},
-        inv_inertia_a{x.inv_inertia_a, y.inv_inertia_a}, inv_inertia_b{x.inv_inertia_b, y.inv_inertia_b},
-        friction{x.friction, y.friction}, first(x.first, y.first) {}
+        normal_y{x.normal_y, y.normal_y}, inv_mass_a{x.inv_mass_a, y.inv_mass_a},
+        inv_mass_b{x.inv_mass_b, y.inv_mass_b}, inv_inertia_a{x.inv_inertia_a, y.inv_inertia_a},
+        inv_inertia_b{x.inv_inertia_b, y.inv_inertia_b}, friction{x.friction, y.friction}, first(x.first, y.first) {}
 };
 
 // The passes' arithmetic below is written once for lanes `L`: a block's (Lanes, its fields read

@@ -56,21 +56,24 @@ inline Twin Select(TwinMask m, Twin if_set, Twin if_clear) {
 inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
 [[gnu::always_inline]] inline Twin Max0(Twin x) { return {Max0(x.one), Max0(x.two)}; }
 
-inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin* x, Twin* y) {
+[[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index,
+                                          Twin* x, Twin* y) {
   Gather(base, stride, index.one, &x->one, &y->one);
   Gather(base, stride, index.two, &x->two, &y->two);
 }
-inline void Scatter(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x, Twin y, unsigned write) {
+[[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
+                                           Twin y, unsigned write) {
   Scatter(base, stride, index.one, x.one, y.one, write & ((1u << Lanes::kCount) - 1));
   Scatter(base, stride, index.two, x.two, y.two, write >> Lanes::kCount);
 }
-inline Twin GatherOne(const double* base, std::size_t stride, TwinPtr<std::int32_t> index) {
+[[gnu::always_inline]] inline Twin GatherOne(const double* base, std::size_t stride, TwinPtr<std::int32_t> index) {
   return {GatherOne(base, stride, index.one), GatherOne(base, stride, index.two)};
 }
-inline void ScatterOne(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x, unsigned write) {
+[[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
+                                              unsigned write) {
   ScatterOne(base, stride, index.one, x.one, write & ((1u << Lanes::kCount) - 1));
   ScatterOne(base, stride, index.two, x.two, write >> Lanes::kCount);
 }
-inline unsigned Moving(TwinPtr<double> inv_mass) {
+[[gnu::always_inline]] inline unsigned Moving(TwinPtr<double> inv_mass) {
   return Moving(inv_mass.one) | Moving(inv_mass.two) << Lanes::kCount;
 }
