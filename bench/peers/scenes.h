@@ -468,7 +468,7 @@ inline std::vector<Scene> Scenes() {
   for (bool rotation : {false, true}) {
     const std::string turning = rotation ? " (turning)" : "";
     out.push_back(resting("pyramid base 20" + turning, rotation, [](SceneSpec& s) { AddPyramid(s, 20); }));
-    if (!rotation) out.push_back(resting("pyramid base 40", false, [](SceneSpec& s) { AddPyramid(s, 40); }));
+    out.push_back(resting("pyramid base 40" + turning, rotation, [](SceneSpec& s) { AddPyramid(s, 40); }));
     if (rotation) {
       out.push_back(resting("polygon pyramid base 20 (turning)", true,
                             [](SceneSpec& s) { AddPyramid(s, 20, 0.0, true); }));
