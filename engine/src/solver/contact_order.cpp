@@ -141,8 +141,9 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
                    std::span<const BodyState> states, Vec2 across, int strips,
                    std::vector<std::uint64_t>* body_marks, std::vector<std::uint32_t>* slot,
                    std::vector<std::uint32_t>* group_ends, WorkerPool* pool) {
-  // The span of the moving bodies in contact, along `across`: over each thread's part of the
-  // contacts, then over the parts (the least and the most are exact, whatever the parts).
+  // The span of the moving bodies in contact, along `across`: over runs of the contacts
+  // (ForEachRun), each into a row of its own, then over the rows (the least and the most are
+  // exact, whatever the runs).
   struct Span {
     double lo = 0.0, hi = 0.0;
     bool any = false;
@@ -152,28 +153,23 @@ void StripContacts(std::span<const Contact> contacts, std::span<const BodyInfo> 
       any = true;
     }
   };
-  const std::size_t parts = pool && contacts.size() >= kMinSharedContacts ? pool->Threads() : 1;
-  std::vector<PerThread<Span>> spans(parts);
-  const auto span_of = [&](std::size_t part) {
-    Span span;  // kept apart from the shared list until done: it might alias the states
-    const std::size_t end = contacts.size() * (part + 1) / parts;
-    for (std::size_t i = contacts.size() * part / parts; i < end; ++i) {
+  const auto n = static_cast<std::uint32_t>(contacts.size());
+  const std::uint32_t run = RunLength(pool, n, kMinSharedContacts);
+  std::vector<PerThread<Span>> spans((n + run - 1) / run);
+  ForEachRun(pool, n, kMinSharedContacts, run, [&](std::uint32_t begin, std::uint32_t end) {
+    Span span;  // kept apart from the shared rows until done: it might alias the states
+    for (std::uint32_t i = begin; i < end; ++i) {
       for (const BodyIndex b : {contacts[i].a, contacts[i].b}) {
         if (!HasInfiniteMass(infos[b])) span.Widen(Dot(states[b].position, across));
       }
     }
-    spans[part].value = span;
-  };
-  if (parts == 1) {
-    span_of(0);
-  } else {
-    pool->RunOnAll([&](int thread) { span_of(static_cast<std::size_t>(thread)); });
-  }
+    spans[begin / run].value = span;
+  });
   Span all;
-  for (const auto& part : spans) {
-    if (!part.value.any) continue;
-    all.Widen(part.value.lo);
-    all.Widen(part.value.hi);
+  for (const auto& row : spans) {
+    if (!row.value.any) continue;
+    all.Widen(row.value.lo);
+    all.Widen(row.value.hi);
   }
   const double lo = all.lo, hi = all.hi;
   // Each body's strip (body_marks[b]; worked out for every body, fewer than the contacts' ends),
