@@ -1,5 +1,7 @@
-// PNG frames on worker threads. Each frame is encoded on its own and written under a temporary
-// name, then renamed: the files come out identical whatever order the workers finish in.
+// PNG frames on worker threads. Each frame is encoded on its own, then written under a temporary
+// name and renamed, in turn: the files come out identical whatever order the workers finish
+// encoding in, and a full disk stops the sequence at one place. (Written as each was encoded, a
+// worker held up encoding frame 0 found the disk already filled by frames 1-17.)
 #include "game/frame_writer.h"
 
 #include <algorithm>
@@ -26,7 +28,7 @@ FrameWriter::FrameWriter(std::string dir, render::PngEncoding encoding, int thre
 FrameWriter::~FrameWriter() { Finish(); }
 
 bool FrameWriter::Submit(std::int64_t index, render::Image image) {
-  return queue_.Push(Job{index, std::move(image)});
+  return queue_.Push(Job{index, submitted_++, std::move(image)});
 }
 
 Status FrameWriter::Finish() {
@@ -44,14 +46,37 @@ void FrameWriter::WorkerLoop() {
   }
 }
 
-Status FrameWriter::Write(const Job& job) const {
+Status FrameWriter::Write(const Job& job) {
   const std::string path = dir_ + "/" + FrameFileName(job.index);
   const std::vector<std::uint8_t> png = render::EncodePng(job.image, encoding_);
-  if (png.empty()) return RuntimeFailure(path + ": cannot encode the PNG: out of memory");
-  Expected<AtomicOutputFile> file = AtomicOutputFile::Open(path);
-  if (!file.HasValue()) return file.Error();
-  std::fwrite(png.data(), 1, png.size(), file.Value().Stream());
-  return file.Value().Commit();
+  if (!WaitForTurn(job.turn)) return {};  // an earlier frame failed, and said so
+  const Status written = [&]() -> Status {
+    if (png.empty()) return RuntimeFailure(path + ": cannot encode the PNG: out of memory");
+    Expected<AtomicOutputFile> file = AtomicOutputFile::Open(path);
+    if (!file.HasValue()) return file.Error();
+    std::fwrite(png.data(), 1, png.size(), file.Value().Stream());
+    return file.Value().Commit();
+  }();
+  EndTurn(written.has_value());
+  return written;
+}
+
+bool FrameWriter::WaitForTurn(std::uint64_t turn) {
+  std::unique_lock lock(turn_mutex_);
+  turn_changed_.wait(lock, [&] { return next_turn_ == turn || stopped_; });
+  return !stopped_;
+}
+
+void FrameWriter::EndTurn(bool failed) {
+  {
+    std::lock_guard lock(turn_mutex_);
+    if (failed) {
+      stopped_ = true;
+    } else {
+      ++next_turn_;
+    }
+  }
+  turn_changed_.notify_all();
 }
 
 }  // namespace game

@@ -1,9 +1,13 @@
 // Writes rendered frames as PNG files on worker threads while the simulation runs ahead; a
-// bounded queue keeps memory flat however far behind the encoders fall.
+// bounded queue keeps memory flat however far behind the encoders fall. The frames are encoded
+// side by side but written one after another in the order they were submitted, so a write that
+// fails (a full disk) leaves every frame before it and none after.
 #pragma once
 
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -39,15 +43,25 @@ class FrameWriter {
  private:
   struct Job {
     std::int64_t index = 0;
+    std::uint64_t turn = 0;  ///< which Submit it came from, from 0: the order its file is written in
     render::Image image;
   };
   void WorkerLoop();
-  Status Write(const Job& job) const;
+  Status Write(const Job& job);
+  /// Blocks until the frames of every earlier turn are written; false once a write has failed.
+  bool WaitForTurn(std::uint64_t turn);
+  /// Hands the next turn on, or (`failed`) stops every writer: no frame follows a failed one.
+  void EndTurn(bool failed);
 
   const std::string dir_;
   const render::PngEncoding encoding_;
   WorkQueue<Job> queue_;
   std::vector<std::thread> workers_;
+  std::uint64_t submitted_ = 0;  ///< Submit's thread alone
+  std::mutex turn_mutex_;
+  std::condition_variable turn_changed_;
+  std::uint64_t next_turn_ = 0;
+  bool stopped_ = false;
 };
 
 }  // namespace game

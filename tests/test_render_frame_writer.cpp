@@ -63,6 +63,31 @@ TEST_CASE("frame writer: every submitted frame is written, and nothing else", "[
   }
 }
 
+TEST_CASE("frame writer: frames encoded side by side are written in the order submitted",
+          "[render][frames]") {
+  const fs::path dir = FreshDir("order");
+  {
+    // Frame 0 takes far longer to encode (a large image of noise) than the tiny ones after it,
+    // which the other writers finish first: they must still wait for it, so that a full disk
+    // stops the sequence at one place.
+    render::Image slow = Solid(1200, 1200, 0);
+    std::uint32_t noise = 12345;
+    for (std::uint8_t& byte : slow.rgb) {
+      noise = noise * 1664525u + 1013904223u;  // a linear congruential generator's steps
+      byte = static_cast<std::uint8_t>(noise >> 24);
+    }
+    game::FrameWriter writer(dir.string(), render::PngEncoding::kFast, 3, 8);
+    REQUIRE(writer.Submit(0, std::move(slow)));
+    for (int i = 1; i < 8; ++i) REQUIRE(writer.Submit(i, Solid(16, 8, static_cast<std::uint8_t>(i))));
+    CHECK_FALSE(writer.Finish());
+  }
+  for (int i = 0; i + 1 < 8; ++i) {
+    INFO("frames " << i << " and " << i + 1);
+    CHECK(fs::last_write_time(dir / game::FrameFileName(i)) <=
+          fs::last_write_time(dir / game::FrameFileName(i + 1)));
+  }
+}
+
 TEST_CASE("frame writer: a failed write is reported as an I/O failure", "[render][frames]") {
   const fs::path dir = FreshDir("gone") / "missing";  // never created
   game::FrameWriter writer(dir.string(), render::PngEncoding::kFast, 2, 2);
