@@ -205,8 +205,8 @@ Scene MakeTurningScene(unsigned seed) {
 // RunPasses for turning contacts in strip or colour order, block-solved; without `turns`, as where
 // no body's turn moves its points (the anchors fixed, no turns passed). `twins` (strip order):
 // the warm start and the velocity passes take the even and the odd strips side by side (the
-// passes' twins), then the rest, as the solver does on one thread; kOddFirst hands the twins the
-// odd strips first (either run may be the longer).
+// passes' twins), then the even and the odd edges, then the rest, as the solver does on one
+// thread; kOddFirst hands the twins the odd strips first (either run may be the longer).
 enum class Twins { kNone, kEvenFirst, kOddFirst };
 Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order,
                          const engine::detail::WidePasses* wide_passes, bool turns, Twins twins = Twins::kNone) {
@@ -246,11 +246,18 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   const std::size_t odd = twin ? wide.order.group_ends.at(0) : 0, rest = twin ? wide.order.group_ends.at(1) : 0;
   const TurningRun one = twins == Twins::kOddFirst ? run(odd, rest) : run(0, odd);
   const TurningRun two = twins == Twins::kOddFirst ? run(0, odd) : run(odd, rest);
+  // Where the even edges and the odd ones share no moving body, they go side by side too: so
+  // they do in these scenes, whose strips are many bodies wide.
+  if (twin) CHECK(wide.edges_apart);
+  const bool twin_edges = twin && wide.edges_apart;
+  const std::size_t far = twin_edges ? wide.order.group_ends.at(2) : rest;
+  const TurningRun even_edges = run(rest, wide.odd_edges_begin), odd_edges = run(wide.odd_edges_begin, far);
   if (twin) {
     REQUIRE(wide.order.strips == 2);
     passes.turning_warm_start_twin(one, two, out.states.data());
   }
-  passes.turning_warm_start(wide.blocks.data() + rest, wide.second_points.data() + rest, blocks - rest,
+  if (twin_edges) passes.turning_warm_start_twin(even_edges, odd_edges, out.states.data());
+  passes.turning_warm_start(wide.blocks.data() + far, wide.second_points.data() + far, blocks - far,
                             out.states.data());
   std::vector<Vec2> moved(out.states.size());  // the lanes read the moves since the start, as the solver makes them
   MeasureMoves(out.states, scene.start_positions, moved);
@@ -258,7 +265,11 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
     if (twin) {
       passes.turning_solve_twin(one, two, out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
     }
-    passes.turning_solve(wide.blocks.data() + rest, wide.second_points.data() + rest, blocks - rest,
+    if (twin_edges) {
+      passes.turning_solve_twin(even_edges, odd_edges, out.states.data(), moved.data(), turned, inv_h, true,
+                                pass == 0);
+    }
+    passes.turning_solve(wide.blocks.data() + far, wide.second_points.data() + far, blocks - far,
                          out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
   }
   move();
@@ -482,6 +493,29 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
       }
     }
   }
+}
+
+TEST_CASE("wide solver: runs of constraints share a body only where it moves in both") {
+  using engine::detail::ShareMovingBody;
+  std::vector<engine::SubstepConstraint> constraints(4);
+  const auto set = [&](std::size_t j, engine::BodyIndex a, engine::BodyIndex b, bool b_moves) {
+    constraints[j].a = a;
+    constraints[j].b = b;
+    constraints[j].inv_mass_a = 1.0;
+    constraints[j].inv_mass_b = b_moves ? 0.5 : 0.0;
+  };
+  set(0, 1, 2, true);
+  set(1, 3, 0, false);  // body 0 is static: held fixed wherever it appears
+  set(2, 4, 0, false);
+  set(3, 5, 2, true);
+  using Run = std::pair<std::uint32_t, std::uint32_t>;
+  const Run first_two[] = {{0, 2}}, third[] = {{2, 3}}, fourth[] = {{3, 4}}, third_and_fourth[] = {{2, 3}, {3, 4}};
+  std::vector<engine::BodyIndex> scratch;
+  CHECK_FALSE(ShareMovingBody(constraints, first_two, third, &scratch));  // only the static body
+  CHECK(ShareMovingBody(constraints, first_two, fourth, &scratch));       // body 2 moves in both
+  CHECK(ShareMovingBody(constraints, first_two, third_and_fourth, &scratch));
+  CHECK(ShareMovingBody(constraints, fourth, first_two, &scratch));
+  CHECK_FALSE(ShareMovingBody(constraints, third, fourth, &scratch));
 }
 
 TEST_CASE("wide solver: turning contacts go by colour only where every moving body in them is a circle") {

@@ -481,13 +481,18 @@ bool SubstepSolver::TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass) {
   if constexpr (!kCanTurn<C>) return false;
   const ContactOrder& order = wide_turning_.order;
   if (order.strips != 2 || !GroupsStayOnOneThread(pool, order, kBlockLanes)) return false;
-  const std::span<const std::uint32_t> ends = order.group_ends;  // the even strips', the odd, the rest
+  const std::span<const std::uint32_t> ends = order.group_ends;  // the even strips', the odd, the edges', the rest
   const auto run = [&](std::uint32_t begin, std::uint32_t end) {
     return TurningRun{wide_turning_.blocks.data() + begin, wide_turning_.second_points.data() + begin,
                       std::size_t{end - begin}};
   };
   twin(run(0, ends[0]), run(ends[0], ends[1]));
-  pass(ends[1], std::size_t{ends.back() - ends[1]});
+  std::uint32_t rest = ends[1];
+  if (wide_turning_.edges_apart) {  // the even edges and the odd ones side by side as well
+    twin(run(ends[1], wide_turning_.odd_edges_begin), run(wide_turning_.odd_edges_begin, ends[2]));
+    rest = ends[2];
+  }
+  pass(rest, std::size_t{ends.back() - rest});
   return true;
 }
 

@@ -75,10 +75,9 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes
   second->inv_k22[lane] = two ? 1.0 / k.k22 : 0.0;
 }
 
-using Runs = std::span<const std::pair<std::uint32_t, std::uint32_t>>;
 
 // How many blocks runs side by side take: as many as the longest has constraints.
-std::uint32_t LongestRun(Runs runs) {
+std::uint32_t LongestRun(ConstraintRuns runs) {
   std::uint32_t longest = 0;
   for (const auto& [begin, end] : runs) longest = std::max(longest, end - begin);
   return longest;
@@ -88,7 +87,7 @@ std::uint32_t LongestRun(Runs runs) {
 // constraint of `runs[l]` (ranges of the strip order, at most four) and every other lane is
 // padding; returns where they end. Block by block, every lane: the storage is kept from step to
 // step, not zeroed first.
-std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, Runs runs, std::size_t first,
+std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, ConstraintRuns runs, std::size_t first,
                             WideTurningConstraints* wide) {
   assert(runs.size() <= static_cast<std::size_t>(kBlockLanes));
   const std::uint32_t longest = LongestRun(runs);
@@ -171,6 +170,29 @@ bool WideTurningConstraints::Fits(const ContactOrder& order, bool all_angular) {
   return (by_colour || in_strips) && all_angular;
 }
 
+bool ShareMovingBody(std::span<const SubstepConstraint> constraints, ConstraintRuns one, ConstraintRuns two,
+                     std::vector<BodyIndex>* scratch) {
+  // The moving bodies of `one`'s constraints, sorted, then a look for each of `two`'s: the edges
+  // between strips hold a few hundred constraints, fewer than marks over every body would take.
+  std::vector<BodyIndex>& moving = *scratch;
+  moving.clear();
+  for (const auto& [begin, end] : one) {
+    for (std::uint32_t j = begin; j < end; ++j) {
+      if (constraints[j].inv_mass_a != 0.0) moving.push_back(constraints[j].a);
+      if (constraints[j].inv_mass_b != 0.0) moving.push_back(constraints[j].b);
+    }
+  }
+  std::sort(moving.begin(), moving.end());
+  const auto in_one = [&](BodyIndex body) { return std::binary_search(moving.begin(), moving.end(), body); };
+  for (const auto& [begin, end] : two) {
+    for (std::uint32_t j = begin; j < end; ++j) {
+      if (constraints[j].inv_mass_a != 0.0 && in_one(constraints[j].a)) return true;
+      if (constraints[j].inv_mass_b != 0.0 && in_one(constraints[j].b)) return true;
+    }
+  }
+  return false;
+}
+
 void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints,
                                   const ContactOrder& contact_order) {
   assert(Fits(constraints, contact_order));
@@ -207,8 +229,10 @@ void WideTurningConstraints::Pack(std::span<const SubstepConstraint> constraints
   next = PlaceSideBySide(constraints, odd, next, this);
   order.group_ends.push_back(static_cast<std::uint32_t>(next));
   next = PlaceSideBySide(constraints, even_edges, next, this);
+  odd_edges_begin = static_cast<std::uint32_t>(next);
   next = PlaceSideBySide(constraints, odd_edges, next, this);
   order.group_ends.push_back(static_cast<std::uint32_t>(next));
+  edges_apart = !ShareMovingBody(constraints, even_edges, odd_edges, &moving_bodies);
   for (std::uint32_t j = far_begin; j < far_end; ++j) {
     const std::pair<std::uint32_t, std::uint32_t> one[] = {{j, j + 1}};
     next = PlaceSideBySide(constraints, one, next, this);

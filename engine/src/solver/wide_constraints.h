@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/contact.h"
@@ -139,6 +140,11 @@ struct WideTurningConstraints {
   /// long, its push-out 1.33, its solve 1.06).
   std::vector<TurningSecondLanes> second_points;
   ContactOrder order;                ///< the four sets' ends, in blocks (strips = 2)
+  /// In a strip order: where the odd edges start within the third set, and whether the even
+  /// edges and the odd ones share no moving body (as good as always: an even edge and an odd one
+  /// meet only in a strip one or two bodies wide), so that they may go side by side too.
+  std::uint32_t odd_edges_begin = 0;
+  bool edges_apart = false;
   std::vector<std::uint32_t> lane_of;  ///< as WideConstraints::lane_of
   /// As WideConstraints' (in a colour order only).
   std::vector<BodyIndex> lead_body, lead_fixed;
@@ -164,7 +170,18 @@ struct WideTurningConstraints {
   void CutByBodies(std::size_t body_count, int threads) {
     body_cut.Cut(order, lead_body, lead_fixed, body_count, threads);
   }
+
+  std::vector<BodyIndex> moving_bodies;  ///< Pack's scratch (ShareMovingBody)
 };
+
+/// Runs [first, second) of constraints.
+using ConstraintRuns = std::span<const std::pair<std::uint32_t, std::uint32_t>>;
+
+/// Whether a body that moves in one of runs `one`'s constraints moves in one of runs `two`'s
+/// (a body a constraint holds fixed, inverse mass 0, is never written, so it is not shared).
+/// `scratch`: kept between calls.
+bool ShareMovingBody(std::span<const SubstepConstraint> constraints, ConstraintRuns one, ConstraintRuns two,
+                     std::vector<BodyIndex>* scratch);
 
 /// Sets `pushed` to 1 for both bodies of every constraint with a positive normal impulse (as
 /// MarkPushed); padding lanes carry none.
