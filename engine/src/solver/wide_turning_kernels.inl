@@ -9,37 +9,6 @@
 constexpr std::size_t kOmegaOffset = 5;  // BodyState::angular_velocity after position, velocity, angle
 static_assert(sizeof(Rot) == 2 * sizeof(double));
 
-// Twin blocks: a block of each of two runs, field by field (TwinPtr), read and written as one
-// by the passes below through Twin lanes.
-struct TwinPointLanes {
-  TwinPtr<double> base_separation, normal_mass, tangent_mass, normal_impulse, tangent_impulse;
-  TwinPtr<double> anchor_a_x, anchor_a_y, anchor_b_x, anchor_b_y, min_normal_speed;
-  TwinPointLanes(TurningPointLanes& x, TurningPointLanes& y)
-      : base_separation{x.base_separation, y.base_separation}, normal_mass{x.normal_mass, y.normal_mass},
-        tangent_mass{x.tangent_mass, y.tangent_mass}, normal_impulse{x.normal_impulse, y.normal_impulse},
-        tangent_impulse{x.tangent_impulse, y.tangent_impulse}, anchor_a_x{x.anchor_a_x, y.anchor_a_x},
-        anchor_a_y{x.anchor_a_y, y.anchor_a_y}, anchor_b_x{x.anchor_b_x, y.anchor_b_x},
-        anchor_b_y{x.anchor_b_y, y.anchor_b_y}, min_normal_speed{x.min_normal_speed, y.min_normal_speed} {}
-};
-
-struct TwinSecondLanes : TwinPointLanes {
-  TwinPtr<double> k11, k12, k22, det, inv_det, inv_k11, inv_k22;
-  TwinSecondLanes(TurningSecondLanes& x, TurningSecondLanes& y)
-      : TwinPointLanes(x, y), k11{x.k11, y.k11}, k12{x.k12, y.k12}, k22{x.k22, y.k22}, det{x.det, y.det},
-        inv_det{x.inv_det, y.inv_det}, inv_k11{x.inv_k11, y.inv_k11}, inv_k22{x.inv_k22, y.inv_k22} {}
-};
-
-struct TwinBlock {
-  TwinPtr<std::int32_t> a, b;
-  TwinPtr<double> two_points, normal_x, normal_y, inv_mass_a, inv_mass_b, inv_inertia_a, inv_inertia_b, friction;
-  TwinPointLanes first;
-  TwinBlock(TurningBlock& x, TurningBlock& y)
-      : a{x.a, y.a}, b{x.b, y.b}, two_points{x.two_points, y.two_points}, normal_x{x.normal_x, y.normal_x},
-        normal_y{x.normal_y, y.normal_y}, inv_mass_a{x.inv_mass_a, y.inv_mass_a},
-        inv_mass_b{x.inv_mass_b, y.inv_mass_b}, inv_inertia_a{x.inv_inertia_a, y.inv_inertia_a},
-        inv_inertia_b{x.inv_inertia_b, y.inv_inertia_b}, friction{x.friction, y.friction}, first(x.first, y.first) {}
-};
-
 // The passes' arithmetic below is written once for lanes `L`: a block's (Lanes, its fields read
 // through TurningBlock) or two blocks' (Twin, through TwinBlock).
 template <typename L>
