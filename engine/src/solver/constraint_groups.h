@@ -53,6 +53,13 @@ inline std::pair<std::uint32_t, std::uint32_t> EvenPart(std::uint32_t begin, std
           static_cast<std::uint32_t>(begin + size * (thread + 1) / threads)};
 }
 
+/// Whether ForEachGroup calls its pass once, over all of `order`'s constraints on the calling
+/// thread: one thread, or too few constraints to share.
+inline bool GroupsStayOnOneThread(const WorkerPool& pool, const ContactOrder& order, std::uint32_t per_unit = 1) {
+  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
+  return pool.Threads() == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints;
+}
+
 /// Calls part(begin, end) on the ranges of units that ForEachGroup gives each thread, on that
 /// thread, with no wait between groups: for work on the units that has no order, done by the
 /// thread that will next read what it writes (a unit's data then stays in that core's cache).
@@ -60,7 +67,7 @@ template <typename Part>
 void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& part, std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints || order.strips > 0) {
+  if (GroupsStayOnOneThread(pool, order, per_unit) || order.strips > 0) {
     part(std::uint32_t{0}, total);
     return;
   }
@@ -74,13 +81,6 @@ void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& par
       }
     });
   });
-}
-
-/// Whether ForEachGroup calls its pass once, over all of `order`'s constraints on the calling
-/// thread: one thread, or too few constraints to share.
-inline bool GroupsStayOnOneThread(const WorkerPool& pool, const ContactOrder& order, std::uint32_t per_unit = 1) {
-  const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
-  return pool.Threads() == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints;
 }
 
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that
@@ -135,7 +135,7 @@ void ForEachGroupByBodies(WorkerPool& pool, const ContactOrder& order, const Bod
                           std::uint32_t per_unit = 1) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
-  if (threads == 1 || std::uint64_t{total} * per_unit < kMinSharedConstraints) {
+  if (GroupsStayOnOneThread(pool, order, per_unit)) {
     pass(std::uint32_t{0}, total);
     return;
   }

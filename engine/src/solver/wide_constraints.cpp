@@ -75,7 +75,6 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes
   second->inv_k22[lane] = two ? 1.0 / k.k22 : 0.0;
 }
 
-
 // How many blocks runs side by side take: as many as the longest has constraints.
 std::uint32_t LongestRun(ConstraintRuns runs) {
   std::uint32_t longest = 0;

@@ -218,7 +218,8 @@ template <typename L, typename Second>
 // whether any has a second point (`second`): a template, so that the lanes of circles are
 // compiled without it. `kFirst`: the substep's first pass, which works out the least normal
 // speeds from the moves and keeps them (min_normal_speed) for the later passes, which read them
-// instead: the gathers of the moves and turns and the separations were a fifth of a pass.
+// instead of gathering the moves and turns again (the turning pyramid of base 40 1.81 -> 1.77
+// ms/step: little, as the passes wait mostly on the chain of blocks, wide_twin.inl).
 template <typename L, bool kTwo, bool kTurns, bool kFirst, typename Block, typename Second>
 [[gnu::always_inline]] inline void SolveTurningLanes(Block& k, Second& second, int o, BodyState* states,
                                                      const Vec2* moved, const Rot* turned, L inv_h,

@@ -20,6 +20,9 @@ struct TwinPtr {
   TwinPtr operator+(int o) const { return {one + o, two + o}; }
 };
 
+// The bits of the first run's lanes in a Twin's lane bits (Bits, Moving): the low ones.
+inline constexpr unsigned kFirstRunBits = (1u << Lanes::kCount) - 1;
+
 struct TwinMask {
   Mask one, two;
 };
@@ -28,7 +31,7 @@ inline TwinMask operator|(TwinMask a, TwinMask b) { return {a.one | b.one, a.two
 // The first run's lanes in the low bits, the second's above them.
 inline unsigned Bits(TwinMask m) { return Bits(m.one) | Bits(m.two) << Lanes::kCount; }
 inline TwinMask TwinMaskOf(unsigned bits) {
-  return {MaskOf(bits & ((1u << Lanes::kCount) - 1)), MaskOf(bits >> Lanes::kCount)};
+  return {MaskOf(bits & kFirstRunBits), MaskOf(bits >> Lanes::kCount)};
 }
 
 struct Twin {
@@ -64,7 +67,7 @@ inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
 }
 [[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
                                            Twin y, unsigned write) {
-  Scatter(base, stride, index.one, x.one, y.one, write & ((1u << Lanes::kCount) - 1));
+  Scatter(base, stride, index.one, x.one, y.one, write & kFirstRunBits);
   Scatter(base, stride, index.two, x.two, y.two, write >> Lanes::kCount);
 }
 [[gnu::always_inline]] inline Twin GatherOne(const double* base, std::size_t stride, TwinPtr<std::int32_t> index) {
@@ -72,7 +75,7 @@ inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
 }
 [[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
                                               unsigned write) {
-  ScatterOne(base, stride, index.one, x.one, write & ((1u << Lanes::kCount) - 1));
+  ScatterOne(base, stride, index.one, x.one, write & kFirstRunBits);
   ScatterOne(base, stride, index.two, x.two, write >> Lanes::kCount);
 }
 [[gnu::always_inline]] inline unsigned Moving(TwinPtr<double> inv_mass) {
