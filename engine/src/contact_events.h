@@ -59,6 +59,7 @@ class ContactEvents {
   std::vector<BodyPair> previous_;
   std::vector<ContactEndEvent> removed_;
   std::vector<PerThread<MergeRun>> runs_;
+  std::vector<std::size_t> run_offsets_;  ///< where each run's touching pairs go in touching_
 };
 
 }  // namespace engine::detail
