@@ -15,9 +15,6 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // How many rows' gaps a waiting band works out between looks at the row it waits for.
 constexpr std::uint32_t kGapsBetweenLooks = 16;
 
-// The body a row moves: the upper one, or b of two on one level (both move).
-BodyIndex MovedBody(const ShockRow& row) { return row.inv_mass_b != 0.0 ? row.b : row.a; }
-
 }  // namespace
 
 void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count, int threads) {
@@ -50,8 +47,12 @@ void ShockSchedule::Plan(std::span<const ShockRow> rows, std::size_t body_count,
 // row order. A row whose two bodies lie in two shares is a crossing: only its bodies can be
 // touched by two bands (a row touching a body of one share that crosses nowhere moves a body of
 // the same share, so it is in that share's band).
+//
+// The bands' counts and places are kept in registers through each run of rows of one band (in
+// a pile whose ids rise with its height, the rows go in long runs of one band): a count in
+// memory, bumped every row, had each row wait for the last one's store.
 void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body_count) {
-  const std::size_t n = rows.size();
+  const auto n = static_cast<std::uint32_t>(rows.size());
   const auto bands = static_cast<std::size_t>(bands_);
   shares_.Reset(body_count, bands_);
   const auto share_of = [&](BodyIndex body) { return static_cast<std::uint32_t>(shares_.Of(body)); };
@@ -59,23 +60,41 @@ void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body
   touches_.resize(n);
   crossings_.clear();
   band_start_.assign(bands + 1, 0);
+  std::uint32_t run_band = 0, run_length = 0;
   for (std::uint32_t r = 0; r < n; ++r) {
     const ShockRow& row = rows[r];
-    touches_[r] = {row.a, row.b, row.inv_mass_a != 0.0, row.inv_mass_b != 0.0};
+    // The body a row moves: the upper one, or b of two on one level (both move).
+    const bool moves_b = row.inv_mass_b != 0.0;
+    touches_[r] = {row.a, row.b, row.inv_mass_a != 0.0, moves_b};
     const std::uint32_t share_a = share_of(row.a), share_b = share_of(row.b);
-    const std::uint32_t band = MovedBody(row) == row.b ? share_b : share_a;
+    // Chosen by arithmetic, not a branch: which body of a row is the upper one is as good as
+    // random along the rows.
+    const std::uint32_t band = share_a + (share_b - share_a) * static_cast<std::uint32_t>(moves_b);
     band_of_[r] = band;
-    ++band_start_[band + 1];
+    if (band != run_band) {
+      band_start_[run_band + 1] += run_length;
+      run_band = band;
+      run_length = 0;
+    }
+    ++run_length;
     if (share_a != share_b) crossings_.push_back(r);
   }
+  band_start_[run_band + 1] += run_length;
   for (std::size_t b = 0; b < bands; ++b) band_start_[b + 1] += band_start_[b];
   band_rows_.resize(n);
   position_of_.resize(n);
   fill_.assign(band_start_.begin(), band_start_.end() - 1);
+  run_band = 0;
+  std::uint32_t fill = fill_[0];
   for (std::uint32_t r = 0; r < n; ++r) {
     const std::uint32_t band = band_of_[r];
-    position_of_[r] = fill_[band] - band_start_[band];
-    band_rows_[fill_[band]++] = r;
+    if (band != run_band) {
+      fill_[run_band] = fill;
+      run_band = band;
+      fill = fill_[band];
+    }
+    position_of_[r] = fill - band_start_[run_band];
+    band_rows_[fill++] = r;
   }
 }
 
@@ -83,6 +102,10 @@ void ShockSchedule::AssignBands(std::span<const ShockRow> rows, std::size_t body
 // another band's earlier row touched. Only bodies that some row moves and rows of two bands
 // touch can need one; the rest are passed over. A wait that an earlier wait of the same band on
 // the same band covers is left out.
+//
+// The crossings' bodies (a few dozen to a few hundred) are numbered, and what the search keeps
+// for a body is kept by that number: per body of the world it would fill and clear arrays of
+// every body every step, for the few it reads.
 void ShockSchedule::FindWaits(std::size_t body_count) {
   const std::size_t n = touches_.size();
   const auto bands = static_cast<std::size_t>(bands_);
@@ -90,36 +113,49 @@ void ShockSchedule::FindWaits(std::size_t body_count) {
   waits_by_band_.resize(bands);
   for (auto& waits : waits_by_band_) waits.clear();
   if (crossings_.empty()) return;  // every body touched by one band alone
-  // The crossings' bodies, then every row that touches one, in row order, and which bands touch
-  // and write each of those bodies.
-  crossing_body_.assign(body_count, 0);
-  for (const std::uint32_t r : crossings_) crossing_body_[touches_[r].a] = crossing_body_[touches_[r].b] = 1;
-  touched_by_.assign(body_count, 0);
-  written_by_.assign(body_count, 0);
+  // The crossings' bodies, numbered from 1 (0: none), then every row that touches one, in row
+  // order, and which bands touch and write each of those bodies.
+  slot_of_.resize(body_count, 0);  // all 0 between steps: the bodies numbered are cleared below
+  slot_bodies_.clear();
+  const auto number = [&](BodyIndex body) {
+    if (slot_of_[body] != 0) return;
+    slot_bodies_.push_back(body);
+    slot_of_[body] = static_cast<std::uint32_t>(slot_bodies_.size());
+  };
+  for (const std::uint32_t r : crossings_) {
+    number(touches_[r].a);
+    number(touches_[r].b);
+  }
+  const std::size_t slots = slot_bodies_.size() + 1;
+  touched_by_.assign(slots, 0);
+  written_by_.assign(slots, 0);
   rows_touching_.clear();
   for (std::uint32_t r = 0; r < n; ++r) {
     const Touch& row = touches_[r];
-    if (!crossing_body_[row.a] && !crossing_body_[row.b]) continue;
+    const std::uint32_t slot_a = slot_of_[row.a], slot_b = slot_of_[row.b];
+    if ((slot_a | slot_b) == 0) continue;
     rows_touching_.push_back(r);
     const std::uint64_t bit = std::uint64_t{1} << band_of_[r];
-    touched_by_[row.a] |= bit;
-    touched_by_[row.b] |= bit;
-    if (row.writes_a) written_by_[row.a] |= bit;
-    if (row.writes_b) written_by_[row.b] |= bit;
+    // Slot 0 gathers the bits of the bodies that are not numbered, and is never read.
+    touched_by_[slot_a] |= bit;
+    touched_by_[slot_b] |= bit;
+    if (row.writes_a) written_by_[slot_a] |= bit;
+    if (row.writes_b) written_by_[slot_b] |= bit;
   }
-  const auto shared = [&](BodyIndex body) {
-    const std::uint64_t t = touched_by_[body];
-    return written_by_[body] != 0 && (t & (t - 1)) != 0;
+  const auto shared = [&](std::uint32_t slot) {
+    const std::uint64_t t = touched_by_[slot];
+    return slot != 0 && written_by_[slot] != 0 && (t & (t - 1)) != 0;
   };
-  last_write_.assign(body_count, kNone);
-  last_touch_.assign(body_count * bands, kNone);
+  last_write_.assign(slots, kNone);
+  last_touch_.assign(slots * bands, kNone);
   waited_.assign(bands * bands, kNone);
   need_.resize(bands);
   for (const std::uint32_t r : rows_touching_) {  // the others touch no body two bands touch
     const Touch& row = touches_[r];
     const std::uint32_t band = band_of_[r];
     const std::uint32_t position = position_of_[r];
-    const bool share[2] = {shared(row.a), shared(row.b)};
+    const std::uint32_t slot[2] = {slot_of_[row.a], slot_of_[row.b]};
+    const bool share[2] = {shared(slot[0]), shared(slot[1])};
     if (!share[0] && !share[1]) continue;
     std::fill(need_.begin(), need_.end(), kNone);
     const auto need_row = [&](std::uint32_t other_row) {
@@ -127,13 +163,12 @@ void ShockSchedule::FindWaits(std::size_t body_count) {
       const std::uint32_t other = band_of_[other_row];
       if (other != band && (need_[other] == kNone || other_row > need_[other])) need_[other] = other_row;
     };
-    const BodyIndex bodies[2] = {row.a, row.b};
     const bool writes[2] = {row.writes_a, row.writes_b};
     for (int k = 0; k < 2; ++k) {
       if (!share[k]) continue;
-      need_row(last_write_[bodies[k]]);
+      need_row(last_write_[slot[k]]);
       if (writes[k]) {
-        for (std::size_t other = 0; other < bands; ++other) need_row(last_touch_[bodies[k] * bands + other]);
+        for (std::size_t other = 0; other < bands; ++other) need_row(last_touch_[slot[k] * bands + other]);
       }
     }
     for (std::size_t other = 0; other < bands; ++other) {
@@ -145,10 +180,11 @@ void ShockSchedule::FindWaits(std::size_t body_count) {
     }
     for (int k = 0; k < 2; ++k) {
       if (!share[k]) continue;
-      last_touch_[bodies[k] * bands + band] = r;
-      if (writes[k]) last_write_[bodies[k]] = r;
+      last_touch_[slot[k] * bands + band] = r;
+      if (writes[k]) last_write_[slot[k]] = r;
     }
   }
+  for (const BodyIndex body : slot_bodies_) slot_of_[body] = 0;
 }
 
 std::size_t ShockSchedule::WaitCount() const {

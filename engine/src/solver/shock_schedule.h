@@ -95,9 +95,10 @@ class ShockSchedule {
   BodyShares shares_;                       ///< the bands' shares of the bodies
   std::vector<Touch> touches_;              ///< per row
   std::vector<std::uint32_t> crossings_;    ///< the rows whose bodies lie in two shares
-  std::vector<std::uint8_t> crossing_body_;     ///< per body: a crossing touches it
-  std::vector<std::uint32_t> rows_touching_;    ///< the rows that touch a crossing's body
-  std::vector<std::uint64_t> touched_by_, written_by_;  ///< per body: a bit per band
+  std::vector<std::uint32_t> slot_of_;      ///< per body: its number among the crossings' bodies (0: none)
+  std::vector<BodyIndex> slot_bodies_;      ///< the crossings' bodies, by number from 1
+  std::vector<std::uint32_t> rows_touching_;  ///< the rows that touch a crossing's body
+  std::vector<std::uint64_t> touched_by_, written_by_;  ///< per crossing body's number: a bit per band
 };
 
 }  // namespace engine::detail
