@@ -11,6 +11,7 @@
 #include "engine/contact.h"
 #include "engine/events.h"
 #include "engine/world_def.h"
+#include "parallel/balanced_cuts.h"
 #include "parallel/per_thread.h"
 #include "parallel/worker_pool.h"
 #include "snapshot/byte_stream.h"
@@ -42,6 +43,8 @@ class ContactEvents {
   struct MergeRun {
     std::vector<BodyPair> touching;
     StepEvents events;
+    std::size_t begin = 0;  ///< its first contact
+    double seconds = 0.0;   ///< how long its merge took
   };
   /// How fast contact c closed when the step began.
   double StartApproach(const Contact& c, const Bodies& bodies) const;
@@ -60,6 +63,9 @@ class ContactEvents {
   std::vector<ContactEndEvent> removed_;
   std::vector<PerThread<MergeRun>> runs_;
   std::vector<std::size_t> run_offsets_;  ///< where each run's touching pairs go in touching_
+  BalancedCuts cuts_;                      ///< where the runs are cut, from their last times
+  std::vector<std::size_t> run_cuts_;
+  std::vector<double> run_seconds_;
 };
 
 }  // namespace engine::detail
