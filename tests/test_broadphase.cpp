@@ -725,6 +725,44 @@ TEST_CASE("automatic broad phase: the tree while bodies rest, the grid while man
   CHECK(step() == BroadPhaseType::kAabbTree);
 }
 
+TEST_CASE("automatic broad phase: back to the tree once no more than an eighth of the bodies move",
+          "[broadphase]") {
+  using engine::BroadPhaseType;
+  std::mt19937_64 rng(13);
+  auto boxes = RandomBoxes(rng, 500, 40);  // an eighth: 62.5, so 63 moving keep the grid
+  engine::BroadPhase broad_phase;
+  std::vector<BodyPair> pairs;
+  auto step = [&] {
+    broad_phase.FindPairs(BroadPhaseType::kAuto, boxes, &pairs);
+    return broad_phase.LastUsed();
+  };
+  step();
+  for (int k = 0; k < 3; ++k) {  // all of them drift: onto the grid
+    for (auto& b : boxes) {
+      b.lower.x += 1.5;
+      b.upper.x += 1.5;
+    }
+    step();
+  }
+  REQUIRE(broad_phase.LastUsed() == BroadPhaseType::kUniformGrid);
+  // `count` boxes spread over all of them (the count is looked at in blocks) move half a unit,
+  // more than 2 % of any box's size.
+  auto move = [&](int count, int call) {
+    for (int j = 0; j < count; ++j) {
+      engine::AABB& b = boxes[static_cast<std::size_t>(7 * j + 3)];
+      const double dy = call % 2 == 0 ? 0.5 : -0.5;
+      b.lower.y += dy;
+      b.upper.y += dy;
+    }
+  };
+  for (int call = 0; call < 80; ++call) {  // past the grid's first 60 calls, looked at each call
+    move(63, call);
+    CHECK(step() == BroadPhaseType::kUniformGrid);
+  }
+  move(62, 80);
+  CHECK(step() == BroadPhaseType::kAabbTree);
+}
+
 namespace {
 
 // Builds the world with each broad phase, steps it, and requires the same state hash from all.

@@ -13,19 +13,26 @@ namespace {
 // every return to the tree reinserts what moved meanwhile, so flipping back and forth costs.
 constexpr int kGridMinCalls = 60;
 
-// Boxes whose centre moved by more than 2% of their size since `before`: the ones the tree would
-// reinsert every few calls.
-std::size_t CountMoving(std::span<const AABB> boxes, std::span<const AABB> before) {
+// Whether more than `most` boxes moved their centre by more than 2% of their size since
+// `before`: the ones the tree would reinsert every few calls. Looked at in blocks, the count
+// without a branch, and given up once past `most` (a count of all took 9.4 kcyc a step of
+// bench_threads' window of the 4 000-circle pour, where the grid is looked at in 37 steps of 60;
+// given up, 4.9-6.4).
+bool MoreMovingThan(std::span<const AABB> boxes, std::span<const AABB> before, std::size_t most) {
+  constexpr std::size_t kBlock = 64;
   std::size_t moving = 0;
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const AABB& now = boxes[i];
-    const AABB& then = before[i];
-    const double size = std::max(now.upper.x - now.lower.x, now.upper.y - now.lower.y);
-    const double dx = (now.lower.x + now.upper.x) - (then.lower.x + then.upper.x);
-    const double dy = (now.lower.y + now.upper.y) - (then.lower.y + then.upper.y);
-    moving += 0.5 * std::max(std::abs(dx), std::abs(dy)) > 0.02 * size;
+  for (std::size_t block = 0; block < boxes.size(); block += kBlock) {
+    for (std::size_t i = block; i < std::min(boxes.size(), block + kBlock); ++i) {
+      const AABB& now = boxes[i];
+      const AABB& then = before[i];
+      const double size = std::max(now.upper.x - now.lower.x, now.upper.y - now.lower.y);
+      const double dx = (now.lower.x + now.upper.x) - (then.lower.x + then.upper.x);
+      const double dy = (now.lower.y + now.upper.y) - (then.lower.y + then.upper.y);
+      moving += 0.5 * std::max(std::abs(dx), std::abs(dy)) > 0.02 * size;
+    }
+    if (moving > most) return true;
   }
-  return moving;
+  return false;
 }
 
 }  // namespace
@@ -67,7 +74,7 @@ void BroadPhase::FindPairsAuto(std::span<const AABB> boxes, std::vector<BodyPair
   }
   if (auto_on_grid_ && ++auto_grid_calls_ > kGridMinCalls && auto_previous_.size() == n) {
     // Back to the tree once few boxes still move by more than a sliver of their size per call.
-    auto_on_grid_ = 8 * CountMoving(boxes, auto_previous_) > n;
+    auto_on_grid_ = MoreMovingThan(boxes, auto_previous_, n / 8);
     if (!auto_on_grid_) {
       // The tree last saw the boxes before the motion: their displacement since is no motion
       // to stretch fat boxes for, and reinserting what moved is no sign of motion now.
