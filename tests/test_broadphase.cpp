@@ -446,9 +446,9 @@ TEST_CASE("AABB tree shared among threads: a few bodies moving, their fresh pair
   // Each call moves one box in twenty by a jump: past the 64 that the tree reinserts and queries
   // on several threads, short of the quarter past which it is built anew and traversed whole,
   // with candidates enough that their merge with the fresh pairs is shared out in runs. The
-  // moved leaves go back in below the split node on two threads (a floor and a wall sit above it:
-  // the tree's rotations lift wide boxes). The pairs found by one, two and three threads must be
-  // all the overlapping ones.
+  // moved leaves go back into the branches of the tree's top on the pool's threads (a floor and
+  // a wall sit above them: the tree's rotations lift wide boxes). The pairs found by one, two and
+  // three threads must be all the overlapping ones, and the tree valid.
   for (const int threads : {1, 2, 3}) {
     std::mt19937_64 rng(11);
     auto boxes = RandomBoxes(rng, 4000, 130);

@@ -123,7 +123,7 @@ void AabbTree::InsertLeaf(std::int32_t leaf) {
   AttachLeaf(leaf, Allocate(), root_, kNull);
 }
 
-void AabbTree::AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top) {
+void AabbTree::AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top, int top_side) {
   const AABB box = nodes_[leaf].box;
   const std::int32_t sibling = FindBestSibling(box, start);
   const std::int32_t old_parent = nodes_[sibling].parent;
@@ -138,6 +138,8 @@ void AabbTree::AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t s
   nodes_[leaf].parent = parent;
   if (old_parent == kNull) {
     root_ = parent;
+  } else if (old_parent == top && top_side >= 0) {
+    ChildLink(top, top_side) = parent;
   } else if (nodes_[old_parent].child1 == sibling) {
     nodes_[old_parent].child1 = parent;
   } else {
@@ -154,7 +156,7 @@ void AabbTree::RemoveLeaf(std::int32_t leaf) {
   Free(DetachLeaf(leaf, kNull));
 }
 
-std::int32_t AabbTree::DetachLeaf(std::int32_t leaf, std::int32_t top) {
+std::int32_t AabbTree::DetachLeaf(std::int32_t leaf, std::int32_t top, int top_side) {
   const std::int32_t parent = nodes_[leaf].parent;
   const std::int32_t grandparent = nodes_[parent].parent;
   const std::int32_t sibling = nodes_[parent].child1 == leaf ? nodes_[parent].child2 : nodes_[parent].child1;
@@ -163,7 +165,9 @@ std::int32_t AabbTree::DetachLeaf(std::int32_t leaf, std::int32_t top) {
     root_ = sibling;
     return parent;
   }
-  if (nodes_[grandparent].child1 == parent) {
+  if (grandparent == top && top_side >= 0) {
+    ChildLink(top, top_side) = sibling;
+  } else if (nodes_[grandparent].child1 == parent) {
     nodes_[grandparent].child1 = sibling;
   } else {
     nodes_[grandparent].child2 = sibling;
@@ -285,31 +289,35 @@ void AabbTree::MarkMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* 
 }
 
 // Few moved: each goes back in alone, in id order (reinserting one leaf changes only inner nodes,
-// never another leaf's box), and new bodies get leaves of their own. Shared, the two subtrees of
-// the split node take back their own moved leaves side by side (ReinsertInSubtree), then the
-// leaves outside it go back one by one.
+// never another leaf's box), and new bodies get leaves of their own. Shared, the tree's top is
+// cut into branches (FindBranches), whose moved leaves go back into them, branch by branch, each
+// branch to whichever thread is free, those with the most first; then the nodes above the
+// branches are refitted, and the leaves outside any branch go back one by one. (Two subtrees
+// side by side, one a thread, took back 52 and 168 leaves a call in bench_threads' window of
+// the 4 000-circle pour, whose top is still settling: the first thread waited 123 kcyc a call.)
 void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   constexpr std::size_t kMinSharedReinserts = 64;
+  // Enough for the larger ones to even out: at 4 a thread, 28 and 19 kcyc a step of bench_threads' window
+  // on the two threads; at 8, 22 and 21.
+  constexpr std::size_t kBranchesPerThread = 8;
   const auto known = static_cast<std::uint32_t>(leaf_of_.size());
-  const std::int32_t split = pool && pool->Threads() > 1 && moved_list_.size() >= kMinSharedReinserts &&
-                                     moved_list_.back() < known
-                                 ? SplitNode()
-                                 : kNull;
+  const bool shared = pool && pool->Threads() > 1 && moved_list_.size() >= kMinSharedReinserts &&
+                      moved_list_.back() < known;
+  if (shared) FindBranches(kBranchesPerThread * static_cast<std::size_t>(pool->Threads()));
   std::span<const std::uint32_t> one_by_one = moved_list_;
-  if (split != kNull) {
-    for (auto& side : subtree_moved_) side.clear();
-    outside_moved_.clear();
-    for (const std::uint32_t i : moved_list_) {
-      std::int32_t node = leaf_of_[i];
-      while (node != root_ && nodes_[node].parent != split) node = nodes_[node].parent;
-      if (node == root_) {
-        outside_moved_.push_back(i);
-      } else {
-        subtree_moved_[node == nodes_[split].child1 ? 0 : 1].push_back(i);
+  if (shared && !branches_.empty()) {
+    SortIntoBranches();
+    branch_order_.resize(branches_.size());
+    for (std::uint32_t k = 0; k < branch_order_.size(); ++k) branch_order_[k] = k;
+    std::stable_sort(branch_order_.begin(), branch_order_.end(), [&](std::uint32_t x, std::uint32_t y) {
+      return branch_moved_[x].size() > branch_moved_[y].size();
+    });
+    pool->ParallelRuns(static_cast<std::uint32_t>(branch_order_.size()), 0, 1, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        ReinsertInBranch(boxes, branches_[branch_order_[k]], branch_moved_[branch_order_[k]]);
       }
-    }
-    pool->RunSideBySide([&] { ReinsertInSubtree(boxes, split, 0); }, [&] { ReinsertInSubtree(boxes, split, 1); });
-    RefitUpward(split);
+    });
+    for (const Branch& branch : branches_) RefitUpward(branch.parent);
     one_by_one = outside_moved_;
   }
   for (const std::uint32_t i : one_by_one) {
@@ -330,35 +338,70 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPo
   }
 }
 
-// The node to share reinsertions below: down from the root towards the taller child until the two
-// children are of about one height and both inner nodes (rotations lift wide boxes, a floor or a
-// wall, to the top, beside the rest of the tree); kNull when there is none.
-std::int32_t AabbTree::SplitNode() const {
-  std::int32_t node = root_;
-  while (node != kNull && !nodes_[node].IsLeaf()) {
-    const Node& n = nodes_[node];
-    const Node& c1 = nodes_[n.child1];
-    const Node& c2 = nodes_[n.child2];
-    if (std::abs(c1.height - c2.height) <= 2) return c1.IsLeaf() || c2.IsLeaf() ? kNull : node;
-    node = c1.height > c2.height ? n.child1 : n.child2;
+// Down from the root, the tallest branch is cut into its root's two children until there are
+// `count` branches or none is tall enough to cut (a branch's root must have children: a leaf
+// that moved goes back from outside). Rotations lift wide boxes, a floor or a wall, to the top,
+// so the top is seldom even: cutting the tallest follows the bulk of the leaves.
+void AabbTree::FindBranches(std::size_t count) {
+  branches_.clear();
+  if (root_ == kNull || nodes_[root_].height < 2) return;
+  branches_.push_back({root_, 0});
+  branches_.push_back({root_, 1});
+  while (branches_.size() < count) {
+    std::size_t tallest = branches_.size();
+    for (std::size_t k = 0; k < branches_.size(); ++k) {
+      const Node& root = nodes_[ChildLink(branches_[k].parent, branches_[k].side)];
+      if (root.height >= 2 && (tallest == branches_.size() ||
+                               root.height > nodes_[ChildLink(branches_[tallest].parent, branches_[tallest].side)].height)) {
+        tallest = k;
+      }
+    }
+    if (tallest == branches_.size()) break;
+    const std::int32_t root = ChildLink(branches_[tallest].parent, branches_[tallest].side);
+    branches_[tallest] = {root, 0};
+    branches_.push_back({root, 1});
   }
-  return kNull;
 }
 
-// The moved leaves of one of the split node's subtrees go back into that subtree, in id order:
-// each leaf's old parent node becomes its new one, and nothing from the split node up is read or
-// refitted, but for this side's child link. The two sides touch apart nodes, so they run side by
-// side; a leaf may stay on a side it has left, which costs a looser tree until the next rebuild,
-// never a pair.
-void AabbTree::ReinsertInSubtree(std::span<const AABB> boxes, std::int32_t split, int side) {
-  const auto subtree = [&] { return side == 0 ? nodes_[split].child1 : nodes_[split].child2; };
-  for (const std::uint32_t i : subtree_moved_[side]) {
+// Each moved leaf into the branch above it, in id order, or into outside_moved_: up from the
+// leaf to the first branch root (marked in branch_of_node_, which is all -1 between calls).
+void AabbTree::SortIntoBranches() {
+  branch_of_node_.resize(nodes_.size(), -1);
+  for (std::size_t k = 0; k < branches_.size(); ++k) {
+    const std::int32_t root = ChildLink(branches_[k].parent, branches_[k].side);
+    if (!nodes_[root].IsLeaf()) branch_of_node_[static_cast<std::size_t>(root)] = static_cast<std::int32_t>(k);
+  }
+  if (branch_moved_.size() < branches_.size()) branch_moved_.resize(branches_.size());
+  for (std::size_t k = 0; k < branches_.size(); ++k) branch_moved_[k].clear();
+  outside_moved_.clear();
+  for (const std::uint32_t i : moved_list_) {
+    std::int32_t node = leaf_of_[i];
+    while (node != kNull && branch_of_node_[static_cast<std::size_t>(node)] < 0) node = nodes_[node].parent;
+    if (node == kNull) {
+      outside_moved_.push_back(i);
+    } else {
+      branch_moved_[static_cast<std::size_t>(branch_of_node_[static_cast<std::size_t>(node)])].push_back(i);
+    }
+  }
+  for (const Branch& branch : branches_) {
+    branch_of_node_[static_cast<std::size_t>(ChildLink(branch.parent, branch.side))] = -1;
+  }
+}
+
+// A branch's moved leaves go back into it, in id order: each leaf's old parent node becomes its
+// new one, and nothing from the branch's parent up is read or refitted, but for the branch's own
+// child link (written without reading its sibling's, which another thread may be writing).
+// Branches hold apart nodes, so they go back on several threads at once; a leaf may stay in a
+// branch it has left, which costs a looser tree until the next rebuild, never a pair.
+void AabbTree::ReinsertInBranch(std::span<const AABB> boxes, const Branch& branch,
+                                std::span<const std::uint32_t> moved) {
+  for (const std::uint32_t i : moved) {
     const std::int32_t leaf = leaf_of_[i];
-    const std::int32_t parent = DetachLeaf(leaf, split);
+    const std::int32_t parent = DetachLeaf(leaf, branch.parent, branch.side);
     bool stretched = false;
     nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
-    AttachLeaf(leaf, parent, subtree(), split);
+    AttachLeaf(leaf, parent, ChildLink(branch.parent, branch.side), branch.parent, branch.side);
   }
 }
 

@@ -64,14 +64,22 @@ class AabbTree {
   void Free(std::int32_t node);
   void InsertLeaf(std::int32_t leaf);
   /// Puts `leaf` next to its best sibling under `start`, with `parent` (a node out of the tree)
-  /// as their parent; refits below `top`.
-  void AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top);
+  /// as their parent; refits below `top`. `top_side` (0 or 1, where known): which of `top`'s
+  /// children holds `start`, so that its link is written without reading the other's.
+  void AttachLeaf(std::int32_t leaf, std::int32_t parent, std::int32_t start, std::int32_t top, int top_side = -1);
   /// The node under `start` whose pairing with `box` adds the least perimeter.
   std::int32_t FindBestSibling(const AABB& box, std::int32_t start) const;
   void RemoveLeaf(std::int32_t leaf);
   /// Takes a leaf (not the root) out of the tree, refits below `top`, and returns its parent
-  /// node, now out of the tree too.
-  std::int32_t DetachLeaf(std::int32_t leaf, std::int32_t top);
+  /// node, now out of the tree too. `top_side`: as AttachLeaf's.
+  std::int32_t DetachLeaf(std::int32_t leaf, std::int32_t top, int top_side = -1);
+  /// `node`'s child link on `side` (0: child1, 1: child2).
+  std::int32_t& ChildLink(std::int32_t node, int side) {
+    return side == 0 ? nodes_[node].child1 : nodes_[node].child2;
+  }
+  std::int32_t ChildLink(std::int32_t node, int side) const {
+    return side == 0 ? nodes_[node].child1 : nodes_[node].child2;
+  }
   /// Refits unions and heights from `node` up to `top` (kNull: the root, included), rotating
   /// where that shrinks a box.
   void RefitUpward(std::int32_t node, std::int32_t top = kNull);
@@ -89,9 +97,17 @@ class AabbTree {
   }
   /// Reinserts the marked bodies one by one, in id order, new ones with leaves of their own.
   void ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPool* pool);
-  /// Reinserts subtree_moved_[side] within `split`'s child on that side.
-  void ReinsertInSubtree(std::span<const AABB> boxes, std::int32_t split, int side);
-  std::int32_t SplitNode() const;
+  /// Shared reinsertion: a subtree of the tree's top, `parent`'s child on `side`, whose moved
+  /// bodies (branch_moved_, in id order) one thread takes back into it.
+  struct Branch {
+    std::int32_t parent;
+    int side;
+  };
+  /// Cuts the tree's top into about `count` branches (branches_; none for a tree too low).
+  void FindBranches(std::size_t count);
+  /// The moved bodies into their branches, or outside_moved_.
+  void SortIntoBranches();
+  void ReinsertInBranch(std::span<const AABB> boxes, const Branch& branch, std::span<const std::uint32_t> moved);
   /// A new tree over every body's fat box, the marked ones' made anew.
   void Rebuild(std::span<const AABB> boxes, detail::WorkerPool* pool);
   void BuildSubtree(std::uint32_t first, std::uint32_t last, std::int32_t index, std::int32_t parent,
@@ -154,8 +170,11 @@ class AabbTree {
   std::vector<detail::PerThread<FreshRun>> fresh_runs_;
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
   std::vector<std::uint32_t> moved_list_;
-  std::vector<std::uint32_t> subtree_moved_[2];  ///< shared reinsertion: the moved bodies by side
-  std::vector<std::uint32_t> outside_moved_;     ///< and those outside the split node
+  std::vector<Branch> branches_;                 ///< shared reinsertion's
+  std::vector<std::vector<std::uint32_t>> branch_moved_;  ///< per branch: its moved bodies
+  std::vector<std::uint32_t> branch_order_;      ///< the branches, most moved bodies first
+  std::vector<std::int32_t> branch_of_node_;     ///< per node: the branch it is the root of (-1: none)
+  std::vector<std::uint32_t> outside_moved_;     ///< the moved bodies under no branch
   std::size_t reinserts_since_relayout_ = 0;
   bool forget_motion_ = false;
   std::size_t last_reinserts_ = 0;
