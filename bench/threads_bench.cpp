@@ -3,7 +3,9 @@
 // pours of 1 000, 4 000 and 10 000 (axis-aligned and turning) and box pyramids of base 20 and 40
 // (fixed and turning), by the wall clock, since two threads share the work; the state hashes of
 // the three runs compared, as the bits must depend on neither. Then what moving data between the
-// cores costs on the machine (MeasureCrossCore), which bounds what sharing a pass can gain.
+// cores costs on the machine (MeasureCrossCore), which bounds what sharing a pass can gain. The
+// two threads' share of one thread's time is printed to three places: issue 20 asks for 0.6 at
+// most, which two places cannot tell from 0.605.
 // `bench_threads [--quick] [--repeats R] [--out DIR]`.
 #include <cstdio>
 #include <functional>
@@ -141,7 +143,7 @@ int main(int argc, char** argv) {
     const double m0 = bench::Median(scalar), m1 = bench::Median(one), m2 = bench::Median(two);
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s |\n", scene.name.c_str(), std::to_string(contacts).c_str(),
                 bench::Number(m0).c_str(), bench::Number(m1).c_str(), bench::Number(m1 / m0, "%.2f").c_str(),
-                bench::Number(m2).c_str(), bench::Number(m2 / m1, "%.2f").c_str(), same ? "yes" : "NO");
+                bench::Number(m2).c_str(), bench::Number(m2 / m1, "%.3f").c_str(), same ? "yes" : "NO");
     if (csv) {
       std::fprintf(csv.get(), "%s,%.6g,%.6g,%.6g,%d\n", bench::Quoted(scene.name).c_str(), m0, m1, m2, same ? 1 : 0);
     }
