@@ -312,7 +312,8 @@ void AabbTree::ReinsertMovedLeaves(std::span<const AABB> boxes, detail::WorkerPo
     std::stable_sort(branch_order_.begin(), branch_order_.end(), [&](std::uint32_t x, std::uint32_t y) {
       return branch_moved_[x].size() > branch_moved_[y].size();
     });
-    pool->ParallelRuns(static_cast<std::uint32_t>(branch_order_.size()), 0, 1, [&](std::uint32_t begin, std::uint32_t end) {
+    const auto count = static_cast<std::uint32_t>(branch_order_.size());
+    pool->ParallelRuns(count, 0, 1, [&](std::uint32_t begin, std::uint32_t end) {
       for (std::uint32_t k = begin; k < end; ++k) {
         ReinsertInBranch(boxes, branches_[branch_order_[k]], branch_moved_[branch_order_[k]]);
       }
@@ -349,15 +350,16 @@ void AabbTree::FindBranches(std::size_t count) {
   branches_.push_back({root_, 1});
   while (branches_.size() < count) {
     std::size_t tallest = branches_.size();
+    std::int32_t tallest_height = 1;  // only a root of height 2 or more is cut
     for (std::size_t k = 0; k < branches_.size(); ++k) {
-      const Node& root = nodes_[ChildLink(branches_[k].parent, branches_[k].side)];
-      if (root.height >= 2 && (tallest == branches_.size() ||
-                               root.height > nodes_[ChildLink(branches_[tallest].parent, branches_[tallest].side)].height)) {
+      const std::int32_t height = nodes_[BranchRoot(branches_[k])].height;
+      if (height > tallest_height) {
         tallest = k;
+        tallest_height = height;
       }
     }
     if (tallest == branches_.size()) break;
-    const std::int32_t root = ChildLink(branches_[tallest].parent, branches_[tallest].side);
+    const std::int32_t root = BranchRoot(branches_[tallest]);
     branches_[tallest] = {root, 0};
     branches_.push_back({root, 1});
   }
@@ -368,7 +370,7 @@ void AabbTree::FindBranches(std::size_t count) {
 void AabbTree::SortIntoBranches() {
   branch_of_node_.resize(nodes_.size(), -1);
   for (std::size_t k = 0; k < branches_.size(); ++k) {
-    const std::int32_t root = ChildLink(branches_[k].parent, branches_[k].side);
+    const std::int32_t root = BranchRoot(branches_[k]);
     if (!nodes_[root].IsLeaf()) branch_of_node_[static_cast<std::size_t>(root)] = static_cast<std::int32_t>(k);
   }
   if (branch_moved_.size() < branches_.size()) branch_moved_.resize(branches_.size());
@@ -383,9 +385,7 @@ void AabbTree::SortIntoBranches() {
       branch_moved_[static_cast<std::size_t>(branch_of_node_[static_cast<std::size_t>(node)])].push_back(i);
     }
   }
-  for (const Branch& branch : branches_) {
-    branch_of_node_[static_cast<std::size_t>(ChildLink(branch.parent, branch.side))] = -1;
-  }
+  for (const Branch& branch : branches_) branch_of_node_[static_cast<std::size_t>(BranchRoot(branch))] = -1;
 }
 
 // A branch's moved leaves go back into it, in id order: each leaf's old parent node becomes its
@@ -401,7 +401,7 @@ void AabbTree::ReinsertInBranch(std::span<const AABB> boxes, const Branch& branc
     bool stretched = false;
     nodes_[leaf].box = FatBox(boxes[i], PreviousBox(boxes, i), &stretched);
     nodes_[leaf].stretched = stretched;
-    AttachLeaf(leaf, parent, ChildLink(branch.parent, branch.side), branch.parent, branch.side);
+    AttachLeaf(leaf, parent, BranchRoot(branch), branch.parent, branch.side);
   }
 }
 

@@ -103,6 +103,8 @@ class AabbTree {
     std::int32_t parent;
     int side;
   };
+  /// The branch's root: its parent's child on its side.
+  std::int32_t BranchRoot(const Branch& branch) const { return ChildLink(branch.parent, branch.side); }
   /// Cuts the tree's top into about `count` branches (branches_; none for a tree too low).
   void FindBranches(std::size_t count);
   /// The moved bodies into their branches, or outside_moved_.
