@@ -122,15 +122,24 @@ TEST_CASE("the narrow phase writes each contact's bodies beside it, on one threa
     INFO(threads << " threads");
     engine::detail::WorkerPool pool(threads);
     engine::detail::NarrowPhase narrow_phase;
-    narrow_phase.Update(pairs, states, infos, geometries, margins, false, pool);
-    const std::vector<engine::Contact>& contacts = narrow_phase.Contacts();
-    const std::span<const engine::BodyPair> bodies = narrow_phase.ContactPairs();
-    REQUIRE(contacts.size() == touching.size());
-    REQUIRE(bodies.size() == contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      REQUIRE(contacts[i].a == touching[i].a);
-      REQUIRE(contacts[i].b == touching[i].b);
-      REQUIRE(bodies[i] == touching[i]);
+    // Several steps: from the second on, each contact carries the impulse its pair had the step
+    // before, in every thread's part (each starts its walk through the last step's contacts at
+    // its own first pair).
+    for (int step = 0; step < 6; ++step) {
+      INFO("step " << step);
+      narrow_phase.Update(pairs, states, infos, geometries, margins, false, pool);
+      std::vector<engine::Contact>& contacts = narrow_phase.Contacts();
+      const std::span<const engine::BodyPair> bodies = narrow_phase.ContactPairs();
+      REQUIRE(contacts.size() == touching.size());
+      REQUIRE(bodies.size() == contacts.size());
+      for (std::size_t i = 0; i < contacts.size(); ++i) {
+        REQUIRE(contacts[i].a == touching[i].a);
+        REQUIRE(contacts[i].b == touching[i].b);
+        REQUIRE(bodies[i] == touching[i]);
+        // Last step's, as written below (none at the first step).
+        REQUIRE(contacts[i].normal_impulse[0] == (step == 0 ? 0.0 : 1000.0 * (step - 1) + static_cast<double>(i)));
+        contacts[i].normal_impulse[0] = 1000.0 * step + static_cast<double>(i);
+      }
     }
   }
 }
