@@ -8,10 +8,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace engine::detail {
 
 namespace {
+
+// Stores `v` in one 16-byte store. The arithmetic that makes an anchor is scalar, and the
+// compiler stored its halves one at a time; the impact look right after (ImpactLook, Strikes)
+// loads the anchor whole, and a load that two stores make up cannot be forwarded from the store
+// buffer: it waited for them to reach the cache, 46 % of the look's samples in the turning
+// 4 000-circle pour. The same numbers, stored another way.
+inline void StoreWhole(Vec2* to, Vec2 v) {
+  using Whole = double __attribute__((vector_size(16)));
+  const Whole whole = {v.x, v.y};
+  static_assert(sizeof(Whole) == sizeof(Vec2));
+  std::memcpy(static_cast<void*>(to), &whole, sizeof whole);
+}
 
 // Velocity of B's anchor relative to A's.
 Vec2 RelativeVelocity(const SubstepPoint& p, const BodyState& a, const BodyState& b) {
@@ -132,11 +145,13 @@ void PrepareSubstepConstraints(std::span<const Contact> contacts, std::span<cons
       for (int k = 0; k < sc.point_count; ++k) {
         SubstepPoint& p = sc.points[k];
         const ContactPoint& cp = c.manifold.points[k];
-        p.anchor_a = cp.point - states[c.a].position;
-        p.anchor_b = cp.point - states[c.b].position;
-        p.base_separation = -cp.depth - Dot(p.anchor_b - p.anchor_a, sc.normal);
-        p.normal_mass = EffectiveMass(sc, p.anchor_a, p.anchor_b, sc.normal);
-        p.tangent_mass = EffectiveMass(sc, p.anchor_a, p.anchor_b, t);
+        const Vec2 anchor_a = cp.point - states[c.a].position;
+        const Vec2 anchor_b = cp.point - states[c.b].position;
+        StoreWhole(&p.anchor_a, anchor_a);
+        StoreWhole(&p.anchor_b, anchor_b);
+        p.base_separation = -cp.depth - Dot(anchor_b - anchor_a, sc.normal);
+        p.normal_mass = EffectiveMass(sc, anchor_a, anchor_b, sc.normal);
+        p.tangent_mass = EffectiveMass(sc, anchor_a, anchor_b, t);
         p.normal_impulse = c.normal_impulse[k];
         p.tangent_impulse = c.tangent_impulse[k];
         p.push_impulse = 0.0;
