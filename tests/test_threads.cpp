@@ -118,6 +118,7 @@ TEST_CASE("the narrow phase writes each contact's bodies beside it, on one threa
   REQUIRE(pairs.size() > 4096);  // past the narrow phase's least to share out
   const std::vector<std::shared_ptr<const engine::detail::BodyGeometry>> geometries(states.size());
   const std::vector<double> margins(states.size(), 0.0);
+  const std::vector<engine::Rot> box_turns(states.size());  // no boxes: not read
   for (const int threads : {1, 2, 3}) {
     INFO(threads << " threads");
     engine::detail::WorkerPool pool(threads);
@@ -127,7 +128,7 @@ TEST_CASE("the narrow phase writes each contact's bodies beside it, on one threa
     // its own first pair).
     for (int step = 0; step < 6; ++step) {
       INFO("step " << step);
-      narrow_phase.Update(pairs, states, infos, geometries, margins, false, pool);
+      narrow_phase.Update(pairs, states, infos, geometries, margins, box_turns, false, pool);
       std::vector<engine::Contact>& contacts = narrow_phase.Contacts();
       const std::span<const engine::BodyPair> bodies = narrow_phase.ContactPairs();
       REQUIRE(contacts.size() == touching.size());

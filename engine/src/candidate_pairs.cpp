@@ -62,14 +62,18 @@ double SpeculativeMargin(const WorldDef& def, double fall, const BodyState& stat
 
 }  // namespace
 
+AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn) {
+  const Vec2 reach{std::abs(turn.c) * half.x + std::abs(turn.s) * half.y,
+                   std::abs(turn.s) * half.x + std::abs(turn.c) * half.y};
+  return {centre - reach, centre + reach};
+}
+
 AABB BodyBounds(const Shape& shape, const BodyState& state) {
   const Vec2 c = state.position;
-  Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
   if (shape.type == ShapeType::kBox && state.angle != 0.0) {
-    const Rot q = MakeRot(state.angle);
-    const Vec2 h = shape.half_extents;
-    half = {std::abs(q.c) * h.x + std::abs(q.s) * h.y, std::abs(q.s) * h.x + std::abs(q.c) * h.y};
+    return TurnedBoxBounds(c, shape.half_extents, MakeRot(state.angle));
   }
+  const Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
   return {c - half, c + half};
 }
 
@@ -100,15 +104,22 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
   const std::size_t n = bodies.states.size();
   bounds_.resize(n);
   margins_.resize(n);
+  box_turns_.resize(n);
   const bool parts = bodies.with_parts > 0;
   const double fall = Length(def.gravity) * def.dt * def.dt;
   pool.ParallelFor(static_cast<std::uint32_t>(n), kMinSharedBounds, [&](BodyIndex id) {
     const BodyGeometry* geometry = parts ? bodies.geometries[id].get() : nullptr;
-    margins_[id] = speculative ? SpeculativeMargin(def, fall, bodies.states[id], bodies.infos[id], geometry,
-                                                   awake[id] != 0)
-                               : 0.0;
+    const BodyInfo& info = bodies.infos[id];
+    const BodyState& state = bodies.states[id];
+    margins_[id] = speculative ? SpeculativeMargin(def, fall, state, info, geometry, awake[id] != 0) : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
-    const AABB b = parts ? BoundsOf(bodies, id) : BodyBounds(bodies.infos[id].shape, bodies.states[id]);
+    AABB b;
+    if (info.shape.type == ShapeType::kBox && state.angle != 0.0) {  // its turn kept for the narrow phase
+      box_turns_[id] = MakeRot(state.angle);
+      b = TurnedBoxBounds(state.position, info.shape.half_extents, box_turns_[id]);
+    } else {
+      b = geometry ? BoundsOf(bodies, id) : BodyBounds(info.shape, state);
+    }
     bounds_[id] = {b.lower - grow, b.upper + grow};
   });
   // The pair budget bounds what bodies piled up cost; elsewhere every pair is kept.

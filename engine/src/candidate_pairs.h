@@ -22,6 +22,8 @@ inline constexpr double kSpeculativeSlops = 4.0;
 
 /// The body's bounding box where it stands (turned boxes included).
 AABB BodyBounds(const Shape& shape, const BodyState& state);
+/// A box of half extents `half` centred at `centre`, turned by `turn`: its bounding box.
+AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn);
 
 /// The bounding box of the body in `index`, whatever it is made of.
 inline AABB BoundsOf(const Bodies& bodies, BodyIndex index) {
@@ -53,6 +55,10 @@ class CandidatePairs {
   /// Per body, how far it may reach within this step, m: two bodies closer than the sum of
   /// their margins get a (speculative) contact.
   std::span<const double> Margins() const { return margins_; }
+  /// Per body, its turn as the last Find saw it, for the boxes of one shape that had turned
+  /// (angle ≠ 0; the others' entries are not kept up): the narrow phase's boxes, made once a body
+  /// rather than once a pair.
+  std::span<const Rot> BoxTurns() const { return box_turns_; }
   /// The pair budget's account of the last Find (its bodies are the broad phase's, packed when
   /// some slot was not simulated: CrowdedSlot turns them into slots).
   const PairCollector& Budget() const { return broad_phase_.LastCollector(); }
@@ -64,6 +70,7 @@ class CandidatePairs {
 
   std::vector<PairQuota> quotas_;
   std::vector<double> margins_;
+  std::vector<Rot> box_turns_;
   std::vector<AABB> bounds_;
   std::vector<BodyPair> pairs_;
   // With some slots not simulated, the broad phase sees only the enabled bodies, packed:

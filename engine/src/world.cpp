@@ -113,7 +113,7 @@ void World::Step() {
                              w.sleep.View(), w.pool.get(), &w.sleep.kept_pairs);
   // Narrow phase: manifolds, with last step's impulses to warm-start.
   w.narrow_phase.Update(w.candidates.Pairs(), bodies.states, bodies.infos, bodies.geometries,
-                        w.candidates.Margins(), bodies.with_parts > 0, *w.pool);
+                        w.candidates.Margins(), w.candidates.BoxTurns(), bodies.with_parts > 0, *w.pool);
   if (w.def.contact_events) w.contact_events.RecordStartVelocities(bodies.states, *w.pool);
   // Contact solver: forces, contacts and integration, as the chosen solver orders them.
   const detail::ForceModel forces = w.Forces();
