@@ -1,8 +1,12 @@
 // Narrow phase against hand-computed manifolds, including the exact edge cases.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <memory>
+
 #include "narrow_phase/collide.h"
 #include "engine/world.h"
+#include "world_builders.h"
 
 using engine::Manifold;
 using engine::Vec2;
@@ -166,4 +170,60 @@ TEST_CASE("world: a box below a ball gives a normal from the box (a) to the ball
   CHECK(c.b == 1);
   CheckNormal(c.manifold, {0, 1});
   CHECK(c.manifold.points[0].depth == Approx(0.1).margin(1e-12));
+}
+
+TEST_CASE("world: a box turned back to angle 0 collides as an unturned box", "[collide]") {
+  // A wide box A and a square B turned by 0.3 rad whose lowest corner dips 0.05 m into A's top.
+  // A is turned first, then set back to angle 0: its contact with B must be the one a box that
+  // never turned makes (the narrow phase takes a turned box's rotation from the broad phase,
+  // which keeps none for an unturned box: A's from its turned step must not be read).
+  const double dip = 0.05, turn = 0.3, half = 0.5;
+  const engine::Vec2 b_position{0.2, 0.5 + half * (std::cos(turn) + std::sin(turn)) - dip};
+  const auto make = [&](double a_angle) {
+    engine::WorldDef def;
+    def.gravity = {0, 0};
+    def.rotation = true;
+    auto world = std::make_unique<engine::World>(def);
+    engine::BodyDef a = testing::Box({0, 0}, {2, 1});
+    a.angle = a_angle;
+    world->CreateBody(a);
+    engine::BodyDef b = testing::Box(b_position, {2 * half, 2 * half});
+    b.angle = turn;
+    world->CreateBody(b);
+    return world;
+  };
+  // Puts both bodies back where make() placed them, at rest, A unturned.
+  const auto reset = [&](engine::World& world) {
+    const engine::BodyId a = world.IdAt(0), b = world.IdAt(1);
+    world.SetPosition(a, {0, 0});
+    world.SetAngle(a, 0.0);
+    world.SetPosition(b, b_position);
+    world.SetAngle(b, turn);
+    for (const engine::BodyId id : {a, b}) {
+      world.SetLinearVelocity(id, {0, 0});
+      world.SetAngularVelocity(id, 0.0);
+    }
+  };
+  const auto turned_first = make(0.4);
+  turned_first->Step();
+  reset(*turned_first);
+  turned_first->Step();
+  const auto never_turned = make(0.0);
+  never_turned->Step();
+  REQUIRE(turned_first->Contacts().size() == 1);
+  REQUIRE(never_turned->Contacts().size() == 1);
+  const Manifold& m = turned_first->Contacts()[0].manifold;
+  const Manifold& expected = never_turned->Contacts()[0].manifold;
+  // B's corner on A's top face: the normal is A's up, the depth the dip.
+  CheckNormal(m, {0, 1});
+  REQUIRE(m.point_count >= 1);
+  CHECK(m.points[0].depth == Approx(dip).margin(1e-12));
+  REQUIRE(m.point_count == expected.point_count);
+  CHECK(m.normal.x == expected.normal.x);
+  CHECK(m.normal.y == expected.normal.y);
+  for (int i = 0; i < m.point_count; ++i) {
+    CHECK(m.points[i].point.x == expected.points[i].point.x);
+    CHECK(m.points[i].point.y == expected.points[i].point.y);
+    CHECK(m.points[i].depth == expected.points[i].depth);
+  }
 }

@@ -68,13 +68,21 @@ AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn) {
   return {centre - reach, centre + reach};
 }
 
-AABB BodyBounds(const Shape& shape, const BodyState& state) {
-  const Vec2 c = state.position;
-  if (shape.type == ShapeType::kBox && state.angle != 0.0) {
-    return TurnedBoxBounds(c, shape.half_extents, MakeRot(state.angle));
-  }
+namespace {
+
+// A circle's bounds, or an unturned box's.
+AABB UnturnedBounds(const Shape& shape, Vec2 centre) {
   const Vec2 half = shape.type == ShapeType::kCircle ? Vec2{shape.radius, shape.radius} : shape.half_extents;
-  return {c - half, c + half};
+  return {centre - half, centre + half};
+}
+
+}  // namespace
+
+AABB BodyBounds(const Shape& shape, const BodyState& state) {
+  if (shape.type == ShapeType::kBox && state.angle != 0.0) {
+    return TurnedBoxBounds(state.position, shape.half_extents, MakeRot(state.angle));
+  }
+  return UnturnedBounds(shape, state.position);
 }
 
 PairQuota QuotaOf(const Shape& shape, bool is_static) {
@@ -118,7 +126,7 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
       box_turns_[id] = MakeRot(state.angle);
       b = TurnedBoxBounds(state.position, info.shape.half_extents, box_turns_[id]);
     } else {
-      b = geometry ? BoundsOf(bodies, id) : BodyBounds(info.shape, state);
+      b = IsSimpleShape(info.shape.type) ? UnturnedBounds(info.shape, state.position) : BoundsOf(bodies, id);
     }
     bounds_[id] = {b.lower - grow, b.upper + grow};
   });
