@@ -12,8 +12,8 @@
 #include <atomic>
 #include <cstdio>
 #include <functional>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench/bench_args.h"

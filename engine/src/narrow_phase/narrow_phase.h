@@ -34,8 +34,8 @@ using Geometries = std::span<const std::shared_ptr<const BodyGeometry>>;
 class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body; `box_turns` per
-  /// body, MakeRot of its angle for every turned box of one shape (angle ≠ 0; others
-  /// not read: CandidatePairs::BoxTurns). `parts`: some body is made of parts (else the loop is the one
+  /// body, MakeRot of its angle for every turned box of one shape (angle ≠ 0; others not read:
+  /// CandidatePairs::BoxTurns). `parts`: some body is made of parts (else the loop is the one
   /// circles and boxes always had). The pairs are shared among `pool`'s threads; the contacts
   /// come out the same in any case.
   void Update(std::span<const BodyPair> pairs, std::span<const BodyState> states,
@@ -65,7 +65,8 @@ class NarrowPhase {
   template <bool kParts>
   void Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-               std::span<const Rot> box_turns, std::size_t previous, std::vector<Contact>* out, std::vector<BodyPair>* out_pairs) const;
+               std::span<const Rot> box_turns, std::size_t previous, std::vector<Contact>* out,
+               std::vector<BodyPair>* out_pairs) const;
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
