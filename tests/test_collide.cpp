@@ -175,8 +175,8 @@ TEST_CASE("world: a box below a ball gives a normal from the box (a) to the ball
 TEST_CASE("world: a box turned back to angle 0 collides as an unturned box", "[collide]") {
   // A wide box A and a square B turned by 0.3 rad whose lowest corner dips 0.05 m into A's top.
   // A is turned first, then set back to angle 0: its contact with B must be the one a box that
-  // never turned makes (the narrow phase takes a turned box's rotation from the broad phase,
-  // which keeps none for an unturned box: A's from its turned step must not be read).
+  // never turned makes (the narrow phase takes each box's rotation from the broad phase, which
+  // must make A's again once it is unturned, not keep the one from its turned step).
   const double dip = 0.05, turn = 0.3, half = 0.5;
   const engine::Vec2 b_position{0.2, 0.5 + half * (std::cos(turn) + std::sin(turn)) - dip};
   const auto make = [&](double a_angle) {

@@ -122,11 +122,15 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
     margins_[id] = speculative ? SpeculativeMargin(def, fall, state, info, geometry, awake[id] != 0) : 0.0;
     const Vec2 grow{margins_[id], margins_[id]};
     AABB b;
-    if (info.shape.type == ShapeType::kBox && state.angle != 0.0) {  // its turn kept for the narrow phase
-      box_turns_[id] = MakeRot(state.angle);
+    if (!IsSimpleShape(info.shape.type)) {
+      b = PiecesBounds(*bodies.geometries[id], state);
+    } else if (info.shape.type == ShapeType::kBox && state.angle != 0.0) {
+      box_turns_[id] = MakeRot(state.angle);  // kept for the narrow phase
       b = TurnedBoxBounds(state.position, info.shape.half_extents, box_turns_[id]);
     } else {
-      b = IsSimpleShape(info.shape.type) ? UnturnedBounds(info.shape, state.position) : BoundsOf(bodies, id);
+      // An unturned box's turn is MakeRot's answer at ±0, made without the call.
+      if (info.shape.type == ShapeType::kBox) box_turns_[id] = Rot{1.0, state.angle};
+      b = UnturnedBounds(info.shape, state.position);
     }
     bounds_[id] = {b.lower - grow, b.upper + grow};
   });

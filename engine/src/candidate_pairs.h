@@ -55,9 +55,9 @@ class CandidatePairs {
   /// Per body, how far it may reach within this step, m: two bodies closer than the sum of
   /// their margins get a (speculative) contact.
   std::span<const double> Margins() const { return margins_; }
-  /// Per body, MakeRot of its angle as the last Find saw it, for the boxes of one shape that are
-  /// turned (angle ≠ 0; the others' entries are left as they were, stale): the narrow phase's
-  /// boxes, made once a body rather than once a pair.
+  /// Per body, MakeRot of its angle as the last Find saw it, for every box of one shape (the
+  /// other bodies' entries are not kept up): the narrow phase's boxes, made once a body rather
+  /// than once a pair.
   std::span<const Rot> BoxTurns() const { return box_turns_; }
   /// The pair budget's account of the last Find (its bodies are the broad phase's, packed when
   /// some slot was not simulated: CrowdedSlot turns them into slots).

@@ -34,7 +34,7 @@ using Geometries = std::span<const std::shared_ptr<const BodyGeometry>>;
 class NarrowPhase {
  public:
   /// This step's contacts for `pairs` (sorted by (a, b)), `margins` per body; `box_turns` per
-  /// body, MakeRot of its angle for every turned box of one shape (angle ≠ 0; others not read:
+  /// body, MakeRot of its angle for every box of one shape (others not read:
   /// CandidatePairs::BoxTurns). `parts`: some body is made of parts (else the loop is the one
   /// circles and boxes always had). The pairs are shared among `pool`'s threads; the contacts
   /// come out the same in any case.
