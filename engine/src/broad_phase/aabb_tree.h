@@ -168,6 +168,8 @@ class AabbTree {
   struct FreshRun {
     std::vector<std::int32_t> stack;
     std::vector<BodyPair> pairs;
+    std::vector<BodyPair> sorted_scratch;  ///< SortPairs' buffers
+    std::vector<std::uint32_t> counts;
   };
   std::vector<detail::PerThread<FreshRun>> fresh_runs_;
   std::vector<std::uint8_t> moved_;          ///< per body: reinserted by this call
