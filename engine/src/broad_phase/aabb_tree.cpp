@@ -34,6 +34,27 @@ constexpr double kLooseFactor = 1.5;
 // counts' pass over every body costs more than std::sort's comparisons.
 constexpr std::size_t kBodiesPerCountedPair = 16;
 
+// Whether two boxes overlap, the four comparisons joined without a branch: which candidates
+// overlap is as good as random (fat boxes overlap where the boxes do not), and a mispredicted
+// branch costs more than the comparisons.
+bool OverlapsJoined(const AABB& a, const AABB& b) {
+  return (a.lower.x <= b.upper.x) & (b.lower.x <= a.upper.x) & (a.lower.y <= b.upper.y) & (b.lower.y <= a.upper.y);
+}
+
+// The pairs whose boxes overlap into the front of `out` (grown to hold all of them), and how
+// many: every pair is written, the count advancing past the overlapping ones, so no branch.
+std::size_t OverlappingInto(std::span<const BodyPair> pairs, std::span<const AABB> boxes,
+                            std::vector<BodyPair>* out) {
+  if (out->size() < pairs.size()) out->resize(pairs.size());
+  BodyPair* kept = out->data();
+  std::size_t count = 0;
+  for (const BodyPair p : pairs) {
+    kept[count] = p;
+    count += OverlapsJoined(boxes[p.a], boxes[p.b]) ? 1 : 0;
+  }
+  return count;
+}
+
 double Perimeter(const AABB& b) { return 2.0 * ((b.upper.x - b.lower.x) + (b.upper.y - b.lower.y)); }
 
 AABB Union(const AABB& a, const AABB& b) {
@@ -497,28 +518,26 @@ bool AabbTree::RefreshCandidates(std::span<const AABB> boxes, detail::WorkerPool
 void AabbTree::AddOverlappingCandidates(std::span<const AABB> boxes, detail::WorkerPool* pool) {
   const int threads = pool ? pool->Threads() : 1;
   if (threads == 1 || candidates_.size() < kMinSharedCandidates) {
-    for (const BodyPair& p : candidates_) {
-      if (Overlaps(boxes[p.a], boxes[p.b])) collector_.Add(p.a, p.b);
-    }
+    found_.resize(1);
+    FoundRun& found = found_[0].value;
+    found.count = OverlappingInto(candidates_, boxes, &found.pairs);
+    for (std::size_t k = 0; k < found.count; ++k) collector_.Add(found.pairs[k].a, found.pairs[k].b);
     return;
   }
   const auto n = static_cast<std::uint32_t>(candidates_.size());
   const std::uint32_t run = detail::RunLength(pool, n, kMinSharedCandidates);
   found_.resize((n + run - 1) / run);
   pool->ParallelRuns(n, 0, run, [&](std::uint32_t begin, std::uint32_t end) {
-    std::vector<BodyPair>& found = found_[begin / run].value;
-    found.clear();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const BodyPair p = candidates_[i];
-      if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
-    }
+    FoundRun& found = found_[begin / run].value;
+    found.count = OverlappingInto(std::span<const BodyPair>(candidates_).subspan(begin, end - begin), boxes,
+                                  &found.pairs);
   });
   CollectFound(pool);
 }
 
 void AabbTree::CollectFound(detail::WorkerPool* pool) {
   found_runs_.clear();
-  for (const auto& part : found_) found_runs_.push_back(part.value);
+  for (const auto& part : found_) found_runs_.emplace_back(part.value.pairs.data(), part.value.count);
   collector_.AddRuns(found_runs_, pool);
 }
 
@@ -691,15 +710,21 @@ bool AabbTree::UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool*
   };
   const auto merge_run = [&](std::uint32_t begin, std::uint32_t end) {
     std::vector<BodyPair>& merged = merged_[begin / run].value;
-    std::vector<BodyPair>& found = found_[begin / run].value;
+    FoundRun& found = found_[begin / run].value;
     merged.clear();
-    found.clear();
-    const auto keep = [&](BodyPair p) {
-      merged.push_back(p);
-      if (Overlaps(boxes[p.a], boxes[p.b])) found.push_back(p);
-    };
     auto fresh = fresh_from(begin);
     const auto fresh_end = end >= count ? fresh_.cend() : fresh_from(end);
+    // Kept: at most the run's candidates and its fresh pairs; the overlapping ones as in
+    // OverlappingInto, without a branch.
+    const std::size_t most = (std::min(end, n) - begin) + static_cast<std::size_t>(fresh_end - fresh);
+    if (found.pairs.size() < most) found.pairs.resize(most);
+    BodyPair* overlapping = found.pairs.data();
+    std::size_t overlaps = 0;
+    const auto keep = [&](BodyPair p) {
+      merged.push_back(p);
+      overlapping[overlaps] = p;
+      overlaps += OverlapsJoined(boxes[p.a], boxes[p.b]) ? 1 : 0;
+    };
     for (std::uint32_t i = begin; i < std::min(end, n); ++i) {
       const BodyPair p = candidates_[i];
       if (moved_[p.a] || moved_[p.b]) continue;
@@ -707,6 +732,7 @@ bool AabbTree::UpdateCandidates(std::span<const AABB> boxes, detail::WorkerPool*
       keep(p);
     }
     for (; fresh != fresh_end; ++fresh) keep(*fresh);
+    found.count = overlaps;
   };
   detail::ForEachRun(pool, count, kMinSharedCandidates, run, merge_run);
   std::size_t total = 0;

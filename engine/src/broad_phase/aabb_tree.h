@@ -186,7 +186,13 @@ class AabbTree {
   std::vector<BodyPair> sorted_scratch_;
   std::vector<std::uint32_t> counts_;
   PairCollector collector_;
-  std::vector<detail::PerThread<std::vector<BodyPair>>> found_;  ///< each run's overlapping candidates
+  /// A run's overlapping candidates: the first `count` of `pairs` (every pair tested is written
+  /// there, the count advancing past the overlapping ones: OverlappingInto).
+  struct FoundRun {
+    std::vector<BodyPair> pairs;
+    std::size_t count = 0;
+  };
+  std::vector<detail::PerThread<FoundRun>> found_;  ///< each run's overlapping candidates
   std::vector<std::span<const BodyPair>> found_runs_;               ///< found_'s, for the collector
   std::vector<detail::PerThread<std::vector<BodyPair>>> merged_;  ///< UpdateCandidates' runs' candidates
 };
