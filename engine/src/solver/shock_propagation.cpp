@@ -80,8 +80,9 @@ void ShockRowWriter<C>::Write(std::uint32_t begin, std::uint32_t end) const {
   // Each constraint's bucket: the lower level of a supporting pair (pairs touching nothing
   // static after all levels), or one past that for the rest. A counting sort by bucket is
   // linear and stable, so ties stay in constraint order, and the supporting rows come first.
-  // Every constraint gets a row, without a branch on whether it supports: which ones do is as
-  // good as random, and mispredicted branches cost more than writing the rows.
+  // Every constraint gets a row, without a branch on whether it supports or on which body is
+  // the lower: either is as good as random, and mispredicted branches cost more than writing
+  // the rows and choosing by bits (ChooseBits, masks).
   const auto unreached_bucket = static_cast<std::uint32_t>(scratch->levels);
   const std::uint32_t other_bucket = unreached_bucket + 1;
   for (std::uint32_t j = begin; j < end; ++j) {
@@ -89,13 +90,15 @@ void ShockRowWriter<C>::Write(std::uint32_t begin, std::uint32_t end) const {
     const std::uint32_t level_a = level[c.a], level_b = level[c.b];
     // Support (the header says why only this): the normal within 45° of up, from the lower
     // body (by level) to the upper one, between bodies that cannot turn.
-    const double support = Dot(c.normal, up) * (level_a <= level_b ? 1.0 : -1.0);
-    const bool supports = !Turns(c) && support >= 0.70710678118654752;
+    const double support = Dot(c.normal, up) * ChooseBits(level_a <= level_b, 1.0, -1.0);
+    const bool supports = !Turns(c) & (support >= 0.70710678118654752);
     const std::uint32_t lower = std::min(level_a, level_b);
-    scratch->bucket[j] = !supports ? other_bucket : lower == kUnreached ? unreached_bucket : lower;
+    const std::uint32_t reached = lower == kUnreached ? unreached_bucket : lower;
+    const std::uint32_t keep = 0u - static_cast<std::uint32_t>(supports);  // all ones where it supports
+    scratch->bucket[j] = (reached & keep) | (other_bucket & ~keep);
     // Which body gives: the upper one alone, or both by mass on one level.
-    scratch->unsorted[j] = {c.a, c.b, c.normal, level_a < level_b ? 0.0 : c.inv_mass_a,
-                            level_b < level_a ? 0.0 : c.inv_mass_b, Point(c, 0).base_separation};
+    scratch->unsorted[j] = {c.a, c.b, c.normal, ChooseBits(level_a < level_b, 0.0, c.inv_mass_a),
+                            ChooseBits(level_b < level_a, 0.0, c.inv_mass_b), Point(c, 0).base_separation};
   }
 }
 
