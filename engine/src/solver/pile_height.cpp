@@ -18,18 +18,23 @@ double PileExtent::HeightInBodies() const {
 
 PileExtent MeasurePile(std::span<const Contact> run, std::span<const BodyInfo> infos,
                        std::span<const BodyState> states, Vec2 up) {
-  PileExtent extent;
+  // Summed in locals: summed in the returned extent, which the compiler must suppose the inputs
+  // may overlap, every contact stored the sums and loaded them back, each load waiting for the
+  // store before it.
+  PileExtent start;
+  double low = start.low, high = start.high, spacing = start.spacing;
+  std::size_t pairs = 0;
   for (const Contact& c : run) {
     if (HasInfiniteMass(infos[c.a]) || HasInfiniteMass(infos[c.b])) continue;
     const Vec2 a = states[c.a].position, b = states[c.b].position;
-    extent.spacing += Length(b - a);
+    spacing += Length(b - a);
     for (const double height : {Dot(a, up), Dot(b, up)}) {
-      extent.low = std::min(extent.low, height);
-      extent.high = std::max(extent.high, height);
+      low = std::min(low, height);
+      high = std::max(high, height);
     }
-    ++extent.pairs;
+    ++pairs;
   }
-  return extent;
+  return {low, high, spacing, pairs};
 }
 
 double PileHeightInBodies(std::span<const Contact> contacts, std::span<const BodyInfo> infos,
