@@ -62,12 +62,6 @@ double SpeculativeMargin(const WorldDef& def, double fall, const BodyState& stat
 
 }  // namespace
 
-AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn) {
-  const Vec2 reach{std::abs(turn.c) * half.x + std::abs(turn.s) * half.y,
-                   std::abs(turn.s) * half.x + std::abs(turn.c) * half.y};
-  return {centre - reach, centre + reach};
-}
-
 namespace {
 
 // A circle's bounds, or an unturned box's.

@@ -3,6 +3,7 @@
 // Internal to the engine.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -22,8 +23,14 @@ inline constexpr double kSpeculativeSlops = 4.0;
 
 /// The body's bounding box where it stands (turned boxes included).
 AABB BodyBounds(const Shape& shape, const BodyState& state);
-/// A box of half extents `half` centred at `centre`, turned by `turn`: its bounding box.
-AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn);
+/// A box of half extents `half` centred at `centre`, turned by `turn`: its bounding box. Inline:
+/// compiled apart, it took its arguments in halves and stored them to load them back whole, each
+/// load waiting for two stores.
+inline AABB TurnedBoxBounds(Vec2 centre, Vec2 half, Rot turn) {
+  const Vec2 reach{std::abs(turn.c) * half.x + std::abs(turn.s) * half.y,
+                   std::abs(turn.s) * half.x + std::abs(turn.c) * half.y};
+  return {centre - reach, centre + reach};
+}
 
 /// The bounding box of the body in `index`, whatever it is made of.
 inline AABB BoundsOf(const Bodies& bodies, BodyIndex index) {

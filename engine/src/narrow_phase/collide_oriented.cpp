@@ -29,13 +29,20 @@ struct BoxFrame {
 
 BoxFrame Frame(const OrientedBox& box) {
   const Vec2 h = box.half_extents;
-  const Vec2 local[4] = {{-h.x, -h.y}, {h.x, -h.y}, {h.x, h.y}, {-h.x, h.y}};
-  const Vec2 local_normals[4] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+  // Each corner and normal made from its coordinates in registers: from an array of the local
+  // corners, each was stored as two halves and loaded whole, the load waiting for both stores
+  // (45 % of the samples here in the turning pyramid of base 40).
+  const auto corner = [&](double x, double y) { return box.center + Rotate(box.rotation, Vec2{x, y}); };
+  const auto normal = [&](double x, double y) { return Rotate(box.rotation, Vec2{x, y}); };
   BoxFrame f;
-  for (int i = 0; i < 4; ++i) {
-    f.corners[i] = box.center + Rotate(box.rotation, local[i]);
-    f.normals[i] = Rotate(box.rotation, local_normals[i]);
-  }
+  f.corners[0] = corner(-h.x, -h.y);
+  f.corners[1] = corner(h.x, -h.y);
+  f.corners[2] = corner(h.x, h.y);
+  f.corners[3] = corner(-h.x, h.y);
+  f.normals[0] = normal(0, -1);
+  f.normals[1] = normal(1, 0);
+  f.normals[2] = normal(0, 1);
+  f.normals[3] = normal(-1, 0);
   return f;
 }
 
@@ -112,7 +119,12 @@ bool CollideOrientedBoxes(const OrientedBox& a, const OrientedBox& b, Manifold* 
     // Midway between the incident point and its projection on the reference face.
     const Vec2 point = clipped[i] - (0.5 * separation) * n;
     const auto id = static_cast<std::uint8_t>((flip ? 0x80 : 0) | (ref_face << 4) | (inc_face << 2) | i);
-    out->points[out->point_count++] = {point, -separation, id};
+    // Field by field: a point built whole was copied with a 16-byte load over its depth's and
+    // id's stores, which waited for them.
+    ContactPoint& kept = out->points[out->point_count++];
+    kept.point = point;
+    kept.depth = -separation;
+    kept.id = id;
   }
   return out->point_count > 0;
 }
