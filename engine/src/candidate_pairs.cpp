@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "store_whole.h"
+
 namespace engine::detail {
 
 namespace {
@@ -119,7 +121,7 @@ void CandidatePairs::Find(const WorldDef& def, bool speculative, const Bodies& b
     if (!IsSimpleShape(info.shape.type)) {
       b = PiecesBounds(*bodies.geometries[id], state);
     } else if (info.shape.type == ShapeType::kBox && state.angle != 0.0) {
-      box_turns_[id] = MakeRot(state.angle);  // kept for the narrow phase
+      StoreRot(&box_turns_[id], state.angle);  // kept for the narrow phase
       b = TurnedBoxBounds(state.position, info.shape.half_extents, box_turns_[id]);
     } else {
       // An unturned box's turn is MakeRot's answer at ±0, made without the call.

@@ -84,22 +84,8 @@ inline double PowInt(double x, int n) {
   return result;
 }
 
-}  // namespace portable_detail
-
-/// cos and sin of `angle` (radians). For |angle| ≤ 1.5·2^32 (6.4e9 rad, past any scene's limit
-/// of 1e9) each is within 1.5e-16 of the true value (about an ulp of the larger), within
-/// 1 ulp where no reduction is needed (|angle| ≤ π/4), and c² + s² is 1 within 1.2·2^-52; odd
-/// and even symmetry hold bit for bit (tests/test_portable_math.cpp measures all of it). Past
-/// 6.4e9 the error grows to about half an ulp of the angle itself, the angle's own resolution.
-/// A NaN comes back as it is; infinities give std::numeric_limits<double>::quiet_NaN().
-/// Method: angle = k·π/2 + r with |r| ≤ π/4 (Cody and Waite's reduction), Taylor polynomials
-/// for sin r and cos r, and k mod 4 picks and signs them. Box2D v3's b2ComputeCosSin (Erin
-/// Catto, "Determinism", box2d.org, 2024) also divides (c, s) by its length, which its coarse
-/// approximation needs; here that division measured worse (1.6 ulp) and no closer to unit length.
-/// Kept out of line: inlined, it grew its callers until GCC stopped inlining BodyBounds into the
-/// broad phase's loop (+0.15 % instructions on a circle pour that never turns a body).
-[[gnu::noinline]] inline CosSin ComputeCosSin(double angle) {
-  using namespace portable_detail;
+/// ComputeCosSin's work, for a caller that takes it inline (the engine's StoreRot).
+[[gnu::always_inline]] inline CosSin CosSinOf(double angle) {
   // No turn, the axis-aligned bodies' case, at no cost; ±0 keeps its sign, as sin(±0) = ±0.
   if (angle == 0.0) return {1.0, angle};
   if (!(std::abs(angle) <= kLargestExactAngle)) {
@@ -123,6 +109,22 @@ inline double PowInt(double x, int n) {
   if (quadrant == 1 || quadrant == 2) c = -c;
   return {c, s};
 }
+
+}  // namespace portable_detail
+
+/// cos and sin of `angle` (radians). For |angle| ≤ 1.5·2^32 (6.4e9 rad, past any scene's limit
+/// of 1e9) each is within 1.5e-16 of the true value (about an ulp of the larger), within
+/// 1 ulp where no reduction is needed (|angle| ≤ π/4), and c² + s² is 1 within 1.2·2^-52; odd
+/// and even symmetry hold bit for bit (tests/test_portable_math.cpp measures all of it). Past
+/// 6.4e9 the error grows to about half an ulp of the angle itself, the angle's own resolution.
+/// A NaN comes back as it is; infinities give std::numeric_limits<double>::quiet_NaN().
+/// Method: angle = k·π/2 + r with |r| ≤ π/4 (Cody and Waite's reduction), Taylor polynomials
+/// for sin r and cos r, and k mod 4 picks and signs them. Box2D v3's b2ComputeCosSin (Erin
+/// Catto, "Determinism", box2d.org, 2024) also divides (c, s) by its length, which its coarse
+/// approximation needs; here that division measured worse (1.6 ulp) and no closer to unit length.
+/// Kept out of line: inlined, it grew its callers until GCC stopped inlining BodyBounds into the
+/// broad phase's loop (+0.15 % instructions on a circle pour that never turns a body).
+[[gnu::noinline]] inline CosSin ComputeCosSin(double angle) { return portable_detail::CosSinOf(angle); }
 
 /// a^(1/n) for a ≥ 0 and n ≥ 1, within 1.1 ulp of the true root (1.04 the worst found for
 /// n ≤ 64 and a from 1e-300 to 1e300; tests/test_portable_math.cpp checks the bound); exact

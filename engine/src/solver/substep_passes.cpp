@@ -10,21 +10,11 @@
 #include <cmath>
 #include <cstring>
 
+#include "store_whole.h"
+
 namespace engine::detail {
 
 namespace {
-
-// Stores `v` in one 16-byte store. The arithmetic that makes an anchor is scalar, and the
-// compiler stored its halves one at a time; the impact look right after (ImpactLook, Strikes)
-// loads the anchor whole, and a load that two stores make up cannot be forwarded from the store
-// buffer: it waited for them to reach the cache, 46 % of the look's samples in the turning
-// 4 000-circle pour. The same numbers, stored another way.
-inline void StoreWhole(Vec2* to, Vec2 v) {
-  using Whole = double __attribute__((vector_size(16)));
-  const Whole whole = {v.x, v.y};
-  static_assert(sizeof(Whole) == sizeof(Vec2));
-  std::memcpy(static_cast<void*>(to), &whole, sizeof whole);
-}
 
 // Velocity of B's anchor relative to A's.
 Vec2 RelativeVelocity(const SubstepPoint& p, const BodyState& a, const BodyState& b) {
