@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "solver/constraint_groups.h"
+#include "store_whole.h"
 
 namespace engine::detail {
 
@@ -225,7 +226,7 @@ void JointSolver::UpdateFrames(std::span<const BodyState> states) {
   // own, so the threads share them out with the same bits.
   pool_->ParallelFor(static_cast<std::uint32_t>(joined_bodies_.size()), kMinParallelJoints, [&](std::uint32_t k) {
     const BodyIndex i = joined_bodies_[k];
-    rotations_[i] = MakeRot(states[i].angle);
+    StoreRot(&rotations_[i], states[i].angle);  // one store (store_whole.h says why)
   });
   pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
     JointWork& w = work_[i];
