@@ -20,10 +20,7 @@ template <typename Pair>
 inline void StoreWhole(Pair* to, double first, double second) {
   using Whole = double __attribute__((vector_size(16)));
   static_assert(sizeof(Whole) == sizeof(Pair));
-  // Joined by a shuffle of two vectors: made as {first, second}, the pair still went through
-  // the stack where the two came from a call's two return registers.
-  const Whole low = {first, 0.0}, high = {second, 0.0};
-  const Whole whole = __builtin_shufflevector(low, high, 0, 2);
+  const Whole whole = {first, second};
   std::memcpy(static_cast<void*>(to), &whole, sizeof whole);
 }
 

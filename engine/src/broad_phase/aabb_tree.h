@@ -193,7 +193,7 @@ class AabbTree {
     std::size_t count = 0;
   };
   std::vector<detail::PerThread<FoundRun>> found_;  ///< each run's overlapping candidates
-  std::vector<std::span<const BodyPair>> found_runs_;               ///< found_'s, for the collector
+  std::vector<std::span<const BodyPair>> found_runs_;  ///< found_'s, for the collector
   std::vector<detail::PerThread<std::vector<BodyPair>>> merged_;  ///< UpdateCandidates' runs' candidates
 };
 
