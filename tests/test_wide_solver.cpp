@@ -207,7 +207,9 @@ Scene MakeTurningScene(unsigned seed) {
 // the warm start and the velocity passes take the even and the odd strips side by side (the
 // passes' twins), then the even and the odd edges, then the rest, as the solver does on one
 // thread; kOddFirst hands the twins the odd strips first (either run may be the longer).
-enum class Twins { kNone, kEvenFirst, kOddFirst };
+// kColourHalves (colour order): each colour's blocks cut in two halves side by side, as the
+// solver does (ColourHalves).
+enum class Twins { kNone, kEvenFirst, kOddFirst, kColourHalves };
 Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder& order,
                          const engine::detail::WidePasses* wide_passes, bool turns, Twins twins = Twins::kNone) {
   using namespace engine::detail;
@@ -241,6 +243,41 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   const auto run = [&](std::size_t begin, std::size_t end) {
     return TurningRun{wide.blocks.data() + begin, wide.second_points.data() + begin, end - begin};
   };
+  if (twins == Twins::kColourHalves) {
+    REQUIRE(wide.order.strips == 0);
+    // Some colour is cut: at least two blocks in one group among the colours.
+    bool cut = false;
+    for (std::size_t g = 0, begin = 0; g < wide.order.parallel_groups; begin = wide.order.group_ends[g++]) {
+      cut = cut || wide.order.group_ends[g] - begin >= 2;
+    }
+    CHECK(cut);
+    const auto halves = [&](auto&& twin_pass, auto&& pass) {
+      ColourHalves(wide, 0, blocks, twin_pass, [&](std::uint32_t first, std::size_t count) {
+        pass(wide.blocks.data() + first, wide.second_points.data() + first, count);
+      });
+    };
+    halves([&](TurningRun one, TurningRun two) { passes.turning_warm_start_twin(one, two, out.states.data()); },
+           [&](TurningBlock* b, TurningSecondLanes* s, std::size_t n) {
+             passes.turning_warm_start(b, s, n, out.states.data());
+           });
+    std::vector<Vec2> moved(out.states.size());
+    MeasureMoves(out.states, scene.start_positions, moved);
+    for (int pass = 0; pass < 2; ++pass) {
+      halves(
+          [&](TurningRun one, TurningRun two) {
+            passes.turning_solve_twin(one, two, out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
+          },
+          [&](TurningBlock* b, TurningSecondLanes* s, std::size_t n) {
+            passes.turning_solve(b, s, n, out.states.data(), moved.data(), turned, inv_h, true, pass == 0);
+          });
+    }
+    move();
+    MeasureMoves(out.states, scene.start_positions, moved);
+    passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, moved.data(), turned,
+                            out.push.data(), out.push_angular.data(), rate, max_speed, slop);
+    wide.StoreImpulses(order.slot, out.contacts);
+    return out;
+  }
   // The even strips end where the odd ones start, and those where the rest start.
   const bool twin = twins != Twins::kNone;
   const std::size_t odd = twin ? wide.order.group_ends.at(0) : 0, rest = twin ? wide.order.group_ends.at(1) : 0;
@@ -480,9 +517,10 @@ TEST_CASE("wide solver: each width's turning passes give the bits of the one-at-
       // The scene's bodies have turned: the separations, so the answers, differ with the turns.
       if (!turns) CHECK_FALSE(SameBits(reference.push, turning.push));
       for (const engine::detail::WidePasses* passes : engine::detail::RunnableWidePasses()) {
-        // In strip order, also with the even and the odd strips side by side (twins), either first.
-        for (const Twins twins : {Twins::kNone, Twins::kEvenFirst, Twins::kOddFirst}) {
-          if (by_colour && twins != Twins::kNone) continue;
+        // In strip order, also with the even and the odd strips side by side (twins), either
+        // first; in colour order, also with each colour's halves side by side.
+        for (const Twins twins : {Twins::kNone, Twins::kEvenFirst, Twins::kOddFirst, Twins::kColourHalves}) {
+          if (by_colour != (twins == Twins::kNone || twins == Twins::kColourHalves)) continue;
           INFO("seed " << seed << ", " << passes->lanes << " lanes, twins " << static_cast<int>(twins));
           const Outcome wide = RunTurningPasses(scene, order, passes, turns, twins);
           CHECK(SameBits(wide.states, reference.states));

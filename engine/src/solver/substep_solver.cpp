@@ -497,6 +497,20 @@ bool SubstepSolver::TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass) {
   return true;
 }
 
+template <typename C, typename TwinPass, typename Pass>
+void SubstepSolver::ForEachBlockRunSideBySide(WorkerPool& pool, TwinPass&& twin, Pass&& pass) {
+  if constexpr (kCanTurn<C>) {
+    if (TwinStrips<C>(pool, twin, pass)) return;
+    if (wide_turning_.order.strips == 0) {
+      ForEachBlockRun<C>(pool, [&](std::uint32_t first, std::size_t count) {
+        ColourHalves(wide_turning_, first, count, twin, pass);
+      });
+      return;
+    }
+  }
+  ForEachBlockRun<C>(pool, pass);
+}
+
 template <typename C>
 void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints, const SubstepPlan& plan,
                                   const StepStart& start) {
@@ -513,7 +527,7 @@ void SubstepSolver::WarmStartPass(StepContext& context, std::span<C> constraints
     const auto twin = [&](TurningRun one, TurningRun two) {
       plan.wide->turning_warm_start_twin(one, two, states.data());
     };
-    if (!TwinStrips<C>(context.pool, twin, pass)) ForEachBlockRun<C>(context.pool, pass);
+    ForEachBlockRunSideBySide<C>(context.pool, twin, pass);
   } else if (loaded_.empty()) {
     ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {
       WarmStartAll(constraints.subspan(begin, end - begin), states);
@@ -542,7 +556,7 @@ void SubstepSolver::SolvePass(StepContext& context, std::span<C> constraints, co
       plan.wide->turning_solve_twin(one, two, states.data(), moved_.data(), turned, plan.inv_h, plan.block_solver,
                                     first_pass);
     };
-    if (!TwinStrips<C>(context.pool, twin, pass)) ForEachBlockRun<C>(context.pool, pass);
+    ForEachBlockRunSideBySide<C>(context.pool, twin, pass);
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

@@ -130,6 +130,12 @@ class SubstepSolver {
   /// count) on the rest; returns false, calling neither, anywhere else.
   template <typename C, typename TwinPass, typename Pass>
   bool TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
+  /// ForEachBlockRun for the passes that have twins (the warm start and the velocity passes):
+  /// turning blocks (C) that share no moving body go side by side, twin(one, two), the rest one
+  /// after another, pass(first, count). On one thread in strip order, the even and the odd strips
+  /// (TwinStrips); in colour order, each colour's part of a run cut in two halves.
+  template <typename C, typename TwinPass, typename Pass>
+  void ForEachBlockRunSideBySide(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
 
   std::vector<Vec2> accelerations_;
   std::vector<double> angular_accelerations_;

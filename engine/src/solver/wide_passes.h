@@ -2,7 +2,10 @@
 // each width of SIMD lanes and chosen when the step runs. Internal to the engine.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/body.h"
@@ -17,6 +20,32 @@ struct TurningRun {
   TurningSecondLanes* seconds;
   std::size_t count;
 };
+
+/// Blocks [first, first + count) of a colour order (`wide`), colour by colour: each colour's part
+/// cut in two halves worked on side by side, twin(one, two), as no two of its blocks share a
+/// moving body; a group past the colours (its blocks may share one) or a single block goes
+/// through pass(first, count). Where the processor has AVX-512, a Twin is one 512-bit vector:
+/// half the instructions of the two blocks one after the other (wide_twin.inl).
+template <typename TwinPass, typename Pass>
+void ColourHalves(WideTurningConstraints& wide, std::uint32_t first, std::size_t count, TwinPass&& twin,
+                  Pass&& pass) {
+  const std::span<const std::uint32_t> ends = wide.order.group_ends;
+  const std::uint32_t end = first + static_cast<std::uint32_t>(count);
+  // The first group that ends past `first`.
+  auto g = static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), first) - ends.begin());
+  for (std::uint32_t begin = first; begin < end; ++g) {
+    const std::uint32_t stop = std::min(ends[g], end);
+    const std::size_t n = stop - begin;
+    if (g < wide.order.parallel_groups && n >= 2) {
+      const std::size_t half = n / 2;
+      twin(TurningRun{wide.blocks.data() + begin, wide.second_points.data() + begin, half},
+           TurningRun{wide.blocks.data() + begin + half, wide.second_points.data() + begin + half, n - half});
+    } else {
+      pass(begin, n);
+    }
+    begin = stop;
+  }
+}
 
 /// One width's passes. Each does, lane by lane, exactly the arithmetic of its one-at-a-time
 /// counterpart in substep_passes.cpp (WarmStartAll, SolveContacts, PushOut for LinearConstraint

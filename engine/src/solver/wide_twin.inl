@@ -11,6 +11,16 @@
 // still see exactly their own operations in their own order: the same bits. (Interleaved block
 // by block instead, tried before, the strips were no faster: a block is several hundred
 // instructions, about as many as the processor looks ahead.)
+//
+// The blocks of one colour share no moving body either, so the solver cuts each colour's run in
+// two halves and gives them to the twins as well (ColourHalves). There the gain is in the
+// instructions: where the processor has AVX-512 (wide_passes_4_evex.cpp defines
+// BALLBOX_TWIN_512_BITS), a Twin is one 512-bit vector, the first run's four lanes in its low
+// half, and each operation one instruction for both blocks. The AMD EPYC of 2026-11-30 does a
+// 512-bit operation in two halves, but the contacts' arithmetic waits less on the processor's
+// queues of vector operations, which a block's velocity pass (about a hundred of them) had
+// filled: the turning 4 000-circle pour 1.85-1.92 -> 1.72-1.78 ms/step on one thread, where
+// two 256-bit Twins had made no difference (1.86-1.88).
 
 // Two pointers into two runs' blocks, moved together: `k.field + o` of a TwinBlock.
 template <typename T>
@@ -23,6 +33,73 @@ struct TwinPtr {
 // The bits of the first run's lanes in a Twin's lane bits (Bits, Moving): the low ones.
 inline constexpr unsigned kFirstRunBits = (1u << Lanes::kCount) - 1;
 
+#if defined(BALLBOX_TWIN_512_BITS)
+// One 512-bit vector: the first run's four lanes in its low half, the second's in its high half.
+struct TwinMask {
+  __mmask8 bits;
+};
+inline TwinMask operator&(TwinMask a, TwinMask b) { return {static_cast<__mmask8>(a.bits & b.bits)}; }
+inline TwinMask operator|(TwinMask a, TwinMask b) { return {static_cast<__mmask8>(a.bits | b.bits)}; }
+inline unsigned Bits(TwinMask m) { return m.bits; }
+inline TwinMask TwinMaskOf(unsigned bits) { return {static_cast<__mmask8>(bits)}; }
+
+struct Twin {
+  static constexpr int kCount = 2 * Lanes::kCount;
+  __m512d v;
+
+  Twin() = default;
+  explicit Twin(__m512d x) : v(x) {}
+  Twin(Lanes a, Lanes b) : v(_mm512_insertf64x4(_mm512_castpd256_pd512(a.v), b.v, 1)) {}
+  explicit Twin(double x) : v(_mm512_set1_pd(x)) {}
+  Lanes One() const { return Lanes(_mm512_castpd512_pd256(v)); }
+  Lanes Two() const { return Lanes(_mm512_extractf64x4_pd(v, 1)); }
+  static Twin Load(TwinPtr<double> p) { return Twin(Lanes::Load(p.one), Lanes::Load(p.two)); }
+  void Store(TwinPtr<double> p) const {
+    One().Store(p.one);
+    Two().Store(p.two);
+  }
+};
+inline Twin operator+(Twin a, Twin b) { return Twin(_mm512_add_pd(a.v, b.v)); }
+inline Twin operator-(Twin a, Twin b) { return Twin(_mm512_sub_pd(a.v, b.v)); }
+inline Twin operator*(Twin a, Twin b) { return Twin(_mm512_mul_pd(a.v, b.v)); }
+inline Twin operator-(Twin a) {
+  return Twin(_mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(INT64_MIN))));
+}
+inline TwinMask operator<(Twin a, Twin b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LT_OQ)}; }
+inline TwinMask operator>(Twin a, Twin b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OQ)}; }
+inline TwinMask operator>=(Twin a, Twin b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GE_OQ)}; }
+inline TwinMask operator!=(Twin a, Twin b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_NEQ_UQ)}; }
+inline Twin Select(TwinMask m, Twin if_set, Twin if_clear) {
+  return Twin(_mm512_mask_blend_pd(m.bits, if_clear.v, if_set.v));
+}
+inline Twin Abs(Twin a) {
+  return Twin(_mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(INT64_MAX))));
+}
+[[gnu::always_inline]] inline Twin Max0(Twin x) { return Select(x < Twin(0.0), Twin(0.0), x); }
+
+[[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index,
+                                          Twin* x, Twin* y) {
+  Lanes x1, y1, x2, y2;
+  Gather(base, stride, index.one, &x1, &y1);
+  Gather(base, stride, index.two, &x2, &y2);
+  *x = Twin(x1, x2);
+  *y = Twin(y1, y2);
+}
+[[gnu::always_inline]] inline void Scatter(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
+                                           Twin y, unsigned write) {
+  Scatter(base, stride, index.one, x.One(), y.One(), write & kFirstRunBits);
+  Scatter(base, stride, index.two, x.Two(), y.Two(), write >> Lanes::kCount);
+}
+[[gnu::always_inline]] inline Twin GatherOne(const double* base, std::size_t stride, TwinPtr<std::int32_t> index) {
+  return Twin(GatherOne(base, stride, index.one), GatherOne(base, stride, index.two));
+}
+[[gnu::always_inline]] inline void ScatterOne(double* base, std::size_t stride, TwinPtr<std::int32_t> index, Twin x,
+                                              unsigned write) {
+  ScatterOne(base, stride, index.one, x.One(), write & kFirstRunBits);
+  ScatterOne(base, stride, index.two, x.Two(), write >> Lanes::kCount);
+}
+#else
+// Two 256-bit vectors, each operation done on the first and then on the second.
 struct TwinMask {
   Mask one, two;
 };
@@ -78,6 +155,7 @@ inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
   ScatterOne(base, stride, index.one, x.one, write & kFirstRunBits);
   ScatterOne(base, stride, index.two, x.two, write >> Lanes::kCount);
 }
+#endif
 [[gnu::always_inline]] inline unsigned Moving(TwinPtr<double> inv_mass) {
   return Moving(inv_mass.one) | Moving(inv_mass.two) << Lanes::kCount;
 }
