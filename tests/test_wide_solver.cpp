@@ -204,9 +204,9 @@ Scene MakeTurningScene(unsigned seed) {
 
 // RunPasses for turning contacts in strip or colour order, block-solved; without `turns`, as where
 // no body's turn moves its points (the anchors fixed, no turns passed). `twins` (strip order):
-// the warm start and the velocity passes take the even and the odd strips side by side (the
-// passes' twins), then the even and the odd edges, then the rest, as the solver does on one
-// thread; kOddFirst hands the twins the odd strips first (either run may be the longer).
+// the warm start, the velocity passes and the push-out take the even and the odd strips side by
+// side (the passes' twins), then the even and the odd edges, then the rest, as the solver does on
+// one thread; kOddFirst hands the twins the odd strips first (either run may be the longer).
 // kColourHalves (colour order): each colour's blocks cut in two halves side by side, as the
 // solver does (ColourHalves).
 enum class Twins { kNone, kEvenFirst, kOddFirst, kColourHalves };
@@ -273,8 +273,15 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
     }
     move();
     MeasureMoves(out.states, scene.start_positions, moved);
-    passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, moved.data(), turned,
-                            out.push.data(), out.push_angular.data(), rate, max_speed, slop);
+    halves(
+        [&](TurningRun one, TurningRun two) {
+          passes.turning_push_out_twin(one, two, moved.data(), turned, out.push.data(), out.push_angular.data(),
+                                       rate, max_speed, slop);
+        },
+        [&](TurningBlock* b, TurningSecondLanes* s, std::size_t n) {
+          passes.turning_push_out(b, s, n, moved.data(), turned, out.push.data(), out.push_angular.data(), rate,
+                                  max_speed, slop);
+        });
     wide.StoreImpulses(order.slot, out.contacts);
     return out;
   }
@@ -311,8 +318,14 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   }
   move();
   MeasureMoves(out.states, scene.start_positions, moved);
-  passes.turning_push_out(wide.blocks.data(), wide.second_points.data(), blocks, moved.data(), turned,
-                          out.push.data(), out.push_angular.data(), rate, max_speed, slop);
+  const auto push_out_twin = [&](TurningRun a, TurningRun b) {
+    passes.turning_push_out_twin(a, b, moved.data(), turned, out.push.data(), out.push_angular.data(), rate,
+                                 max_speed, slop);
+  };
+  if (twin) push_out_twin(one, two);
+  if (twin_edges) push_out_twin(even_edges, odd_edges);
+  passes.turning_push_out(wide.blocks.data() + far, wide.second_points.data() + far, blocks - far, moved.data(),
+                          turned, out.push.data(), out.push_angular.data(), rate, max_speed, slop);
   wide.StoreImpulses(order.slot, out.contacts);
   return out;
 }

@@ -571,7 +571,7 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
   const std::span<BodyState> states = context.states;
   if (plan.wide) {
     const Rot* turned = start.turned.empty() ? nullptr : start.turned.data();  // null: no turns
-    ForEachBlockRun<C>(context.pool, [&](std::uint32_t first, std::size_t count) {
+    const auto pass = [&](std::uint32_t first, std::size_t count) {
       if constexpr (kCanTurn<C>) {
         plan.wide->turning_push_out(wide_turning_.blocks.data() + first, wide_turning_.second_points.data() + first,
                                     count, moved_.data(), turned, push.linear.data(), push.angular.data(),
@@ -580,7 +580,12 @@ void SubstepSolver::PushOutPass(StepContext& context, std::span<C> constraints, 
         plan.wide->push_out(wide_.blocks.data() + first, count, moved_.data(), push.linear.data(),
                             plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
       }
-    });
+    };
+    const auto twin = [&](TurningRun one, TurningRun two) {
+      plan.wide->turning_push_out_twin(one, two, moved_.data(), turned, push.linear.data(), push.angular.data(),
+                                       plan.push_out_rate, def.max_push_out_speed, def.linear_slop);
+    };
+    ForEachBlockRunSideBySide<C>(context.pool, twin, pass);
     return;
   }
   ForEachGroup(context.pool, order_, [&](std::uint32_t begin, std::uint32_t end) {

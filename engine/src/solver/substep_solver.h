@@ -130,7 +130,8 @@ class SubstepSolver {
   /// count) on the rest; returns false, calling neither, anywhere else.
   template <typename C, typename TwinPass, typename Pass>
   bool TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
-  /// ForEachBlockRun for the passes that have twins (the warm start and the velocity passes):
+  /// ForEachBlockRun for the passes that have twins (the warm start, the velocity passes and the
+  /// push-out):
   /// turning blocks (C) that share no moving body go side by side, twin(one, two), the rest one
   /// after another, pass(first, count). On one thread in strip order, the even and the odd strips
   /// (TwinStrips); in colour order, each colour's part of a run cut in two halves.

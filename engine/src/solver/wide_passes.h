@@ -71,13 +71,18 @@ struct WidePasses {
   void (*turning_solve)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, BodyState* states,
                         const Vec2* moved, const Rot* turned, double inv_h, bool block_solve, bool first_pass);
   // turning_warm_start and turning_solve over two runs that share no moving body (the even and
-  // the odd strips), worked on side by side (wide_twin.inl): the bits of one run after the other.
+  // the odd strips, or a colour's two halves), worked on side by side (wide_twin.inl): the bits of
+  // one run after the other.
   void (*turning_warm_start_twin)(TurningRun one, TurningRun two, BodyState* states);
   void (*turning_solve_twin)(TurningRun one, TurningRun two, BodyState* states, const Vec2* moved, const Rot* turned,
                              double inv_h, bool block_solve, bool first_pass);
   void (*turning_push_out)(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                            const Rot* turned, Vec2* push, double* push_angular, double push_out_rate,
                            double max_push_out_speed, double linear_slop);
+  // turning_push_out over two runs that share no moving body, side by side.
+  void (*turning_push_out_twin)(TurningRun one, TurningRun two, const Vec2* moved, const Rot* turned, Vec2* push,
+                                double* push_angular, double push_out_rate, double max_push_out_speed,
+                                double linear_slop);
   // Revolute joints' point rows (JointSolver's warm start, Solve and PushOut for them).
   void (*joint_warm_start)(JointBlock* blocks, std::size_t count, BodyState* states);
   void (*joint_solve)(JointBlock* blocks, std::size_t count, BodyState* states, double inv_h);

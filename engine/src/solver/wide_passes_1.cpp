@@ -68,7 +68,7 @@ inline Lanes Abs(Lanes a) { return Lanes(std::fabs(a.v)); }
 
 constexpr WidePasses kPasses{1, WarmStartBlocks, SolveBlocks, PushOutBlocks,
                              TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
-                             TurningSolveTwin,       TurningPushOutBlocks,
+                             TurningSolveTwin,       TurningPushOutBlocks,   TurningPushOutTwin,
                              JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace

@@ -76,7 +76,7 @@ inline Lanes Abs(Lanes a) { return Lanes(_mm_andnot_pd(_mm_set1_pd(-0.0), a.v));
 
 constexpr WidePasses kPasses{2, WarmStartBlocks, SolveBlocks, PushOutBlocks,
                              TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
-                             TurningSolveTwin,       TurningPushOutBlocks,
+                             TurningSolveTwin,       TurningPushOutBlocks,   TurningPushOutTwin,
                              JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace

@@ -93,7 +93,7 @@ inline Lanes Abs(Lanes a) { return Lanes(_mm256_andnot_pd(_mm256_set1_pd(-0.0), 
 
 constexpr WidePasses kPasses{4, WarmStartBlocks, SolveBlocks, PushOutBlocks,
                              TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
-                             TurningSolveTwin,       TurningPushOutBlocks,
+                             TurningSolveTwin,       TurningPushOutBlocks,   TurningPushOutTwin,
                              JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
 
 }  // namespace

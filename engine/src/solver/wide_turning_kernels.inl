@@ -14,13 +14,19 @@ static_assert(sizeof(Rot) == 2 * sizeof(double));
 template <typename L>
 using MaskFor = decltype(L(0.0) < L(0.0));
 
+// The mask of the lanes whose bits are set.
+template <typename L>
+MaskFor<L> LanesOf(unsigned bits) {
+  if constexpr (std::is_same_v<L, Twin>) {
+    return TwinMaskOf(bits);
+  } else {
+    return MaskOf(bits);
+  }
+}
+
 template <typename L>
 MaskFor<L> NoLanes() {
-  if constexpr (std::is_same_v<L, Twin>) {
-    return TwinMaskOf(0);
-  } else {
-    return MaskOf(0);
-  }
+  return LanesOf<L>(0);
 }
 
 // A body's velocity and angular velocity, as the passes work on them.
@@ -368,58 +374,84 @@ void TurningSolveBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::
   }
 }
 
+// One block's lanes [o, o + L::kCount) of PushOutTurningBlocks (or two blocks', Twin).
+template <typename L, bool kTurns, typename Block, typename Second>
+[[gnu::always_inline]] inline void PushOutTurningLanes(Block& k, Second& second, int o, const Vec2* moved,
+                                                       const Rot* turned, double* push_linear, double* push_angular,
+                                                       L rate, L max_speed, L slop) {
+  const unsigned all = (1u << L::kCount) - 1;
+  const PairLanes<L> c = LoadPair<L>(k, o);
+  const PlaceLanes<L> q = GatherPlaces<L, kTurns>(k, o, moved, turned);
+  // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
+  L vax, vay, vbx, vby;
+  Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
+  Gather(push_linear, kVec2Stride, k.b + o, &vbx, &vby);
+  L wa = GatherOne(push_angular, 1, k.a + o), wb = GatherOne(push_angular, 1, k.b + o);
+  unsigned written_a = 0, written_b = 0;
+  const int points = Bits(c.two) != 0 ? 2 : 1;
+  for (int point = 0; point < points; ++point) {
+    const PointLanes<L> p = point == 0 ? LoadPoint<L>(k.first, o) : LoadPoint<L>(second, o);
+    const L s = SeparationAt<kTurns>(q, p, c);
+    // Overlap within the slop is left alone.
+    unsigned active = ~Bits(s >= -slop) & all;
+    if (point == 1) active &= Bits(c.two);
+    if (active == 0) continue;
+    const L wanted = rate * -(s + slop);
+    const L target = Select(max_speed < wanted, max_speed, wanted);
+    L vn = (vbx - vax) * c.nx + (vby - vay) * c.ny;
+    const L cx = -wb * p.rby - -wa * p.ray, cy = wb * p.rbx - wa * p.rax;
+    vn = vn + (cx * c.nx + cy * c.ny);
+    const L dp = Max0(p.normal_mass * (target - vn));
+    const L sa = c.ima * dp, sb = c.imb * dp;
+    const L ix = dp * c.nx, iy = dp * c.ny;
+    const unsigned write_a = active & c.moving_a, write_b = active & c.moving_b;
+    const MaskFor<L> wa_mask = LanesOf<L>(write_a), wb_mask = LanesOf<L>(write_b);
+    vax = Select(wa_mask, vax - sa * c.nx, vax);
+    vay = Select(wa_mask, vay - sa * c.ny, vay);
+    vbx = Select(wb_mask, vbx + sb * c.nx, vbx);
+    vby = Select(wb_mask, vby + sb * c.ny, vby);
+    wa = Select(wa_mask, wa - c.iia * (p.rax * iy - p.ray * ix), wa);
+    wb = Select(wb_mask, wb + c.iib * (p.rbx * iy - p.rby * ix), wb);
+    written_a |= write_a;
+    written_b |= write_b;
+  }
+  Scatter(push_linear, kVec2Stride, k.a + o, vax, vay, written_a);
+  Scatter(push_linear, kVec2Stride, k.b + o, vbx, vby, written_b);
+  ScatterOne(push_angular, 1, k.a + o, wa, written_a);
+  ScatterOne(push_angular, 1, k.b + o, wb, written_b);
+}
+
 template <bool kTurns>
 void PushOutTurningBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std::size_t count, const Vec2* moved,
                           const Rot* turned, Vec2* push, double* push_angular,
                           double push_out_rate, double max_push_out_speed, double linear_slop) {
   if (count == 0) return;  // no contacts: the bodies' arrays may be empty
-  double* push_linear = &push[0].x;
   const Lanes rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
-  const unsigned all = (1u << Lanes::kCount) - 1;
   for (std::size_t i = 0; i < count; ++i) {
-    TurningBlock& k = blocks[i];
     for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
-      const PairLanes<Lanes> c = LoadPair<Lanes>(k, o);
-      const PlaceLanes<Lanes> q = GatherPlaces<Lanes, kTurns>(k, o, moved, turned);
-      // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
-      Lanes vax, vay, vbx, vby;
-      Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
-      Gather(push_linear, kVec2Stride, k.b + o, &vbx, &vby);
-      Lanes wa = GatherOne(push_angular, 1, k.a + o), wb = GatherOne(push_angular, 1, k.b + o);
-      unsigned written_a = 0, written_b = 0;
-      const int points = Bits(c.two) != 0 ? 2 : 1;
-      for (int point = 0; point < points; ++point) {
-        const PointLanes<Lanes> p = point == 0 ? LoadPoint<Lanes>(k.first, o) : LoadPoint<Lanes>(seconds[i], o);
-        const Lanes s = SeparationAt<kTurns>(q, p, c);
-        // Overlap within the slop is left alone.
-        unsigned active = ~Bits(s >= -slop) & all;
-        if (point == 1) active &= Bits(c.two);
-        if (active == 0) continue;
-        const Lanes wanted = rate * -(s + slop);
-        const Lanes target = Select(max_speed < wanted, max_speed, wanted);
-        Lanes vn = (vbx - vax) * c.nx + (vby - vay) * c.ny;
-        const Lanes cx = -wb * p.rby - -wa * p.ray, cy = wb * p.rbx - wa * p.rax;
-        vn = vn + (cx * c.nx + cy * c.ny);
-        const Lanes dp = Max0(p.normal_mass * (target - vn));
-        const Lanes sa = c.ima * dp, sb = c.imb * dp;
-        const Lanes ix = dp * c.nx, iy = dp * c.ny;
-        const unsigned write_a = active & c.moving_a, write_b = active & c.moving_b;
-        const Mask wa_mask = MaskOf(write_a), wb_mask = MaskOf(write_b);
-        vax = Select(wa_mask, vax - sa * c.nx, vax);
-        vay = Select(wa_mask, vay - sa * c.ny, vay);
-        vbx = Select(wb_mask, vbx + sb * c.nx, vbx);
-        vby = Select(wb_mask, vby + sb * c.ny, vby);
-        wa = Select(wa_mask, wa - c.iia * (p.rax * iy - p.ray * ix), wa);
-        wb = Select(wb_mask, wb + c.iib * (p.rbx * iy - p.rby * ix), wb);
-        written_a |= write_a;
-        written_b |= write_b;
-      }
-      Scatter(push_linear, kVec2Stride, k.a + o, vax, vay, written_a);
-      Scatter(push_linear, kVec2Stride, k.b + o, vbx, vby, written_b);
-      ScatterOne(push_angular, 1, k.a + o, wa, written_a);
-      ScatterOne(push_angular, 1, k.b + o, wb, written_b);
+      PushOutTurningLanes<Lanes, kTurns>(blocks[i], seconds[i], o, moved, turned, &push[0].x, push_angular, rate,
+                                         max_speed, slop);
     }
   }
+}
+
+// The runs' first TwinCount blocks side by side, then the rest of each on its own.
+template <bool kTurns>
+void PushOutTurningTwin(TurningRun one, TurningRun two, const Vec2* moved, const Rot* turned, Vec2* push,
+                        double* push_angular, double push_out_rate, double max_push_out_speed, double linear_slop) {
+  const std::size_t both = TwinCount(one, two);
+  const Twin rate(push_out_rate), max_speed(max_push_out_speed), slop(linear_slop);
+  for (std::size_t i = 0; i < both; ++i) {
+    TwinBlock k(one.blocks[i], two.blocks[i]);
+    TwinSecondLanes second(one.seconds[i], two.seconds[i]);
+    for (int o = 0; o < kBlockLanes; o += Lanes::kCount) {
+      PushOutTurningLanes<Twin, kTurns>(k, second, o, moved, turned, &push[0].x, push_angular, rate, max_speed, slop);
+    }
+  }
+  PushOutTurningBlocks<kTurns>(one.blocks + both, one.seconds + both, one.count - both, moved, turned, push,
+                               push_angular, push_out_rate, max_push_out_speed, linear_slop);
+  PushOutTurningBlocks<kTurns>(two.blocks + both, two.seconds + both, two.count - both, moved, turned, push,
+                               push_angular, push_out_rate, max_push_out_speed, linear_slop);
 }
 
 // `turned` null: no body's turn moves its points.
@@ -432,5 +464,17 @@ void TurningPushOutBlocks(TurningBlock* blocks, TurningSecondLanes* seconds, std
   } else {
     PushOutTurningBlocks<false>(blocks, seconds, count, moved, turned, push, push_angular, push_out_rate,
                                 max_push_out_speed, linear_slop);
+  }
+}
+
+// `turned` null: no body's turn moves its points.
+void TurningPushOutTwin(TurningRun one, TurningRun two, const Vec2* moved, const Rot* turned, Vec2* push,
+                        double* push_angular, double push_out_rate, double max_push_out_speed, double linear_slop) {
+  if (turned) {
+    PushOutTurningTwin<true>(one, two, moved, turned, push, push_angular, push_out_rate, max_push_out_speed,
+                             linear_slop);
+  } else {
+    PushOutTurningTwin<false>(one, two, moved, turned, push, push_angular, push_out_rate, max_push_out_speed,
+                              linear_slop);
   }
 }
