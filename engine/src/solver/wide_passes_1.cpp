@@ -37,6 +37,9 @@ inline Mask operator>=(Lanes a, Lanes b) { return {a.v >= b.v}; }
 inline Mask operator!=(Lanes a, Lanes b) { return {a.v != b.v}; }
 inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) { return m.lane ? if_set : if_clear; }
 inline Lanes Abs(Lanes a) { return Lanes(std::fabs(a.v)); }
+// (a > b ? a : b) and (a < b ? a : b), as x86's max and min: b where either is NaN or both are 0.
+inline Lanes MaxOf(Lanes a, Lanes b) { return a.v > b.v ? a : b; }
+inline Lanes MinOf(Lanes a, Lanes b) { return a.v < b.v ? a : b; }
 
 [[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,
                                           Lanes* y) {

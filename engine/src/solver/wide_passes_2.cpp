@@ -43,6 +43,9 @@ inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) {
   return Lanes(_mm_or_pd(_mm_and_pd(m.bits, if_set.v), _mm_andnot_pd(m.bits, if_clear.v)));
 }
 inline Lanes Abs(Lanes a) { return Lanes(_mm_andnot_pd(_mm_set1_pd(-0.0), a.v)); }
+// (a > b ? a : b) and (a < b ? a : b): b where either is NaN or both are 0.
+inline Lanes MaxOf(Lanes a, Lanes b) { return Lanes(_mm_max_pd(a.v, b.v)); }
+inline Lanes MinOf(Lanes a, Lanes b) { return Lanes(_mm_min_pd(a.v, b.v)); }
 
 // Two bodies' Vec2s (x, y at base + index·stride) into lanes of x and of y.
 [[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,

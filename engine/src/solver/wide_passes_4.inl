@@ -48,6 +48,9 @@ inline Lanes Select(Mask m, Lanes if_set, Lanes if_clear) {
   return Lanes(_mm256_blendv_pd(if_clear.v, if_set.v, m.bits));
 }
 inline Lanes Abs(Lanes a) { return Lanes(_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)); }
+// (a > b ? a : b) and (a < b ? a : b): b where either is NaN or both are 0.
+inline Lanes MaxOf(Lanes a, Lanes b) { return Lanes(_mm256_max_pd(a.v, b.v)); }
+inline Lanes MinOf(Lanes a, Lanes b) { return Lanes(_mm256_min_pd(a.v, b.v)); }
 
 // Four bodies' Vec2s (x, y at base + index·stride) into lanes of x and of y.
 [[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, const std::int32_t* index, Lanes* x,

@@ -88,7 +88,8 @@ template <typename L, typename Block>
 template <typename L>
 [[gnu::always_inline]] inline L RelativeAlong(const PointLanes<L>& p, const Motion<L>& a, const Motion<L>& b, L dx,
                                               L dy) {
-  const L rx = (b.vx + -b.w * p.rby) - (a.vx + -a.w * p.ray);
+  // x + −w·r is x − w·r: IEEE negation and subtraction round alike.
+  const L rx = (b.vx - b.w * p.rby) - (a.vx - a.w * p.ray);
   const L ry = (b.vy + b.w * p.rbx) - (a.vy + a.w * p.rax);
   return rx * dx + ry * dy;
 }
@@ -290,7 +291,9 @@ template <typename L, bool kTwo, bool kTurns, bool kFirst, typename Block, typen
     const L vt = RelativeAlong(p, a, b, tx, ty);
     const L max_friction = friction * (point == 0 ? n0 : n1);
     const L free = p.tangent_impulse - p.tangent_mass * vt;
-    const L new_tangent = Select(free < -max_friction, -max_friction, Select(free > max_friction, max_friction, free));
+    // Clamp(free, -max, max): (max < free ? max : free), then (-max > that ? -max : that), the
+    // same as max >= 0 (friction and normal impulse are), or where either is NaN.
+    const L new_tangent = MaxOf(-max_friction, MinOf(max_friction, free));
     const L d = new_tangent - p.tangent_impulse;
     Motion<L> a2 = a, b2 = b;
     ApplyAt(c, p, d * tx, d * ty, &a2, &b2);
@@ -399,7 +402,8 @@ template <typename L, bool kTurns, typename Block, typename Second>
     const L wanted = rate * -(s + slop);
     const L target = Select(max_speed < wanted, max_speed, wanted);
     L vn = (vbx - vax) * c.nx + (vby - vay) * c.ny;
-    const L cx = -wb * p.rby - -wa * p.ray, cy = wb * p.rbx - wa * p.rax;
+    // −wb·rby − −wa·ray is wa·ray − wb·rby: IEEE negation, addition and subtraction round alike.
+    const L cx = wa * p.ray - wb * p.rby, cy = wb * p.rbx - wa * p.rax;
     vn = vn + (cx * c.nx + cy * c.ny);
     const L dp = Max0(p.normal_mass * (target - vn));
     const L sa = c.ima * dp, sb = c.imb * dp;

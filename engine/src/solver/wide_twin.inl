@@ -75,7 +75,9 @@ inline Twin Select(TwinMask m, Twin if_set, Twin if_clear) {
 inline Twin Abs(Twin a) {
   return Twin(_mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(INT64_MAX))));
 }
-[[gnu::always_inline]] inline Twin Max0(Twin x) { return Select(x < Twin(0.0), Twin(0.0), x); }
+inline Twin MaxOf(Twin a, Twin b) { return Twin(_mm512_max_pd(a.v, b.v)); }
+inline Twin MinOf(Twin a, Twin b) { return Twin(_mm512_min_pd(a.v, b.v)); }
+[[gnu::always_inline]] inline Twin Max0(Twin x) { return MaxOf(Twin(0.0), x); }
 
 [[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index,
                                           Twin* x, Twin* y) {
@@ -135,6 +137,8 @@ inline Twin Select(TwinMask m, Twin if_set, Twin if_clear) {
   return {Select(m.one, if_set.one, if_clear.one), Select(m.two, if_set.two, if_clear.two)};
 }
 inline Twin Abs(Twin a) { return {Abs(a.one), Abs(a.two)}; }
+inline Twin MaxOf(Twin a, Twin b) { return {MaxOf(a.one, b.one), MaxOf(a.two, b.two)}; }
+inline Twin MinOf(Twin a, Twin b) { return {MinOf(a.one, b.one), MinOf(a.two, b.two)}; }
 [[gnu::always_inline]] inline Twin Max0(Twin x) { return {Max0(x.one), Max0(x.two)}; }
 
 [[gnu::always_inline]] inline void Gather(const double* base, std::size_t stride, TwinPtr<std::int32_t> index,
