@@ -131,10 +131,10 @@ class SubstepSolver {
   template <typename C, typename TwinPass, typename Pass>
   bool TwinStrips(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
   /// ForEachBlockRun for the passes that have twins (the warm start, the velocity passes and the
-  /// push-out):
-  /// turning blocks (C) that share no moving body go side by side, twin(one, two), the rest one
-  /// after another, pass(first, count). On one thread in strip order, the even and the odd strips
-  /// (TwinStrips); in colour order, each colour's part of a run cut in two halves.
+  /// push-out): turning blocks (C) that share no moving body go side by side, twin(one, two), the
+  /// rest one after another, pass(first, count). On one thread in strip order, the even and the
+  /// odd strips (TwinStrips); in colour order, each colour's part of a run cut in two halves
+  /// (ColourHalves).
   template <typename C, typename TwinPass, typename Pass>
   void ForEachBlockRunSideBySide(WorkerPool& pool, TwinPass&& twin, Pass&& pass);
 
