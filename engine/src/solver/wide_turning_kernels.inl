@@ -80,7 +80,10 @@ template <typename L, typename Block>
 [[gnu::always_inline]] inline PairLanes<L> LoadPair(const Block& k, int o) {
   PairLanes<L> p{L::Load(k.normal_x + o),   L::Load(k.normal_y + o),      L::Load(k.inv_mass_a + o),
                  L::Load(k.inv_mass_b + o), L::Load(k.inv_inertia_a + o), L::Load(k.inv_inertia_b + o),
-                 Moving(k.inv_mass_a + o),  Moving(k.inv_mass_b + o),     L::Load(k.two_points + o) != L(0.0)};
+                 0u,                        0u,                           L::Load(k.two_points + o) != L(0.0)};
+  // Moving's lanes, from the masses just loaded: one comparison for a Twin's eight lanes.
+  p.moving_a = Bits(p.ima != L(0.0));
+  p.moving_b = Bits(p.imb != L(0.0));
   return p;
 }
 

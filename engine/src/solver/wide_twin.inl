@@ -30,7 +30,7 @@ struct TwinPtr {
   TwinPtr operator+(int o) const { return {one + o, two + o}; }
 };
 
-// The bits of the first run's lanes in a Twin's lane bits (Bits, Moving): the low ones.
+// The bits of the first run's lanes in a Twin's lane bits (Bits): the low ones.
 inline constexpr unsigned kFirstRunBits = (1u << Lanes::kCount) - 1;
 
 #if defined(BALLBOX_TWIN_512_BITS)
@@ -160,9 +160,6 @@ inline Twin MinOf(Twin a, Twin b) { return {MinOf(a.one, b.one), MinOf(a.two, b.
   ScatterOne(base, stride, index.two, x.two, write >> Lanes::kCount);
 }
 #endif
-[[gnu::always_inline]] inline unsigned Moving(TwinPtr<double> inv_mass) {
-  return Moving(inv_mass.one) | Moving(inv_mass.two) << Lanes::kCount;
-}
 
 // Twin blocks: a block of each of two runs, field by field (TwinPtr), read and written as one
 // through Twin lanes by the turning passes (wide_turning_kernels.inl).
