@@ -131,7 +131,7 @@ void PushOutBlocks(LinearBlock* blocks, std::size_t count, const Vec2* moved, Ve
       const Mask within_slop = s >= -slop;
       if (Bits(within_slop) == (1u << Lanes::kCount) - 1) continue;
       const Lanes wanted = rate * -(s + slop);
-      const Lanes target = Select(max_speed < wanted, max_speed, wanted);
+      const Lanes target = MinOf(max_speed, wanted);  // (max_speed < wanted ? max_speed : wanted)
       Lanes vax, vay, vbx, vby;
       Gather(push_velocities, kVec2Stride, k.a + o, &vax, &vay);
       Gather(push_velocities, kVec2Stride, k.b + o, &vbx, &vby);

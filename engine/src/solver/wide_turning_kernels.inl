@@ -78,13 +78,12 @@ struct PairLanes {
 
 template <typename L, typename Block>
 [[gnu::always_inline]] inline PairLanes<L> LoadPair(const Block& k, int o) {
-  PairLanes<L> p{L::Load(k.normal_x + o),   L::Load(k.normal_y + o),      L::Load(k.inv_mass_a + o),
-                 L::Load(k.inv_mass_b + o), L::Load(k.inv_inertia_a + o), L::Load(k.inv_inertia_b + o),
-                 0u,                        0u,                           L::Load(k.two_points + o) != L(0.0)};
-  // Moving's lanes, from the masses just loaded: one comparison for a Twin's eight lanes.
-  p.moving_a = Bits(p.ima != L(0.0));
-  p.moving_b = Bits(p.imb != L(0.0));
-  return p;
+  // Which lanes move (Moving's answer), from the masses loaded here: one comparison for a Twin's
+  // eight lanes.
+  const L ima = L::Load(k.inv_mass_a + o), imb = L::Load(k.inv_mass_b + o);
+  return {L::Load(k.normal_x + o),       L::Load(k.normal_y + o),       ima,
+          imb,                           L::Load(k.inv_inertia_a + o),  L::Load(k.inv_inertia_b + o),
+          Bits(ima != L(0.0)),           Bits(imb != L(0.0)),           L::Load(k.two_points + o) != L(0.0)};
 }
 
 // Dot(RelativeVelocity(p, a, b), d): (b.v + Cross(b.w, r_b)) − (a.v + Cross(a.w, r_a)) along d.
@@ -403,7 +402,7 @@ template <typename L, bool kTurns, typename Block, typename Second>
     if (point == 1) active &= Bits(c.two);
     if (active == 0) continue;
     const L wanted = rate * -(s + slop);
-    const L target = Select(max_speed < wanted, max_speed, wanted);
+    const L target = MinOf(max_speed, wanted);  // (max_speed < wanted ? max_speed : wanted)
     L vn = (vbx - vax) * c.nx + (vby - vay) * c.ny;
     // −wb·rby − −wa·ray is wa·ray − wb·rby: IEEE negation, addition and subtraction round alike.
     const L cx = wa * p.ray - wb * p.rby, cy = wb * p.rbx - wa * p.rax;
