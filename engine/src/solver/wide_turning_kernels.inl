@@ -387,19 +387,25 @@ template <typename L, bool kTurns, typename Block, typename Second>
   const unsigned all = (1u << L::kCount) - 1;
   const PairLanes<L> c = LoadPair<L>(k, o);
   const PlaceLanes<L> q = GatherPlaces<L, kTurns>(k, o, moved, turned);
+  // Each point's separation and lanes past the slop first: the separations read the moves alone,
+  // and a block with no such lane (in the settled turning pour, 98 in 100) is passed over without
+  // gathering the push velocities.
+  const bool two = Bits(c.two) != 0;
+  const PointLanes<L> p0 = LoadPoint<L>(k.first, o), p1 = two ? LoadPoint<L>(second, o) : p0;
+  const L s0 = SeparationAt<kTurns>(q, p0, c), s1 = two ? SeparationAt<kTurns>(q, p1, c) : s0;
+  // Overlap within the slop is left alone.
+  const unsigned active0 = ~Bits(s0 >= -slop) & all, active1 = two ? ~Bits(s1 >= -slop) & Bits(c.two) : 0u;
+  if ((active0 | active1) == 0) return;
   // The push velocities as stored: point 1 reads what point 0 wrote, where it wrote.
   L vax, vay, vbx, vby;
   Gather(push_linear, kVec2Stride, k.a + o, &vax, &vay);
   Gather(push_linear, kVec2Stride, k.b + o, &vbx, &vby);
   L wa = GatherOne(push_angular, 1, k.a + o), wb = GatherOne(push_angular, 1, k.b + o);
   unsigned written_a = 0, written_b = 0;
-  const int points = Bits(c.two) != 0 ? 2 : 1;
-  for (int point = 0; point < points; ++point) {
-    const PointLanes<L> p = point == 0 ? LoadPoint<L>(k.first, o) : LoadPoint<L>(second, o);
-    const L s = SeparationAt<kTurns>(q, p, c);
-    // Overlap within the slop is left alone.
-    unsigned active = ~Bits(s >= -slop) & all;
-    if (point == 1) active &= Bits(c.two);
+  for (int point = 0; point < (two ? 2 : 1); ++point) {
+    const PointLanes<L>& p = point == 0 ? p0 : p1;
+    const L s = point == 0 ? s0 : s1;
+    const unsigned active = point == 0 ? active0 : active1;
     if (active == 0) continue;
     const L wanted = rate * -(s + slop);
     const L target = MinOf(max_speed, wanted);  // (max_speed < wanted ? max_speed : wanted)
