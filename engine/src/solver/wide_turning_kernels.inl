@@ -33,25 +33,46 @@ MaskFor<L> NoLanes() {
 template <typename L>
 struct Motion {
   L vx, vy, w;
+  /// The body's angle, where its state is read and written as a row (kTwinRows): written back
+  /// as read. Not read otherwise.
+  L angle;
 };
+
+// Twins read and write the bodies' states in rows where they are one 512-bit vector (GatherRows).
+template <typename L>
+inline constexpr bool kRowsFor = kTwinRows && std::is_same_v<L, Twin>;
+
+static_assert(offsetof(BodyState, angle) == (kVelocityOffset + 2) * sizeof(double) &&
+              offsetof(BodyState, angular_velocity) == kOmegaOffset * sizeof(double));
 
 template <typename L, typename Index>
 [[gnu::always_inline]] inline Motion<L> GatherMotion(BodyState* states, Index index) {
   Motion<L> m;
-  Gather(&states[0].position.x + kVelocityOffset, kStateStride, index, &m.vx, &m.vy);
-  m.w = GatherOne(&states[0].position.x + kOmegaOffset, kStateStride, index);
+  if constexpr (kRowsFor<L>) {
+    GatherRows(&states[0].position.x + kVelocityOffset, kStateStride, index, &m.vx, &m.vy, &m.angle, &m.w);
+  } else {
+    Gather(&states[0].position.x + kVelocityOffset, kStateStride, index, &m.vx, &m.vy);
+    m.w = GatherOne(&states[0].position.x + kOmegaOffset, kStateStride, index);
+    m.angle = L(0.0);
+  }
   return m;
 }
 
 template <typename L, typename Index>
 [[gnu::always_inline]] inline void ScatterMotion(BodyState* states, Index index, const Motion<L>& m, unsigned write) {
-  Scatter(&states[0].position.x + kVelocityOffset, kStateStride, index, m.vx, m.vy, write);
-  ScatterOne(&states[0].position.x + kOmegaOffset, kStateStride, index, m.w, write);
+  if constexpr (kRowsFor<L>) {
+    ScatterRows(&states[0].position.x + kVelocityOffset, kStateStride, index, m.vx, m.vy, m.angle, m.w, write);
+  } else {
+    Scatter(&states[0].position.x + kVelocityOffset, kStateStride, index, m.vx, m.vy, write);
+    ScatterOne(&states[0].position.x + kOmegaOffset, kStateStride, index, m.w, write);
+  }
 }
 
 template <typename L>
 [[gnu::always_inline]] inline Motion<L> Select(MaskFor<L> m, const Motion<L>& if_set, const Motion<L>& if_clear) {
-  return {Select(m, if_set.vx, if_clear.vx), Select(m, if_set.vy, if_clear.vy), Select(m, if_set.w, if_clear.w)};
+  // The angle is the same in both: no pass changes it.
+  return {Select(m, if_set.vx, if_clear.vx), Select(m, if_set.vy, if_clear.vy), Select(m, if_set.w, if_clear.w),
+          if_clear.angle};
 }
 
 // One point's lanes: its anchors and the fields the passes read.
