@@ -10,10 +10,23 @@
 #include "solver/body_cut.h"
 #include "solver/shock_propagation.h"
 #include "solver/shock_schedule.h"
+#include "integrate.h"
 #include "solver/substep_passes.h"
 #include "solver/substep_constraint.h"
 
 namespace {
+
+// Each body's move since the step's start for the bodies [begin, end), as the solver's passes that
+// move the bodies measure it (MoveMeasure).
+void MeasureMovesIn(std::span<const engine::BodyState> states, std::span<const engine::Vec2> start,
+                    std::span<engine::Vec2> moved, std::size_t begin, std::size_t end) {
+  const engine::detail::MoveMeasure measure{start, moved};
+  for (std::size_t i = begin; i < end; ++i) measure.At(states, i);
+}
+void MeasureMoves(std::span<const engine::BodyState> states, std::span<const engine::Vec2> start,
+                  std::span<engine::Vec2> moved) {
+  MeasureMovesIn(states, start, moved, 0, states.size());
+}
 
 // A pile of `columns` × `rows` unit bodies on a static floor (body 0), each standing on the one
 // below and leaning on the one below-right (a diagonal contact, so rows cross from column to
@@ -95,7 +108,7 @@ std::vector<engine::BodyState> Propagate(const Pile& pile, int threads, std::siz
   }
   std::vector<engine::BodyState> states = pile.states;
   std::vector<engine::Vec2> moved(states.size());  // the pass moves no centre: made once
-  engine::detail::MeasureMoves(states, pile.start_positions, moved);
+  MeasureMoves(states, pile.start_positions, moved);
   for (int substep = 0; substep < 4; ++substep) schedule.Run(pool, rows, states, moved, 240.0, 0.005);
   return states;
 }
@@ -198,7 +211,7 @@ TEST_CASE("shock bands that wait work out their rows' gaps meanwhile, to the one
   engine::detail::BuildShockRows<engine::LinearConstraint>(pile.constraints, pile.infos, {0.0, 1.0}, &scratch,
                                                            &rows);
   std::vector<engine::Vec2> moved(pile.states.size());
-  engine::detail::MeasureMoves(pile.states, pile.start_positions, moved);
+  MeasureMoves(pile.states, pile.start_positions, moved);
   std::size_t dead = 0, room = 0;
   for (const engine::detail::ShockRow& row : rows) {
     const engine::detail::ShockGap gap = engine::detail::GapOf(row, moved, 240.0, 0.005);
@@ -290,13 +303,13 @@ TEST_CASE("shock bands move their share of the bodies once no later band touches
       if (pile.infos[i].is_static) continue;
       states[i].position += states[i].velocity * h;
     }
-    engine::detail::MeasureMovesIn(states, pile.start_positions, moved, begin, end);
+    MeasureMovesIn(states, pile.start_positions, moved, begin, end);
   };
   const auto n = static_cast<std::uint32_t>(pile.states.size());
   // One thread: the pass, then every body moved.
   std::vector<engine::BodyState> one = pile.states;
   std::vector<engine::Vec2> one_moved(n);
-  engine::detail::MeasureMoves(one, pile.start_positions, one_moved);
+  MeasureMoves(one, pile.start_positions, one_moved);
   for (int substep = 0; substep < 4; ++substep) {
     engine::detail::PropagateShock(rows, one, one_moved, 240.0, 0.005, true);
     move(one, one_moved, 0, n);
@@ -309,7 +322,7 @@ TEST_CASE("shock bands move their share of the bodies once no later band touches
     REQUIRE(schedule.SharedAmong(pool));
     std::vector<engine::BodyState> states = pile.states;
     std::vector<engine::Vec2> moved(n);
-    engine::detail::MeasureMoves(states, pile.start_positions, moved);
+    MeasureMoves(states, pile.start_positions, moved);
     std::vector<int> calls(static_cast<std::size_t>(threads), 0);
     auto after = [&](int band) {
       ++calls[static_cast<std::size_t>(band)];

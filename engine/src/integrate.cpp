@@ -125,7 +125,7 @@ void RungeKutta4Step(const ForceModel& forces, std::span<const BodyState> states
 // the copy back), body by body in one loop, the bodies shared among threads. Five passes over
 // the bodies became one.
 void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<BodyState> states, double h,
-                      FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
+                      FreeMotion* m, WorkerPool* pool, const PushVelocities* carried, const MoveMeasure* measure) {
   const std::size_t n = states.size();
   const double alpha = 0.0;
   if (semi_implicit) {
@@ -135,8 +135,11 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
     const PushVelocities push = push_carried ? *carried : PushVelocities{};
     const std::span<const std::uint8_t> moving = forces.moving;
     const Vec2 gravity = forces.def.gravity;
+    const bool measuring = measure != nullptr;
+    const MoveMeasure moves = measuring ? *measure : MoveMeasure{};
     ForEachIndex(pool, n, kMinSharedBodies, [=](std::uint32_t i) {  // by value: see ForEachIndex
       if (push_carried) MoveBodyByPush(states, push, rotation, h, i);
+      if (measuring) moves.At(states, i);
       if (!moving[i]) return;
       const Vec2 a = moving[i] == kAwake ? gravity : Vec2{};
       states[i].velocity = states[i].velocity + a * h;
@@ -150,6 +153,7 @@ void GravityEulerStep(bool semi_implicit, const ForceModel& forces, std::span<Bo
   m->angular_drift.resize(n);
   const auto step = [&](std::uint32_t i) {
     if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
+    if (measure) measure->At(states, i);
     const Vec2 a = forces.moving[i] == kAwake ? forces.def.gravity : Vec2{};
     const Vec2 v0 = states[i].velocity;
     const double w0 = states[i].angular_velocity;
@@ -185,15 +189,18 @@ void DampStiffDrag(const ForceModel& forces, std::span<const BodyState> states, 
 }  // namespace
 
 void FreeStep(Integrator integrator, const ForceModel& forces, std::span<BodyState> states,
-              double h, FreeMotion* m, WorkerPool* pool, const PushVelocities* carried) {
+              double h, FreeMotion* m, WorkerPool* pool, const PushVelocities* carried, const MoveMeasure* measure) {
   const bool euler = integrator == Integrator::kSemiImplicitEuler || integrator == Integrator::kExplicitEuler;
   if (euler && !forces.BeyondGravity()) {
-    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool, carried);
+    GravityEulerStep(integrator == Integrator::kSemiImplicitEuler, forces, states, h, m, pool, carried, measure);
     return;
   }
-  if (carried) {  // forces read positions: every body moves first
-    ForEachIndex(pool, states.size(), kMinSharedBodies,
-                 [&](std::uint32_t i) { MoveBodyByPush(states, *carried, forces.rotation, h, i); });
+  // Forces read positions: every body moves first (the steps below change velocities alone).
+  if (carried || measure) {
+    ForEachIndex(pool, states.size(), kMinSharedBodies, [&](std::uint32_t i) {
+      if (carried) MoveBodyByPush(states, *carried, forces.rotation, h, i);
+      if (measure) measure->At(states, i);
+    });
   }
   StartFreeStep(forces, states, m);
   switch (integrator) {
@@ -238,16 +245,22 @@ void MoveBody(Integrator integrator, std::span<BodyState> states, std::span<cons
 
 void MoveBodies(Integrator integrator, std::span<BodyState> states,
                 std::span<const std::uint8_t> moving, std::span<const std::uint8_t> pushed,
-                bool rotation, const FreeMotion& m, double h, WorkerPool* pool) {
+                bool rotation, const FreeMotion& m, double h, WorkerPool* pool, const MoveMeasure* measure) {
+  const bool measuring = measure != nullptr;
+  const MoveMeasure moves = measuring ? *measure : MoveMeasure{};
   ForEachIndex(pool, states.size(), kMinSharedBodies, [=, &m](std::uint32_t i) {  // by value: see ForEachIndex
     MoveBody(integrator, states, moving, pushed, rotation, m, h, i);
+    if (measuring) moves.At(states, i);
   });
 }
 
 void MoveBodiesIn(Integrator integrator, std::span<BodyState> states, std::span<const std::uint8_t> moving,
                   std::span<const std::uint8_t> pushed, bool rotation, const FreeMotion& m, double h,
-                  std::uint32_t begin, std::uint32_t end) {
-  for (std::uint32_t i = begin; i < end; ++i) MoveBody(integrator, states, moving, pushed, rotation, m, h, i);
+                  std::uint32_t begin, std::uint32_t end, const MoveMeasure* measure) {
+  for (std::uint32_t i = begin; i < end; ++i) {
+    MoveBody(integrator, states, moving, pushed, rotation, m, h, i);
+    if (measure) measure->At(states, i);
+  }
 }
 
 }  // namespace engine::detail

@@ -559,17 +559,6 @@ void ClearPush(PushVelocities push, WorkerPool* pool) {
   });
 }
 
-void MeasureMoves(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
-                  WorkerPool* pool) {
-  ForEachIndex(pool, states.size(), kMinSharedBodies,  // by value: see ForEachIndex
-               [=](std::uint32_t i) { moved[i] = states[i].position - start_positions[i]; });
-}
-
-void MeasureMovesIn(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
-                    std::uint32_t begin, std::uint32_t end) {
-  for (std::uint32_t i = begin; i < end; ++i) moved[i] = states[i].position - start_positions[i];
-}
-
 void MoveByPush(std::span<BodyState> states, PushVelocities push, bool rotation, double h, WorkerPool* pool) {
   ForEachIndex(pool, states.size(), kMinSharedBodies,
                [=](std::uint32_t i) { MoveBodyByPush(states, push, rotation, h, i); });

@@ -152,16 +152,6 @@ void PushOut(std::span<C> constraints, std::span<const BodyState> states,
              const StepStart& start, PushVelocities push, double push_out_rate,
              double max_push_out_speed, double linear_slop);
 
-/// Each body's move since the step's start, `moved[i]` = position − start: the separations the
-/// wide passes and shock propagation measure follow from it (one Vec2 a body read, where the
-/// position and the start had been two; the same subtraction, so the same bits). Made after
-/// each change of the positions that those passes read. `pool`: threads to share the bodies among.
-void MeasureMoves(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
-                  WorkerPool* pool = nullptr);
-/// MeasureMoves for the bodies [begin, end) alone, on the calling thread.
-void MeasureMovesIn(std::span<const BodyState> states, std::span<const Vec2> start_positions, std::span<Vec2> moved,
-                    std::uint32_t begin, std::uint32_t end);
-
 /// Moves every body by its push velocity for one substep, and sets the push velocities back to
 /// zero for the next (in the same pass: a pass of its own over every body cost a hand-off to the
 /// threads and back each substep). `pool`: threads to share the bodies among.

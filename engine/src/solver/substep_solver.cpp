@@ -387,16 +387,14 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
   const WarmStartImpulses warm{warm_free_, warm_free_angular_};
   const PushVelocities push{push_velocities_, push_angular_velocities_};
 
+  // The lanes and shock propagation measure separations from the bodies' moves.
+  const bool lanes_measure = plan.wide != nullptr;
+  const MoveMeasure measure{context.start_positions, moved_};
   FreeStep(def.integrator, context.forces, states, h, &context.free_motion, &context.pool,
-           push_carried ? &push : nullptr);
+           push_carried ? &push : nullptr, lanes_measure || plan.shock_propagation ? &measure : nullptr);
   // Forces beyond gravity may overflow: name the body before contacts spread it. (Gravity
   // alone cannot; the check at the step's end catches anything else.)
   if (plan.check_forces && context.StopIfNonFinite()) return;
-  // The lanes and shock propagation measure separations from the bodies' moves.
-  const bool lanes_measure = plan.wide != nullptr;
-  if (lanes_measure || plan.shock_propagation) {
-    MeasureMoves(states, context.start_positions, moved_, &context.pool);
-  }
   const double energy_before = plan.energy_limit ? KineticEnergy(states, context.infos) : 0.0;
   JointSolver* joints = context.joints;
   if (joints) joints->Begin(states, h, true);  // springs, then the joints' warm start
@@ -431,15 +429,15 @@ void SubstepSolver::Substep(StepContext& context, std::span<C> constraints, cons
     auto move_share = [&, threads](int band) {
       const BodyIndex begin = ShareBegin(states.size(), threads, band);
       const BodyIndex end = ShareBegin(states.size(), threads, band + 1);
-      MoveBodiesIn(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, begin, end);
-      if (lanes_measure) MeasureMovesIn(states, context.start_positions, moved_, begin, end);
+      MoveBodiesIn(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, begin, end,
+                   lanes_measure ? &measure : nullptr);
     };
     shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop, JobRef(move_share));
   } else {
     if (plan.shock_propagation) shock_schedule_.Run(context.pool, shock_rows_, states, moved_, inv_h, def.linear_slop);
-    MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool);
+    MoveBodies(def.integrator, states, context.moving, pushed_, def.rotation, context.free_motion, h, &context.pool,
+               lanes_measure ? &measure : nullptr);
     if (plan.track_turning) UpdateTurned(context);
-    if (lanes_measure) MeasureMoves(states, context.start_positions, moved_, &context.pool);
   }
   PushOutPass(context, constraints, plan, start, push);
   if constexpr (kCanTurn<C>) {
