@@ -8,7 +8,6 @@
 #include <numbers>
 
 #include "solver/constraint_groups.h"
-#include "store_whole.h"
 
 namespace engine::detail {
 
@@ -180,6 +179,7 @@ bool JointSolver::Prepare(JointTable* table, std::span<const BodyState> states,
     if (joined_[i]) joined_bodies_.push_back(static_cast<BodyIndex>(i));
   }
   rotations_.resize(states.size());
+  rotation_lanes_ = &WidePassesFor(def.substep_features.lanes);
   PrepareDirect(infos);
   // The lanes need the bodies' angular velocities (and push velocities) to be there.
   wide_passes_ = nullptr;
@@ -224,9 +224,13 @@ BodyState& JointSolver::StateA(const JointWork& w, std::span<BodyState> states) 
 void JointSolver::UpdateFrames(std::span<const BodyState> states) {
   // Each body's rotation once: a body of a grid holds four joints. Each joint's frames are its
   // own, so the threads share them out with the same bits.
-  pool_->ParallelFor(static_cast<std::uint32_t>(joined_bodies_.size()), kMinParallelJoints, [&](std::uint32_t k) {
-    const BodyIndex i = joined_bodies_[k];
-    StoreRot(&rotations_[i], states[i].angle);  // one store (store_whole.h says why)
+  // In lanes, a run of the bodies at a time (WidePasses::rotations).
+  const auto joined = static_cast<std::uint32_t>(joined_bodies_.size());
+  constexpr std::uint32_t kRun = 64;
+  pool_->ParallelFor((joined + kRun - 1) / kRun, kMinParallelJoints / kRun, [&](std::uint32_t run) {
+    const std::uint32_t begin = run * kRun;
+    rotation_lanes_->rotations(&states[0].angle, sizeof(BodyState) / sizeof(double), joined_bodies_.data() + begin,
+                               std::min(kRun, joined - begin), rotations_.data());
   });
   pool_->ParallelFor(static_cast<std::uint32_t>(work_.size()), kMinParallelJoints, [&](std::uint32_t i) {
     JointWork& w = work_[i];

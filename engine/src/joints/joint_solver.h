@@ -113,6 +113,7 @@ class JointSolver {
   std::vector<Rot> rotations_;            ///< per joined body: its rotation (UpdateFrames)
   WideJoints wide_;
   const WidePasses* wide_passes_ = nullptr;  ///< null: every joint one at a time
+  const WidePasses* rotation_lanes_ = nullptr;  ///< the joined bodies' rotations (UpdateFrames)
   std::vector<std::uint32_t> scalar_works_;  ///< the works not in lanes, in slot order
   WorkerPool* pool_ = nullptr;
   BodyState ground_;  ///< what a target joint's missing body A reads and (with zero mass) writes

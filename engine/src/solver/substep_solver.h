@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "forces/force_model.h"
+#include "parallel/per_thread.h"
 #include "solver/contact_graph_memo.h"
 #include "solver/contact_order.h"
 #include "solver/direct_solver.h"
@@ -159,6 +160,8 @@ class SubstepSolver {
   /// Per body: it has no inverse inertia (its turn stays Rot{}); read from the infos once a step
   /// rather than at every UpdateTurned.
   std::vector<std::uint8_t> unturned_;
+  /// UpdateTurned's, per thread: the bodies of its share whose turn changed and can turn.
+  std::vector<PerThread<std::vector<BodyIndex>>> turning_now_;
   std::vector<Vec2> push_velocities_;                   ///< PushVelocities' storage
   std::vector<double> push_angular_velocities_;
   std::vector<std::uint8_t> pushed_;

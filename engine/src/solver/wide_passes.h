@@ -87,6 +87,10 @@ struct WidePasses {
   void (*joint_warm_start)(JointBlock* blocks, std::size_t count, BodyState* states);
   void (*joint_solve)(JointBlock* blocks, std::size_t count, BodyState* states, double inv_h);
   void (*joint_push_out)(JointBlock* blocks, std::size_t count, Vec2* push, double* push_angular, double rate);
+  // Each listed body's rotation: rotations[bodies[k]] = MakeRot(angles[bodies[k] · stride]), with
+  // ComputeCosSin's bits, for k < count (wide_cos_sin.inl).
+  void (*rotations)(const double* angles, std::size_t stride, const BodyIndex* bodies, std::size_t count,
+                    Rot* rotations);
 };
 
 /// The widest lanes this processor runs: 4 with AVX2, 2 on any other x86-64, 1 elsewhere.

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "solver/wide_passes.h"
+#include "store_whole.h"
 
 namespace engine::detail {
 
@@ -68,11 +69,13 @@ inline Lanes MinOf(Lanes a, Lanes b) { return a.v < b.v ? a : b; }
 #include "solver/wide_twin.inl"
 #include "solver/wide_turning_kernels.inl"
 #include "joints/wide_joint_kernels.inl"
+#include "solver/wide_cos_sin.inl"
 
 constexpr WidePasses kPasses{1, WarmStartBlocks, SolveBlocks, PushOutBlocks,
                              TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
                              TurningSolveTwin,       TurningPushOutBlocks,   TurningPushOutTwin,
-                             JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
+                             JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks,
+                             RotationsOf};
 
 }  // namespace
 

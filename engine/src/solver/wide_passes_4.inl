@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "solver/wide_passes.h"
+#include "store_whole.h"
 
 namespace engine::detail {
 
@@ -93,11 +94,13 @@ inline Lanes MinOf(Lanes a, Lanes b) { return Lanes(_mm256_min_pd(a.v, b.v)); }
 #include "solver/wide_twin.inl"
 #include "solver/wide_turning_kernels.inl"
 #include "joints/wide_joint_kernels.inl"
+#include "solver/wide_cos_sin.inl"
 
 constexpr WidePasses kPasses{4, WarmStartBlocks, SolveBlocks, PushOutBlocks,
                              TurningWarmStartBlocks, TurningSolveBlocks, TurningWarmStartTwin,
                              TurningSolveTwin,       TurningPushOutBlocks,   TurningPushOutTwin,
-                             JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks};
+                             JointWarmStartBlocks,   JointSolveBlocks,   JointPushOutBlocks,
+                             RotationsOf};
 
 }  // namespace
 
