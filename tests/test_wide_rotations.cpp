@@ -1,5 +1,6 @@
 // The bodies' rotations in lanes (WidePasses::rotations, solver/wide_cos_sin.inl) against
-// ComputeCosSin one angle at a time: the same bits at every width, for every kind of angle.
+// ComputeCosSin one angle at a time: the same bits in every build of the lanes this processor
+// runs, for every kind of angle.
 #include <catch2/catch.hpp>
 
 #include <bit>
@@ -58,10 +59,9 @@ TEST_CASE("wide rotations: every width gives ComputeCosSin's bits for every list
   std::vector<BodyIndex> bodies;
   for (std::size_t i = angles.size(); i-- > 0;) bodies.push_back(static_cast<BodyIndex>(i));
   if (bodies.size() % 2 == 0) bodies.erase(bodies.begin() + 3);
-  for (int lanes = 1; lanes <= engine::detail::WidestLanes(); lanes *= 2) {
-    INFO(lanes << " lanes");
-    const engine::detail::WidePasses& passes = engine::detail::WidePassesFor(lanes);
-    REQUIRE(passes.lanes == lanes);
+  for (const engine::detail::WidePasses* build : engine::detail::RunnableWidePasses()) {
+    const engine::detail::WidePasses& passes = *build;
+    INFO(passes.lanes << " lanes");
     const Rot unwritten{-7.0, -7.0};
     std::vector<Rot> rotations(states.size(), unwritten);
     passes.rotations(&states[0].angle, sizeof(BodyState) / sizeof(double), bodies.data(), bodies.size(),
