@@ -2,6 +2,7 @@
 #include "solver/wide_constraints.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <utility>
 
@@ -33,9 +34,8 @@ void SetLead(const Constraint& c, BodyIndex* body, BodyIndex* fixed) {
   *fixed = a_fixed ? c.a : kNoBody;
 }
 
-// Lane `lane` of a turning block and of its second points (zero for a one-point contact), with
-// the block solver's K.
-void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes* second, int lane) {
+// Lane `lane` of a turning block: its pair and first point.
+void PutLane(const SubstepConstraint& c, TurningBlock* block, int lane) {
   block->a[lane] = static_cast<std::int32_t>(c.a);
   block->b[lane] = static_cast<std::int32_t>(c.b);
   block->two_points[lane] = c.point_count == 2 ? 1.0 : 0.0;
@@ -46,22 +46,35 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes
   block->inv_inertia_a[lane] = c.inv_inertia_a;
   block->inv_inertia_b[lane] = c.inv_inertia_b;
   block->friction[lane] = c.friction;
-  const SubstepPoint none{};  // a one-point contact's second point: zero
-  for (int k = 0; k < 2; ++k) {
-    const SubstepPoint& p = k < c.point_count ? c.points[k] : none;
-    TurningPointLanes& lanes = k == 0 ? block->first : *second;
-    lanes.base_separation[lane] = p.base_separation;
-    lanes.normal_mass[lane] = p.normal_mass;
-    lanes.tangent_mass[lane] = p.tangent_mass;
-    lanes.normal_impulse[lane] = p.normal_impulse;
-    lanes.tangent_impulse[lane] = p.tangent_impulse;
-    lanes.anchor_a_x[lane] = p.anchor_a.x;
-    lanes.anchor_a_y[lane] = p.anchor_a.y;
-    lanes.anchor_b_x[lane] = p.anchor_b.x;
-    lanes.anchor_b_y[lane] = p.anchor_b.y;
-  }
-  // The block solver's K and what it divides by, as SolveTwoPoints works them out.
+  const SubstepPoint& p = c.points[0];
+  TurningPointLanes& lanes = block->first;
+  lanes.base_separation[lane] = p.base_separation;
+  lanes.normal_mass[lane] = p.normal_mass;
+  lanes.tangent_mass[lane] = p.tangent_mass;
+  lanes.normal_impulse[lane] = p.normal_impulse;
+  lanes.tangent_impulse[lane] = p.tangent_impulse;
+  lanes.anchor_a_x[lane] = p.anchor_a.x;
+  lanes.anchor_a_y[lane] = p.anchor_a.y;
+  lanes.anchor_b_x[lane] = p.anchor_b.x;
+  lanes.anchor_b_y[lane] = p.anchor_b.y;
+}
+
+// Lane `lane` of a block's second points (zero for a one-point contact), with the block
+// solver's K.
+void PutSecondLane(const SubstepConstraint& c, TurningSecondLanes* second, int lane) {
   const bool two = c.point_count == 2;
+  const SubstepPoint none{};  // a one-point contact's second point: zero
+  const SubstepPoint& p = two ? c.points[1] : none;
+  second->base_separation[lane] = p.base_separation;
+  second->normal_mass[lane] = p.normal_mass;
+  second->tangent_mass[lane] = p.tangent_mass;
+  second->normal_impulse[lane] = p.normal_impulse;
+  second->tangent_impulse[lane] = p.tangent_impulse;
+  second->anchor_a_x[lane] = p.anchor_a.x;
+  second->anchor_a_y[lane] = p.anchor_a.y;
+  second->anchor_b_x[lane] = p.anchor_b.x;
+  second->anchor_b_y[lane] = p.anchor_b.y;
+  // The block solver's K and what it divides by, as SolveTwoPoints works them out.
   const TwoPointMass k = two ? NormalMass(c, c.points[0], c.points[1], c.inv_mass_a, c.inv_mass_b, c.inv_inertia_a,
                                           c.inv_inertia_b)
                              : TwoPointMass{};
@@ -73,6 +86,21 @@ void PutLane(const SubstepConstraint& c, TurningBlock* block, TurningSecondLanes
   second->inv_det[lane] = two ? 1.0 / det : 0.0;
   second->inv_k11[lane] = two ? 1.0 / k.k11 : 0.0;
   second->inv_k22[lane] = two ? 1.0 / k.k22 : 0.0;
+}
+
+// A block's second points, once its lanes are in: written only where a lane has two points
+// (WideTurningConstraints::second_points says why). `lanes[l]`: the constraint in lane l, null
+// for padding.
+void PutSecondLanes(const std::array<const SubstepConstraint*, kBlockLanes>& lanes, const TurningBlock& block,
+                    TurningSecondLanes* second) {
+  bool any_two = false;
+  for (int l = 0; l < kBlockLanes; ++l) any_two = any_two || block.two_points[l] != 0.0;
+  if (!any_two) return;
+  const SubstepConstraint padding{};
+  for (int l = 0; l < kBlockLanes; ++l) {
+    const auto lane = static_cast<std::size_t>(l);
+    PutSecondLane(lanes[lane] ? *lanes[lane] : padding, second, l);
+  }
 }
 
 // How many blocks runs side by side take: as many as the longest has constraints.
@@ -93,16 +121,19 @@ std::size_t PlaceSideBySide(std::span<const SubstepConstraint> constraints, Cons
   const SubstepConstraint padding{};  // zero, on body 0
   for (std::uint32_t k = 0; k < longest; ++k) {
     const std::size_t block = first + k;
+    std::array<const SubstepConstraint*, kBlockLanes> in_lanes{};
     for (int l = 0; l < kBlockLanes; ++l) {
       const auto lane = static_cast<std::size_t>(l);
       if (lane < runs.size() && runs[lane].first + k < runs[lane].second) {
         const std::uint32_t j = runs[lane].first + k;
-        PutLane(constraints[j], &wide->blocks[block], &wide->second_points[block], l);
+        in_lanes[lane] = &constraints[j];
+        PutLane(constraints[j], &wide->blocks[block], l);
         wide->lane_of[j] = static_cast<std::uint32_t>(block * kBlockLanes + lane);
       } else {
-        PutLane(padding, &wide->blocks[block], &wide->second_points[block], l);
+        PutLane(padding, &wide->blocks[block], l);
       }
     }
+    PutSecondLanes(in_lanes, wide->blocks[block], &wide->second_points[block]);
   }
   return first + longest;
 }
@@ -131,10 +162,12 @@ void LayoutColours(const ContactOrder& colours, ContactOrder* order, std::vector
 
 // Fills blocks [begin, end) of a colour layout (LayoutColours), lane by lane through
 // put(constraint, block, lane): block k of group g holds the group's constraints from its
-// (k − the group's first block) × lanes on, padding past the group's end.
-template <typename Constraint, typename Put>
+// (k − the group's first block) × lanes on, padding past the group's end. Then finish(block,
+// the constraints in its lanes, null for padding).
+template <typename Constraint, typename Put, typename Finish>
 void PackColours(std::span<const Constraint> constraints, const ContactOrder& colours, const ContactOrder& order,
-                 std::uint32_t begin, std::uint32_t end, Put&& put, std::vector<std::uint32_t>* lane_of) {
+                 std::uint32_t begin, std::uint32_t end, Put&& put, Finish&& finish,
+                 std::vector<std::uint32_t>* lane_of) {
   for (std::size_t g = 0; g < order.group_ends.size(); ++g) {
     const std::uint32_t group_begin = g == 0 ? 0 : order.group_ends[g - 1];
     const std::uint32_t group_end = order.group_ends[g];
@@ -146,13 +179,16 @@ void PackColours(std::span<const Constraint> constraints, const ContactOrder& co
     for (std::uint32_t k = std::max(begin, group_begin); k < std::min(end, group_end); ++k) {
       const std::uint32_t j0 = first + (k - group_begin) * lanes;
       const std::uint32_t filled = std::min(lanes, last - j0);
+      std::array<const Constraint*, kBlockLanes> in_lanes{};
       for (std::uint32_t lane = 0; lane < filled; ++lane) {
         put(constraints[j0 + lane], k, static_cast<int>(lane));
+        in_lanes[lane] = &constraints[j0 + lane];
         (*lane_of)[j0 + lane] = k * kBlockLanes + lane;
       }
       for (std::uint32_t lane = filled; lane < kBlockLanes; ++lane) {
         put(Constraint{}, k, static_cast<int>(lane));  // padding: zero, on body 0
       }
+      finish(k, in_lanes);
     }
   }
 }
@@ -250,10 +286,13 @@ void WideTurningConstraints::Layout(const ContactOrder& colours) {
 void WideTurningConstraints::PackBlocks(std::span<const SubstepConstraint> constraints, const ContactOrder& colours,
                                         std::uint32_t begin, std::uint32_t end) {
   const auto put = [&](const SubstepConstraint& c, std::uint32_t block, int lane) {
-    PutLane(c, &blocks[block], &second_points[block], lane);
+    PutLane(c, &blocks[block], lane);
     if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
   };
-  PackColours(constraints, colours, order, begin, end, put, &lane_of);
+  const auto finish = [&](std::uint32_t block, const std::array<const SubstepConstraint*, kBlockLanes>& in_lanes) {
+    PutSecondLanes(in_lanes, blocks[block], &second_points[block]);
+  };
+  PackColours(constraints, colours, order, begin, end, put, finish, &lane_of);
 }
 
 void WideTurningConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
@@ -298,7 +337,7 @@ void WideConstraints::PackBlocks(std::span<const LinearConstraint> constraints, 
     PutLane(c, &blocks[block], lane);
     if (lane == 0) SetLead(c, &lead_body[block], &lead_fixed[block]);  // lane 0 is never padding
   };
-  PackColours(constraints, colours, order, begin, end, put, &lane_of);
+  PackColours(constraints, colours, order, begin, end, put, [](std::uint32_t, const auto&) {}, &lane_of);
 }
 
 void WideConstraints::StoreImpulses(std::span<const std::uint32_t> slot, std::span<Contact> contacts,
@@ -319,7 +358,9 @@ void MarkPushedWide(const WideTurningConstraints& wide, std::size_t body_count, 
   for (std::size_t k = 0; k < wide.blocks.size(); ++k) {
     const TurningBlock& block = wide.blocks[k];
     for (int lane = 0; lane < kBlockLanes; ++lane) {
-      if (block.first.normal_impulse[lane] > 0.0 || wide.second_points[k].normal_impulse[lane] > 0.0) {
+      // A one-point lane's second point may hold anything (PutSecondLanes).
+      const bool second_pushes = block.two_points[lane] != 0.0 && wide.second_points[k].normal_impulse[lane] > 0.0;
+      if (block.first.normal_impulse[lane] > 0.0 || second_pushes) {
         (*pushed)[block.a[lane]] = (*pushed)[block.b[lane]] = 1;
       }
     }
