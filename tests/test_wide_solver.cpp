@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -248,6 +249,22 @@ Outcome RunTurningPasses(const Scene& scene, const engine::detail::ContactOrder&
   wide.Pack(out.turning, order);
   const std::size_t blocks = wide.blocks.size();
   REQUIRE(wide.second_points.size() == blocks);
+  // A block whose lanes all have one point is packed without its second points, which the passes
+  // must not keep anything of (WideTurningConstraints::second_points): NaN there, the bits below
+  // still match the one-at-a-time passes'.
+  std::size_t unwritten = 0;
+  for (std::size_t k = 0; k < blocks; ++k) {
+    if (std::ranges::any_of(wide.blocks[k].two_points, [](double two) { return two != 0.0; })) continue;
+    ++unwritten;
+    engine::detail::TurningSecondLanes& second = wide.second_points[k];
+    for (double* field : {second.base_separation, second.normal_mass, second.tangent_mass, second.normal_impulse,
+                          second.tangent_impulse, second.anchor_a_x, second.anchor_a_y, second.anchor_b_x,
+                          second.anchor_b_y, second.min_normal_speed, second.k11, second.k12, second.k22,
+                          second.det, second.inv_det, second.inv_k11, second.inv_k22}) {
+      std::fill(field, field + engine::detail::kBlockLanes, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  CHECK(unwritten > 0);
   const auto run = [&](std::size_t begin, std::size_t end) {
     return TurningRun{wide.blocks.data() + begin, wide.second_points.data() + begin, end - begin};
   };
