@@ -6,27 +6,18 @@
 #include <cstring>
 #include <vector>
 
+#include "move_measure.h"
 #include "parallel/worker_pool.h"
 #include "solver/body_cut.h"
 #include "solver/shock_propagation.h"
 #include "solver/shock_schedule.h"
-#include "integrate.h"
 #include "solver/substep_passes.h"
 #include "solver/substep_constraint.h"
 
 namespace {
 
-// Each body's move since the step's start for the bodies [begin, end), as the solver's passes that
-// move the bodies measure it (MoveMeasure).
-void MeasureMovesIn(std::span<const engine::BodyState> states, std::span<const engine::Vec2> start,
-                    std::span<engine::Vec2> moved, std::size_t begin, std::size_t end) {
-  const engine::detail::MoveMeasure measure{start, moved};
-  for (std::size_t i = begin; i < end; ++i) measure.At(states, i);
-}
-void MeasureMoves(std::span<const engine::BodyState> states, std::span<const engine::Vec2> start,
-                  std::span<engine::Vec2> moved) {
-  MeasureMovesIn(states, start, moved, 0, states.size());
-}
+using testing::MeasureMoves;
+using testing::MeasureMovesIn;
 
 // A pile of `columns` × `rows` unit bodies on a static floor (body 0), each standing on the one
 // below and leaning on the one below-right (a diagonal contact, so rows cross from column to

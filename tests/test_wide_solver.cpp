@@ -13,7 +13,7 @@
 #include "bench/stress_scenes.h"
 #include "contact_bodies.h"
 #include "engine/world.h"
-#include "integrate.h"
+#include "move_measure.h"
 #include "solver/contact_order.h"
 #include "solver/substep_passes.h"
 #include "solver/substep_solver.h"
@@ -29,13 +29,7 @@ using engine::Vec2;
 using engine::LinearConstraint;
 using engine::SubstepConstraint;
 using engine::SubstepPoint;
-
-// Each body's move since the step's start, as the solver's passes that move the bodies measure
-// it (MoveMeasure).
-void MeasureMoves(std::span<const BodyState> states, std::span<const Vec2> start, std::span<Vec2> moved) {
-  const engine::detail::MoveMeasure measure{start, moved};
-  for (std::size_t i = 0; i < states.size(); ++i) measure.At(states, i);
-}
+using testing::MeasureMoves;
 
 // Bodies and contacts with what the passes must get right: static bodies shared by many
 // contacts of a colour (never written), a hub with more contacts than there are colours (the

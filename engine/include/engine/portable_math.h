@@ -47,30 +47,34 @@ inline double ShrinkHugeAngle(double angle) {
   return angle;
 }
 
-// Taylor series for |r| ≤ π/4 (+ a few ulps): the first term left out is below 1e-19.
-inline double SinTaylor(double r) {
-  const double r2 = r * r;
-  const double tail =
-      -1.0 / 6 +
-      r2 * (1.0 / 120 +
-            r2 * (-1.0 / 5040 +
-                  r2 * (1.0 / 362880 +
-                        r2 * (-1.0 / 39916800 +
-                              r2 * (1.0 / 6227020800 +
-                                    r2 * (-1.0 / 1307674368000 + r2 * (1.0 / 355687428096000)))))));
+// Taylor series for |r| ≤ π/4 (+ a few ulps): the first term left out is below 1e-19. Written
+// for any T with + − × and T(double): the engine's SIMD lanes run the same operations in the same
+// order (engine/src/solver/wide_cos_sin.inl), so a lane gets a double's bits.
+template <typename T>
+inline T SinTaylor(T r) {
+  const T r2 = r * r;
+  const T tail =
+      T(-1.0 / 6) +
+      r2 * (T(1.0 / 120) +
+            r2 * (T(-1.0 / 5040) +
+                  r2 * (T(1.0 / 362880) +
+                        r2 * (T(-1.0 / 39916800) +
+                              r2 * (T(1.0 / 6227020800) +
+                                    r2 * (T(-1.0 / 1307674368000) + r2 * T(1.0 / 355687428096000)))))));
   return r + r * r2 * tail;
 }
 
-inline double CosTaylor(double r) {
-  const double r2 = r * r;
-  const double tail =
-      1.0 / 24 +
-      r2 * (-1.0 / 720 +
-            r2 * (1.0 / 40320 +
-                  r2 * (-1.0 / 3628800 +
-                        r2 * (1.0 / 479001600 +
-                              r2 * (-1.0 / 87178291200 + r2 * (1.0 / 20922789888000))))));
-  return 1.0 - (0.5 * r2 - r2 * r2 * tail);
+template <typename T>
+inline T CosTaylor(T r) {
+  const T r2 = r * r;
+  const T tail =
+      T(1.0 / 24) +
+      r2 * (T(-1.0 / 720) +
+            r2 * (T(1.0 / 40320) +
+                  r2 * (T(-1.0 / 3628800) +
+                        r2 * (T(1.0 / 479001600) +
+                              r2 * (T(-1.0 / 87178291200) + r2 * T(1.0 / 20922789888000))))));
+  return T(1.0) - (T(0.5) * r2 - r2 * r2 * tail);
 }
 
 // x^n by squaring, n ≥ 0: the same products in the same order everywhere.

@@ -2,8 +2,9 @@
 // Each lane does CosSinOf's operations (engine/portable_math.h) in CosSinOf's order: + − × of
 // doubles round alike in a lane and alone, so a body's rotation has the same bits either way.
 // The steps CosSinOf takes on integers are taken here on whole numbers held in doubles, exactly.
-// A group of lanes holding an angle past kLargestExactAngle, a NaN or an infinity goes one angle at
-// a time through CosSinOf itself (none does in a scene that runs).
+// The Taylor polynomials are CosSinOf's own (portable_detail::SinTaylor, CosTaylor, written for
+// either). A group of lanes holding an angle past kLargestExactAngle, a NaN or an infinity goes
+// one angle at a time through StoreRot (none does in a scene that runs).
 //
 // Why: one body at a time, with its branches on the quadrant, the joint grid's rotation of every
 // joined body each substep took 11.8 % of its step.
@@ -14,32 +15,6 @@ inline Lanes TowardZero(Lanes x) {
   Lanes whole = (size + two52) - two52;                   // |x| rounded to the nearest whole number
   whole = Select(whole > size, whole - Lanes(1.0), whole);  // down, where that went up
   return Select(x < Lanes(0.0), Lanes(0.0) - whole, whole);  // +0, not −0, as (double)0 is
-}
-
-// portable_detail::SinTaylor and CosTaylor, term for term.
-inline Lanes SinTaylorLanes(Lanes r) {
-  const Lanes r2 = r * r;
-  const Lanes tail =
-      Lanes(-1.0 / 6) +
-      r2 * (Lanes(1.0 / 120) +
-            r2 * (Lanes(-1.0 / 5040) +
-                  r2 * (Lanes(1.0 / 362880) +
-                        r2 * (Lanes(-1.0 / 39916800) +
-                              r2 * (Lanes(1.0 / 6227020800) +
-                                    r2 * (Lanes(-1.0 / 1307674368000) + r2 * Lanes(1.0 / 355687428096000)))))));
-  return r + r * r2 * tail;
-}
-
-inline Lanes CosTaylorLanes(Lanes r) {
-  const Lanes r2 = r * r;
-  const Lanes tail =
-      Lanes(1.0 / 24) +
-      r2 * (Lanes(-1.0 / 720) +
-            r2 * (Lanes(1.0 / 40320) +
-                  r2 * (Lanes(-1.0 / 3628800) +
-                        r2 * (Lanes(1.0 / 479001600) +
-                              r2 * (Lanes(-1.0 / 87178291200) + r2 * Lanes(1.0 / 20922789888000))))));
-  return Lanes(1.0) - (Lanes(0.5) * r2 - r2 * r2 * tail);
 }
 
 // CosSinOf for lanes whose angles are all within kLargestExactAngle (NaN excluded).
@@ -53,8 +28,8 @@ inline void CosSinLanes(Lanes angle, Lanes* c, Lanes* s) {
   // of −0.5: k is 0 either way.)
   const Lanes k = TowardZero(y + Select(y < Lanes(0.0), Lanes(-0.5), Lanes(0.5)));
   const Lanes r = ((angle - k * Lanes(kPiOver2A)) - k * Lanes(kPiOver2B)) - k * Lanes(kPiOver2C);
-  const Lanes sin_r = SinTaylorLanes(r);
-  const Lanes cos_r = CosTaylorLanes(r);
+  const Lanes sin_r = portable_detail::SinTaylor(r);
+  const Lanes cos_r = portable_detail::CosTaylor(r);
   // The quadrant, k mod 4 in [0, 4) (as k & 3 in two's complement).
   Lanes quadrant = k - Lanes(4.0) * TowardZero(k * Lanes(0.25));
   quadrant = Select(quadrant < Lanes(0.0), quadrant + Lanes(4.0), quadrant);
@@ -81,8 +56,7 @@ void RotationsOf(const double* angles, std::size_t stride, const BodyIndex* bodi
     if (Bits(Lanes(portable_detail::kLargestExactAngle) >= Abs(angle)) != kAll) {
       for (int j = 0; j < Lanes::kCount; ++j) {
         const BodyIndex body = bodies[k + static_cast<std::size_t>(j)];
-        const CosSin q = portable_detail::CosSinOf(angles[body * stride]);
-        StoreWhole(&rotations[body], q.c, q.s);
+        StoreRot(&rotations[body], angles[body * stride]);
       }
       continue;
     }
@@ -90,8 +64,5 @@ void RotationsOf(const double* angles, std::size_t stride, const BodyIndex* bodi
     CosSinLanes(angle, &c, &s);
     Scatter(&rotations[0].c, 2, index, c, s, kAll);
   }
-  for (; k < count; ++k) {
-    const CosSin q = portable_detail::CosSinOf(angles[bodies[k] * stride]);
-    StoreWhole(&rotations[bodies[k]], q.c, q.s);
-  }
+  for (; k < count; ++k) StoreRot(&rotations[bodies[k]], angles[bodies[k] * stride]);
 }

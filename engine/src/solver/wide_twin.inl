@@ -103,7 +103,7 @@ inline Twin MinOf(Twin a, Twin b) { return Twin(_mm512_min_pd(a.v, b.v)); }
 
 // Eight bodies' rows of four doubles (a BodyState from its velocity on: vx, vy, angle, ω) into
 // lanes, one 32-byte load a body, and back. Gathered field by field, the three fields a turning
-// pass reads took 16 loads and 17 shuffles for a Twin; as rows, 8 loads and 11 shuffles (and 8
+// pass reads took 16 loads and 17 shuffles for a Twin; as rows, 8 loads and 12 shuffles (and 8
 // stores instead of 16 back; the angle is written back as read).
 inline constexpr bool kTwinRows = true;
 [[gnu::always_inline]] inline void GatherRows(const double* base, std::size_t stride, TwinPtr<std::int32_t> index,
