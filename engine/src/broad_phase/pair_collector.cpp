@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "broad_phase/pair_sort.h"
+#include "parallel/spin_barrier.h"
 #include "parallel/worker_pool.h"
 
 namespace engine {
@@ -102,7 +103,17 @@ void PairCollector::KeepCrowdsBest() {
 // charges and checks them against the quotas, and a part of the pairs, to check their order.
 // With no body past its quota, every pair is kept, in the order Add would keep them: the same
 // list. Otherwise (a crowd) the charges are taken back and the pairs go through Add.
-void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool) {
+//
+// Unsorted runs are sorted as they are joined instead: each thread deals its part of the pairs
+// out by the range of the bodies their a lies in (a range to each thread), and after a barrier
+// sorts the pairs of its own range from every thread's deal into place (SortPairsInto), after
+// the lower ranges' pairs. The list is the one Finish's sort would give (pairs are distinct, and
+// (a, b) orders them all), without the step's longest stretch on one thread: 62 kcyc a call of
+// the 4 000-circle pour's 11 000 pairs. A thread's part of the runs is mostly the pairs it found
+// (a grid's run is a stretch of its cells) and, where ids rise with height, of its own range: it
+// reads little that the other core wrote.
+void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool,
+                            RunOrder order) {
   std::size_t total = 0;
   for (const std::span<const BodyPair> run : runs) total += run.size();
   const auto add_each = [&] {
@@ -132,15 +143,51 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
   const std::size_t bodies = boxes_.size();
   thread_charges_.resize(threads);
   shares_.resize(threads);
+  const bool sorting = order == RunOrder::kUnsorted;
+  const auto range_begin = [&](std::size_t t) { return static_cast<std::uint32_t>(bodies * t / threads); };
+  if (sorting) {
+    thread_sorts_.resize(threads);
+    range_of_.resize(bodies);
+    for (std::size_t t = 0; t < threads; ++t) {
+      std::fill(range_of_.begin() + range_begin(t), range_of_.begin() + range_begin(t + 1),
+                static_cast<std::uint8_t>(t));
+    }
+  }
+  detail::SpinBarrier barrier(static_cast<int>(threads));
   pool->RunOnAll([&](int thread) {
     const auto t = static_cast<std::size_t>(thread);
     std::vector<std::uint32_t>& charges = thread_charges_[t].value;
     if (charging) charges.assign(bodies, 0);
-    for_share(t, [&](std::size_t k, BodyPair found) {
+    if (!sorting) {
+      for_share(t, [&](std::size_t k, BodyPair found) {
+        const BodyPair p = MakePair(found.a, found.b);
+        out[k] = p;
+        if (charging) ++charges[Charged(p)];
+      });
+      return;
+    }
+    ThreadSort& mine = thread_sorts_[t].value;
+    const std::size_t room = total * (t + 1) / threads - total * t / threads;
+    if (mine.boxes.size() < room * threads) mine.boxes.resize(room * threads);
+    mine.box_counts.assign(threads, 0);
+    for_share(t, [&](std::size_t, BodyPair found) {
       const BodyPair p = MakePair(found.a, found.b);
-      out[k] = p;
+      const std::uint8_t range = range_of_[p.a];
+      mine.boxes[range * room + mine.box_counts[range]++] = p;
       if (charging) ++charges[Charged(p)];
     });
+    barrier.Wait();
+    // Every thread's box for this thread's range, and how many pairs lie below the range.
+    std::size_t below = 0;
+    mine.parts.clear();
+    for (std::size_t from = 0; from < threads; ++from) {
+      const ThreadSort& deal = thread_sorts_[from].value;
+      const std::size_t deal_room = total * (from + 1) / threads - total * from / threads;
+      for (std::size_t range = 0; range < t; ++range) below += deal.box_counts[range];
+      mine.parts.emplace_back(deal.boxes.data() + t * deal_room, deal.box_counts[t]);
+    }
+    detail::SortPairsInto(mine.parts, range_begin(t), range_begin(t + 1), bodies, out + below, &mine.scratch,
+                          &mine.counts);
   });
   pool->RunOnAll([&](int thread) {
     const auto t = static_cast<std::size_t>(thread);
@@ -156,7 +203,7 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
       }
     }
     const std::size_t begin = total * t / threads, end = total * (t + 1) / threads;
-    share.sorted = std::is_sorted(out + (begin > 0 ? begin - 1 : 0), out + end);
+    share.sorted = sorting || std::is_sorted(out + (begin > 0 ? begin - 1 : 0), out + end);
     shares_[t].value = share;
   });
   Share all;

@@ -64,9 +64,14 @@ class PairCollector {
       AddPastQuota(charged, OtherBody(p, charged));
     }
   }
+  /// How the pairs of AddRuns' runs come: joined in order already, as the tree finds them (but
+  /// where it is checked), or in no order, as the grid's buckets give them.
+  enum class RunOrder { kMostlySorted, kUnsorted };
   /// The pairs of `runs`, run after run, as Add would take them one at a time; shared among the
-  /// pool's threads (PairCollector::AddRuns in pair_collector.cpp says how).
-  void AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool);
+  /// pool's threads (PairCollector::AddRuns in pair_collector.cpp says how). Unsorted runs are
+  /// sorted there, by the threads, each its own range of a.
+  void AddRuns(std::span<const std::span<const BodyPair>> runs, detail::WorkerPool* pool,
+               RunOrder order = RunOrder::kMostlySorted);
   /// Applies the budget and sorts the pairs by (a, b).
   void Finish();
 
@@ -124,6 +129,17 @@ class PairCollector {
   std::vector<std::uint32_t> counts_;
   /// AddRuns' scratch: per thread, the pairs its runs charge to each body.
   std::vector<detail::PerThread<std::vector<std::uint32_t>>> thread_charges_;
+  /// AddRuns' scratch for unsorted runs, per thread: its pairs dealt out by the thread whose
+  /// range of a holds them (a box of room for all of them to each thread) and the sort's buffers.
+  struct ThreadSort {
+    std::vector<BodyPair> boxes;
+    std::vector<std::size_t> box_counts;
+    std::vector<std::span<const BodyPair>> parts;
+    std::vector<BodyPair> scratch;
+    std::vector<std::uint32_t> counts;
+  };
+  std::vector<detail::PerThread<ThreadSort>> thread_sorts_;
+  std::vector<std::uint8_t> range_of_;  ///< per body: the thread whose range of a holds it
   /// What AddRuns found on its threads, for Finish: per thread, whether its bodies fit their
   /// quotas and what they were charged, and whether its pairs are in order.
   struct Share {

@@ -110,12 +110,15 @@ void UniformGrid::FindPairs(std::span<const AABB> boxes, std::vector<BodyPair>* 
   }
   if (!CellSizeFits(boxes, pool)) ChooseCellSize(boxes);
   const std::int64_t entry_count = FindCellRanges(boxes, pool);
-  if (!small_.empty()) {
+  if (small_.empty()) {
+    FindLargePairs(boxes);
+    AddLargePairs();
+  } else {
     const std::size_t bucket_count = ChooseBuckets(entry_count);
     FillBuckets(boxes, entry_count, bucket_count, pool);
+    FindLargePairs(boxes);
     FindBinnedPairs(bucket_count, pool);
   }
-  FindLargePairs(boxes);
   collector_.Finish();
 }
 
@@ -303,9 +306,11 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* 
     });
     stopped = std::any_of(found_.begin(), found_.end(), [](const auto& run) { return run.value.count == kStop; });
     if (!stopped) {
+      // The large boxes' pairs last, as one at a time would add them; sorted with the rest.
       found_runs_.clear();
       for (const auto& run : found_) found_runs_.emplace_back(run.value.pairs.data(), run.value.count);
-      collector_.AddRuns(found_runs_, pool);
+      found_runs_.emplace_back(large_pairs_);
+      collector_.AddRuns(found_runs_, pool, PairCollector::RunOrder::kUnsorted);
       return;
     }
   }
@@ -316,14 +321,20 @@ void UniformGrid::FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* 
     return std::size_t{0};
   });
   hand_over(run);
+  AddLargePairs();
+}
+
+void UniformGrid::AddLargePairs() {
+  for (const BodyPair& p : large_pairs_) collector_.Add(p.a, p.b);
 }
 
 void UniformGrid::FindLargePairs(std::span<const AABB> boxes) {
+  large_pairs_.clear();
   for (std::size_t i = 0; i < large_.size(); ++i) {
     const std::uint32_t a = large_[i];
     const AABB& box = boxes[a];
     for (std::size_t j = i + 1; j < large_.size(); ++j) {
-      if (Overlaps(box, boxes[large_[j]])) collector_.Add(a, large_[j]);
+      if (Overlaps(box, boxes[large_[j]])) large_pairs_.push_back({a, large_[j]});
     }
     if (!small_.empty()) FindLargeBinnedPairs(a, boxes);
   }
@@ -339,7 +350,7 @@ void UniformGrid::FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB
   if (walk.x0 > walk.x1 || walk.y0 > walk.y1) return;
   if (walk.Count() > static_cast<std::int64_t>(small_.size())) {
     for (std::uint32_t s : small_) {
-      if (Overlaps(box, boxes[s])) collector_.Add(large, s);
+      if (Overlaps(box, boxes[s])) large_pairs_.push_back({large, s});
     }
     return;
   }
@@ -352,7 +363,7 @@ void UniformGrid::FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB
         // The same one-cell rule, with the large box's first column and row.
         if (e.x == x && e.y == y && (r.x0 == x || (e.first & 1)) && (r.y0 == y || (e.first & 2)) &&
             Overlaps(box, e.box)) {
-          collector_.Add(large, e.body);
+          large_pairs_.push_back({large, e.body});
         }
       }
     }

@@ -56,20 +56,25 @@ class UniformGrid {
   std::size_t ChooseBuckets(std::int64_t entry_count);
   void FillBuckets(std::span<const AABB> boxes, std::int64_t entry_count, std::size_t bucket_count,
                    detail::WorkerPool* pool);
+  /// The binned pairs, then large_pairs_, to the collector.
   void FindBinnedPairs(std::size_t bucket_count, detail::WorkerPool* pool);
   /// The pairs of the buckets [first, last), in bucket order, into the front of `found` (grown
   /// as needed, never shrunk); returns how many, or kStop when `full` stopped it.
   template <typename Full>
   std::size_t ScanBuckets(std::size_t first, std::size_t last, std::vector<BodyPair>* found, Full&& full) const;
   static constexpr std::size_t kStop = static_cast<std::size_t>(-1);
+  /// The large boxes' pairs, among themselves and with the binned boxes, into large_pairs_ (after
+  /// FillBuckets): the collector takes them after the binned pairs, in one sort with them.
   void FindLargePairs(std::span<const AABB> boxes);
   void FindLargeBinnedPairs(std::uint32_t large, std::span<const AABB> boxes);
+  void AddLargePairs();
 
   double cell_size_ = 0.0;
   double inv_cell_size_ = 0.0;
   std::vector<CellRange> ranges_;       ///< per body
   std::vector<std::uint32_t> large_;    ///< bodies tested on their own, in id order
   std::vector<std::uint32_t> small_;    ///< bodies in the cells, in id order
+  std::vector<BodyPair> large_pairs_;   ///< FindLargePairs' pairs, in the order it finds them
   // The occupied cells' bounds; when they hold few cells more than entries, buckets are the cells
   // themselves (dense), otherwise a hash of the cell picks the bucket.
   CellRange occupied_{};
