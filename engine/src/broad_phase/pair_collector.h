@@ -129,8 +129,8 @@ class PairCollector {
   std::vector<std::uint32_t> counts_;
   /// AddRuns' scratch: per thread, the pairs its runs charge to each body.
   std::vector<detail::PerThread<std::vector<std::uint32_t>>> thread_charges_;
-  /// AddRuns' scratch for unsorted runs, per thread: its pairs dealt out by the thread whose
-  /// range of a holds them (a box of room for all of them to each thread) and the sort's buffers.
+  /// AddRuns' scratch for unsorted runs, per thread: its part of the pairs dealt out into a box
+  /// per range of a (each box with room for the whole part), and the sort's buffers.
   struct ThreadSort {
     std::vector<BodyPair> boxes;
     std::vector<std::size_t> box_counts;

@@ -18,8 +18,8 @@ void SortPairsInto(std::span<const std::span<const BodyPair>> parts, std::uint32
   std::size_t total = 0;
   for (const std::span<const BodyPair> part : parts) total += part.size();
   scratch->resize(total);
-  // Counting sorts: the pairs of one key keep their order in `from`. By b first, then by a,
-  // whose keys lie in [a_begin, a_end).
+  // Two stable counting sorts: by b into `scratch`, then by a (keys in [a_begin, a_end)) into
+  // `out`, which keeps each a's pairs in b's order.
   counts->assign(body_count + 1, 0);
   for (const std::span<const BodyPair> part : parts) {
     for (const BodyPair& p : part) ++(*counts)[p.b + 1];
