@@ -3,7 +3,9 @@
 #include "narrow_phase/narrow_phase.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <memory>
 
 #include "narrow_phase/collide.h"
 #include "narrow_phase/collide_pieces.h"
@@ -115,8 +117,7 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                          std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
                          std::span<const Rot> box_turns, bool parts, WorkerPool& pool) {
   previous_contacts_.swap(contacts_);
-  const auto collide = [&](std::span<const BodyPair> part, std::vector<Contact>* out,
-                           std::vector<BodyPair>* out_pairs) {
+  const auto collide = [&](std::span<const BodyPair> part, Lists* out) {
     // A part starts its walk through last step's contacts at its first pair: the walk from the
     // start would have reached no further, as every contact before it is of an earlier pair.
     const auto first = part.empty() ? previous_contacts_.end()
@@ -126,61 +127,81 @@ void NarrowPhase::Update(std::span<const BodyPair> pairs, std::span<const BodySt
                                                        });
     const auto cursor = static_cast<std::size_t>(first - previous_contacts_.begin());
     if (parts) {
-      Collide<true>(part, states, infos, geometries, margins, box_turns, cursor, out, out_pairs);
+      // A body made of parts appends its pieces' contacts (CollidePieces): nothing to write over.
+      out->contacts->resize(out->count);
+      out->pairs->resize(out->count);
+      Collide<true>(part, states, infos, geometries, margins, box_turns, cursor, out);
     } else {
-      Collide<false>(part, states, infos, geometries, margins, box_turns, cursor, out, out_pairs);
+      Collide<false>(part, states, infos, geometries, margins, box_turns, cursor, out);
     }
   };
   const int threads = pool.Threads();
   if (threads == 1 || pairs.size() < kMinSharedPairs) {
-    contacts_.clear();
-    contact_pairs_.clear();
-    collide(pairs, &contacts_, &contact_pairs_);
+    Lists out{&contacts_, &contact_pairs_};
+    collide(pairs, &out);
+    contacts_.resize(out.count);
+    contact_pairs_.resize(out.count);
     return;
   }
-  // Each thread collides a contiguous part of the pairs into its own lists; the lists, joined in
-  // order, are the contacts one thread would have found.
+  // Each thread collides a contiguous part of the pairs, the first into the lists themselves and
+  // the others into their own; those, joined after it in order, give the contacts one thread
+  // would have found.
   thread_contacts_.resize(threads);
   thread_pairs_.resize(threads);
+  std::vector<std::size_t> offsets(threads + 1, 0);
   pool.RunOnAll([&](int t) {
     const std::size_t begin = pairs.size() * t / threads, end = pairs.size() * (t + 1) / threads;
-    thread_contacts_[t].value.clear();
-    thread_pairs_[t].value.clear();
-    collide(pairs.subspan(begin, end - begin), &thread_contacts_[t].value, &thread_pairs_[t].value);
+    Lists out{&contacts_, &contact_pairs_};
+    if (t > 0) {
+      out = {&thread_contacts_[t].value, &thread_pairs_[t].value};
+      out.contacts->clear();
+      out.pairs->clear();
+    }
+    collide(pairs.subspan(begin, end - begin), &out);
+    offsets[t + 1] = out.count;
   });
-  std::vector<std::size_t> offsets(threads + 1, 0);
-  for (int t = 0; t < threads; ++t) offsets[t + 1] = offsets[t] + thread_contacts_[t].value.size();
-  // Only what the lists grow by is zeroed first: every element is written by the copies.
-  contacts_.resize(offsets[threads]);
-  contact_pairs_.resize(offsets[threads]);
+  for (int t = 0; t < threads; ++t) offsets[t + 1] += offsets[t];
+  // Only what the lists grow by is zeroed: the elements past the first thread's are copied in.
+  const std::size_t total = offsets[threads];
+  contacts_.resize(total);
+  contact_pairs_.resize(total);
+  // The copies shared evenly among the threads, each an equal run of the joined list.
+  const std::size_t copied = total - offsets[1];
   pool.RunOnAll([&](int t) {
-    std::ranges::copy(thread_contacts_[t].value, contacts_.begin() + offsets[t]);
-    std::ranges::copy(thread_pairs_[t].value, contact_pairs_.begin() + offsets[t]);
+    const std::size_t from = offsets[1] + copied * t / threads, to = offsets[1] + copied * (t + 1) / threads;
+    for (int part = 1; part < threads; ++part) {
+      const std::size_t begin = std::max(from, offsets[part]), end = std::min(to, offsets[part + 1]);
+      if (begin >= end) continue;
+      const auto at = static_cast<std::ptrdiff_t>(begin - offsets[part]);
+      const auto count = static_cast<std::ptrdiff_t>(end - begin);
+      std::copy_n(thread_contacts_[part].value.begin() + at, count, contacts_.begin() + static_cast<std::ptrdiff_t>(begin));
+      std::copy_n(thread_pairs_[part].value.begin() + at, count, contact_pairs_.begin() + static_cast<std::ptrdiff_t>(begin));
+    }
   });
 }
 
 template <bool kParts>
 void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                           std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-                          std::span<const Rot> box_turns, std::size_t previous, std::vector<Contact>* out,
-                          std::vector<BodyPair>* out_pairs) const {
-  std::vector<Contact>& contacts = *out;
+                          std::span<const Rot> box_turns, std::size_t previous, Lists* out) const {
+  std::vector<Contact>& contacts = *out->contacts;
+  std::vector<BodyPair>& contact_pairs = *out->pairs;
   // At most one contact a pair: reserving that much at once avoids growth by doubling, which
   // could hold twice what a large pile needs.
-  contacts.reserve(contacts.size() + pairs.size());
-  out_pairs->reserve(out_pairs->size() + pairs.size());
+  contacts.reserve(out->count + pairs.size());
+  contact_pairs.reserve(out->count + pairs.size());
   for (const BodyPair& pair : pairs) {
     const BodyInfo& ia = infos[pair.a];
     const BodyInfo& ib = infos[pair.b];
     const double margin = margins[pair.a] + margins[pair.b];
     if constexpr (kParts) {
       if (!IsSimpleShape(ia.shape.type) || !IsSimpleShape(ib.shape.type)) {
-        const std::size_t first = contacts.size();
+        assert(contacts.size() == out->count);  // nothing to write over (Update)
         CollidePieces({pair.a, ia, states[pair.a], geometries[pair.a].get()},
                       {pair.b, ib, states[pair.b], geometries[pair.b].get()}, margin, &contacts);
-        for (std::size_t i = first; i < contacts.size(); ++i) {
-          CarryImpulses<true>(previous_contacts_, &contacts[i], &previous);
-          out_pairs->push_back(pair);
+        for (; out->count < contacts.size(); ++out->count) {
+          CarryImpulses<true>(previous_contacts_, &contacts[out->count], &previous);
+          contact_pairs.push_back(pair);
         }
         continue;
       }
@@ -193,13 +214,21 @@ void NarrowPhase::Collide(std::span<const BodyPair> pairs, std::span<const BodyS
                        [&] { return box_turns[pair.b]; })) {
       continue;
     }
-    // Made in place (NewContact converts into the list's new element): built aside and copied
-    // in, a contact cost a clear of the whole block and loads of what had just been stored in
-    // other widths; the pyramid of base 40 took 0.240 ms/step that way.
-    Contact& contact = contacts.emplace_back(NewContact{pair, m, std::max(ia.restitution, ib.restitution),
-                                                        std::sqrt(ia.friction * ib.friction)});
-    CarryImpulses<kParts>(previous_contacts_, &contact, &previous);
-    out_pairs->push_back(pair);
+    // Made in place (NewContact converts into the element): built aside and copied in, a
+    // contact cost a clear of the whole block and loads of what had just been stored in other
+    // widths; the pyramid of base 40 took 0.240 ms/step that way.
+    const NewContact made{pair, m, std::max(ia.restitution, ib.restitution), std::sqrt(ia.friction * ib.friction)};
+    // (The two lists may hold unlike numbers of elements to write over: the contacts are two
+    // steps old, the pairs one.)
+    Contact* const contact = out->count < contacts.size() ? std::construct_at(&contacts[out->count], made)
+                                                          : &contacts.emplace_back(made);
+    if (out->count < contact_pairs.size()) {
+      contact_pairs[out->count] = pair;
+    } else {
+      contact_pairs.push_back(pair);
+    }
+    ++out->count;
+    CarryImpulses<kParts>(previous_contacts_, contact, &previous);
   }
 }
 

@@ -60,19 +60,29 @@ class NarrowPhase {
   /// Fewer pairs than this are collided on one thread (the hand-off would cost more).
   static constexpr std::size_t kMinSharedPairs = 4096;
 
-  /// Appends the contacts of `pairs` to `out` and their bodies to `out_pairs`, carrying impulses
-  /// from last step's contacts from `previous` on.
+  /// Where Collide puts contacts and their bodies: two lists written from `count` on, over the
+  /// elements they hold and then at their ends. The first thread writes over the lists
+  /// themselves (the contacts of two steps ago, the pairs of the last: every element is written
+  /// again or cut off after), so that its part, about half the contacts, is not copied into place.
+  struct Lists {
+    std::vector<Contact>* contacts;
+    std::vector<BodyPair>* pairs;
+    std::size_t count = 0;  ///< how many have been put
+  };
+
+  /// Puts the contacts of `pairs` and their bodies into `out`, carrying impulses from last step's
+  /// contacts from `previous` on.
   template <bool kParts>
   void Collide(std::span<const BodyPair> pairs, std::span<const BodyState> states,
                std::span<const BodyInfo> infos, Geometries geometries, std::span<const double> margins,
-               std::span<const Rot> box_turns, std::size_t previous, std::vector<Contact>* out,
-               std::vector<BodyPair>* out_pairs) const;
+               std::span<const Rot> box_turns, std::size_t previous, Lists* out) const;
 
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;
   std::vector<BodyPair> contact_pairs_;
-  std::vector<PerThread<std::vector<Contact>>> thread_contacts_;  ///< each thread's part, when shared
-  std::vector<PerThread<std::vector<BodyPair>>> thread_pairs_;    ///< and its contacts' bodies
+  /// Each thread's part but the first's, when shared, and its contacts' bodies.
+  std::vector<PerThread<std::vector<Contact>>> thread_contacts_;
+  std::vector<PerThread<std::vector<BodyPair>>> thread_pairs_;
 };
 
 }  // namespace engine::detail
