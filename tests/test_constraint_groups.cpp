@@ -1,8 +1,9 @@
 // ForEachGroup: every unit once, group after group, a shared group in even parts;
-// ForEachThreadsShare: the same shares.
+// ForEachThreadsShare: the same shares, or learned ones.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <thread>
@@ -113,4 +114,51 @@ TEST_CASE("ForEachThreadsShare gives each thread the units ForEachGroup gives it
     CHECK(consistent);
     CHECK(map.size() == static_cast<std::size_t>(threads));  // every thread had a share
   }
+}
+
+TEST_CASE("ForEachThreadsShare with learned cuts cuts each shared group where they say, every unit once",
+          "[parallel][solver]") {
+  engine::detail::WorkerPool pool(2);
+  engine::detail::BalancedCuts cuts;
+  // A call whose second part (units [512, 1024) of 1024) took three times the first's time: the
+  // cut moves half way from the middle to where the parts would cost alike, 512 + 512/3 of 1024,
+  // so the first thread takes 7/12 of each shared group.
+  const std::size_t before[] = {0, 512, 1024};
+  const double seconds[] = {1.0, 3.0};
+  cuts.Learn(before, seconds);
+  const double first_share = (0.5 + (512.0 + 512.0 / 3.0) / 1024.0) / 2.0;
+  REQUIRE(first_share == Approx(7.0 / 12.0));
+  const std::thread::id caller = std::this_thread::get_id();  // the pool's thread 0
+  std::mutex mutex;
+  std::vector<int> visits(1690, 0);
+  std::vector<std::uint8_t> by_caller(1690, 0);
+  engine::detail::ForEachThreadsShare(
+      pool, FourGroups(),
+      [&](std::uint32_t begin, std::uint32_t end) {
+        const bool on_caller = std::this_thread::get_id() == caller;
+        {
+          const std::lock_guard<std::mutex> lock(mutex);
+          for (std::uint32_t unit = begin; unit < end; ++unit) {
+            ++visits[unit];
+            by_caller[unit] = on_caller ? 1 : 0;
+          }
+        }
+        // The other thread takes far longer: the cuts learn to give the caller more.
+        if (!on_caller) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      },
+      4, &cuts);
+  CHECK(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+  // The caller's units: the first 7/12 of each shared group (1000 and 600 units), the share
+  // held to 2^-20 below (⌊2^20 · 7/12⌋ = 611 669), and the two groups that go whole to the first
+  // thread.
+  const auto caller_units = [&](std::uint32_t begin, std::uint32_t end) {
+    return static_cast<std::uint32_t>(std::count(by_caller.begin() + begin, by_caller.begin() + end, 1));
+  };
+  CHECK(caller_units(0, 1000) == 583);  // ⌊1000 · 611 669 / 2^20⌋ = ⌊583.33⌋
+  CHECK(std::all_of(by_caller.begin(), by_caller.begin() + 583, [](std::uint8_t c) { return c == 1; }));
+  CHECK(caller_units(1000, 1600) == 349);  // ⌊600 · 611 669 / 2^20⌋ = ⌊349.9997⌋
+  CHECK(std::all_of(by_caller.begin() + 1000, by_caller.begin() + 1349, [](std::uint8_t c) { return c == 1; }));
+  CHECK(caller_units(1600, 1690) == 90);
+  // And the call's own times moved the cut further the caller's way.
+  CHECK(cuts.Cut(1, 2, 1 << 20) > static_cast<std::size_t>(first_share * (1 << 20)));
 }

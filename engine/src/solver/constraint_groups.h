@@ -2,11 +2,15 @@
 // pool's threads. Internal to the engine.
 #pragma once
 
+#include <array>
 #include <cassert>
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <utility>
 
+#include "engine/world_def.h"
+#include "parallel/balanced_cuts.h"
 #include "parallel/spin_barrier.h"
 #include "parallel/worker_pool.h"
 #include "solver/body_cut.h"
@@ -63,24 +67,46 @@ inline bool GroupsStayOnOneThread(const WorkerPool& pool, const ContactOrder& or
 /// Calls part(begin, end) on the ranges of units that ForEachGroup gives each thread, on that
 /// thread, with no wait between groups: for work on the units that has no order, done by the
 /// thread that will next read what it writes (a unit's data then stays in that core's cache).
+/// With `cuts`, each shared group is cut where the threads took alike last call instead of in
+/// the middle (BalancedCuts, learned from each thread's time in the call); a thread then
+/// writes a few units more or less than it will read.
 template <typename Part>
-void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& part, std::uint32_t per_unit = 1) {
+void ForEachThreadsShare(WorkerPool& pool, const ContactOrder& order, Part&& part, std::uint32_t per_unit = 1,
+                         BalancedCuts* cuts = nullptr) {
   const std::uint32_t total = order.group_ends.empty() ? 0 : order.group_ends.back();
   const int threads = pool.Threads();
   if (GroupsStayOnOneThread(pool, order, per_unit) || order.strips > 0) {
     part(std::uint32_t{0}, total);
     return;
   }
+  // With `cuts`: where thread t's part of every shared group begins, as a share of the group
+  // (kScale: all of it), and how long each thread took.
+  constexpr std::size_t kScale = std::size_t{1} << 20;
+  const auto parts = static_cast<std::size_t>(threads);
+  std::array<std::size_t, kMaxThreads + 1> at{};
+  std::array<double, kMaxThreads> seconds{};
+  if (cuts) {
+    for (std::size_t t = 0; t <= parts; ++t) at[t] = cuts->Cut(t, parts, kScale);
+  }
   pool.RunOnAll([&](int thread) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto t = static_cast<std::size_t>(thread);
     ForEachStretch(order, per_unit, [&](std::uint32_t begin, std::uint32_t end, bool shared, bool /*last*/) {
-      if (shared) {
+      if (shared && cuts) {
+        const auto cut = [&](std::size_t k) {
+          return static_cast<std::uint32_t>(begin + std::uint64_t{end - begin} * at[k] / kScale);
+        };
+        part(cut(t), cut(t + 1));
+      } else if (shared) {
         const auto [first, past] = EvenPart(begin, end, thread, threads);
         part(first, past);
       } else if (thread == 0) {
         part(begin, end);
       }
     });
+    if (cuts) seconds[t] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });
+  if (cuts) cuts->Learn(std::span(at).first(parts + 1), std::span(seconds).first(parts));
 }
 
 /// Calls pass(begin, end) on ranges of the constraints [0, order.group_ends.back()) so that

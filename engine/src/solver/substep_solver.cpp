@@ -241,7 +241,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
             pack_blocks(run, run_end);
             rows.Write(wide_.FirstConstraint(run, order_), wide_.FirstConstraint(run_end, order_));
           }
-        }, kBlockLanes);
+        }, kBlockLanes, &pack_cuts_);
         blocks_to_pack = 0;
         rows_written = true;
       }
@@ -315,7 +315,7 @@ void SubstepSolver::Step(StepContext& context, std::vector<C>* constraints_vecto
         wide_turning_.Layout(order_);
         ForEachThreadsShare(context.pool, wide_turning_.order, [&](std::uint32_t begin, std::uint32_t end) {
           if constexpr (kCanTurn<C>) wide_turning_.PackBlocks(constraints, order_, begin, end);
-        }, kBlockLanes);
+        }, kBlockLanes, &pack_cuts_);
       } else {
         // The packing only reads the constraints, the impacts only write velocities (and lags).
         context.pool.RunSideBySide([&] { resolve_impacts(bounces); }, pack_turning_blocks);
