@@ -11,6 +11,7 @@
 #include "body_geometry.h"
 #include "engine/body.h"
 #include "engine/ids.h"
+#include "parallel/worker_pool.h"
 
 namespace engine::detail {
 
@@ -86,12 +87,18 @@ struct Bodies {
     placed_origins[index] = {origin, states[index].position, angle};
   }
 
-  void MarkStepStart() {
+  /// Each body's centre (and, with bodies made of parts, angle) as the step begins; with a
+  /// pool, each thread its share of the bodies, whose states its core wrote last (on the first
+  /// thread alone, half of them came from the other core).
+  void MarkStepStart(WorkerPool* pool) {
     start_positions.resize(states.size());
-    for (std::size_t i = 0; i < states.size(); ++i) start_positions[i] = states[i].position;
-    if (with_parts == 0) return;
-    start_angles.resize(states.size());
-    for (std::size_t i = 0; i < states.size(); ++i) start_angles[i] = states[i].angle;
+    if (with_parts > 0) start_angles.resize(states.size());
+    ForEachIndex(pool, states.size(), kMinSharedBodies,
+                 [positions = start_positions.data(), angles = with_parts > 0 ? start_angles.data() : nullptr,
+                  states = states.data()](std::uint32_t i) {
+                   positions[i] = states[i].position;
+                   if (angles) angles[i] = states[i].angle;
+                 });
   }
 };
 

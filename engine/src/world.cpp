@@ -98,7 +98,7 @@ void World::Step() {
   } pool_step(w.def.adapt_threads ? w.pool.get() : nullptr);
   detail::Bodies& bodies = w.bodies;
   w.events.Clear();  // keeps the lists' storage from step to step
-  bodies.MarkStepStart();  // contacts measure how far bodies move from here
+  bodies.MarkStepStart(w.pool.get());  // contacts measure how far bodies move from here
   if (!w.particles.Empty()) w.particles.MarkStepStart(bodies);  // particles see bodies move through the step
   // Broad phase: pairs of enabled bodies whose bounds, grown by how far each may reach, overlap
   // and whose filters let them meet.
