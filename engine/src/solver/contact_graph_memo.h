@@ -20,15 +20,25 @@ class ContactGraphMemo {
  public:
   /// Whether `pairs` and the bodies' fixedness are what the last call saw, with nothing
   /// forgotten since; remembers them either way.
+  ///
+  /// The fixedness is looked at only once the pairs are the same as the last call's: a pass
+  /// over every body's info, it took 8.6 kcyc a step of the 4 000-circle pour on the calling
+  /// thread alone, where the pairs change every step. So after the pairs change, the call
+  /// that first sees them again answers false too (it sees the fixedness then), and the graph
+  /// is kept from the one after.
   bool Same(std::span<const BodyPair> pairs, std::span<const BodyInfo> infos) {
+    if (!valid_ || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), pairs_.end())) {
+      pairs_.assign(pairs.begin(), pairs.end());
+      valid_ = true;
+      fixed_seen_ = false;
+      return false;
+    }
     fixed_now_.resize(infos.size());
     for (std::size_t i = 0; i < infos.size(); ++i) fixed_now_[i] = HasInfiniteMass(infos[i]) ? 1 : 0;
-    const bool same = valid_ && fixed_now_ == fixed_ && std::equal(pairs.begin(), pairs.end(), pairs_.begin(),
-                                                                     pairs_.end());
+    const bool same = fixed_seen_ && fixed_now_ == fixed_;
     if (!same) {
-      pairs_.assign(pairs.begin(), pairs.end());
       fixed_.swap(fixed_now_);
-      valid_ = true;
+      fixed_seen_ = true;
     }
     return same;
   }
@@ -39,7 +49,8 @@ class ContactGraphMemo {
  private:
   std::vector<BodyPair> pairs_;
   std::vector<std::uint8_t> fixed_, fixed_now_;
-  bool valid_ = false;
+  bool valid_ = false;       ///< pairs_ are the last call's
+  bool fixed_seen_ = false;  ///< and fixed_ the fixedness of the last call, which had them too
 };
 
 }  // namespace engine::detail
