@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "forces/force_model.h"
+#include "parallel/balanced_cuts.h"
 #include "parallel/per_thread.h"
 #include "solver/contact_graph_memo.h"
 #include "solver/contact_order.h"
 #include "solver/direct_solver.h"
 #include "solver/pile_height.h"
 #include "solver/shock_propagation.h"
-#include "parallel/balanced_cuts.h"
 #include "solver/shock_schedule.h"
 #include "solver/substep_constraint.h"
 #include "solver/substep_passes.h"
