@@ -25,6 +25,7 @@ struct Options : bench::RunOptions {
   std::optional<engine::ContactSolver> solver_filter;  // empty: both
   int substeps_filter = 0;                            // 0: every substep count
   bool rotation = false;                              // the scenes with turning bodies
+  int passes = 0;                                     // substep solver's passes a substep; 0: automatic
 };
 
 bench::Args Arguments(Options& options) {
@@ -39,6 +40,8 @@ bench::Args Arguments(Options& options) {
                {"substep", engine::ContactSolver::kSubstep}},
               "only this solver; seed is the sequential-impulse solver's old name")
       .Value("--substeps N", &options.substeps_filter, "only this substep count (default 0: every one)", 0)
+      .Value("--passes N", &options.passes,
+             "the substep solver's velocity passes per substep (default 0: the world's automatic choice)", 0)
       .Flag("--rotation", &options.rotation, "the scenes with turning bodies");
   return args;
 }
@@ -100,7 +103,7 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
   for (solver_bench::Setting setting : solver_bench::Settings()) {
     if (!Selected(options, setting)) continue;
     Progress(scene.name + ": " + SolverName(setting) + " " + SubstepsText(setting) + ", figures");
-    engine::World world = solver_bench::MakeWorld(scene, setting, options.rotation);
+    engine::World world = solver_bench::MakeWorld(scene, setting, options.rotation, options.passes);
     Result result{scene.name, steps, setting, scene.measure(world, steps), {}, {}, true};
     results.push_back(result);
     hashes.push_back(world.StateHash());
@@ -110,7 +113,7 @@ std::vector<Result> RunScene(const solver_bench::Scene& scene, const Options& op
       Result& result = results[k];
       Progress(scene.name + ": " + SolverName(result.setting) + " " + SubstepsText(result.setting) +
                ", run " + std::to_string(r + 1) + "/" + std::to_string(repeats));
-      engine::World world = solver_bench::MakeWorld(scene, result.setting, options.rotation);
+      engine::World world = solver_bench::MakeWorld(scene, result.setting, options.rotation, options.passes);
       // The first step sorts the broad phase from scratch; Box2D's benchmark leaves it out too.
       world.Step();
       const double cpu_start = bench::ThreadSeconds();
@@ -201,6 +204,7 @@ int main(int argc, char** argv) {
   const engine::World impulse_world(impulse_def);
   engine::WorldDef substep_def;
   substep_def.rotation = options.rotation;
+  substep_def.velocity_iterations = options.passes;
   const engine::World substep_world(substep_def);
   std::printf("\nsequential_impulse (formerly seed): %d passes of impulses and a projection per step; substep: the "
               "default solver, %d pass%s per substep, %d substeps by default\n",
