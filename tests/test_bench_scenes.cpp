@@ -48,3 +48,18 @@ TEST_CASE("the bouncing-ball benchmark scene sees its five bounces in its own ru
     }
   }
 }
+
+TEST_CASE("bench_solver's passes reach the substep solver and leave the other one alone", "[bench]") {
+  const solver_bench::Scene scene = solver_bench::Scenes().front();
+  // The automatic choice stays the engine's own (World fills it in: 4 passes a substep).
+  const engine::World automatic = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 4});
+  CHECK(automatic.Def().velocity_iterations == engine::World(engine::WorldDef{}).Def().velocity_iterations);
+  const engine::World three = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 8}, true, 3);
+  CHECK(three.Def().velocity_iterations == 3);
+  CHECK(three.Def().substeps == 8);
+  // The sequential-impulse solver's passes are its own: --passes is the substep solver's.
+  const engine::World impulse = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSequentialImpulse, 1}, false, 3);
+  engine::WorldDef impulse_def;
+  impulse_def.solver = engine::ContactSolver::kSequentialImpulse;
+  CHECK(impulse.Def().velocity_iterations == engine::World(impulse_def).Def().velocity_iterations);
+}
