@@ -58,13 +58,14 @@ struct Scene {
 
 /// `rotation`: the same scene with turning bodies (the substep solver then takes 4 passes per
 /// substep instead of 1).
-/// `passes`: the substep solver's velocity passes per substep (0: the world's automatic choice).
+/// `passes`: the substep solver's velocity passes per substep (0: the scene's own setting, the
+/// world's automatic choice in every scene here).
 inline engine::World MakeWorld(const Scene& scene, Setting setting, bool rotation = false, int passes = 0) {
   engine::WorldDef def = scene.def;
   def.solver = setting.solver;
   def.substeps = setting.substeps;
   def.rotation = rotation;
-  if (setting.solver == engine::ContactSolver::kSubstep) def.velocity_iterations = passes;
+  if (passes > 0 && setting.solver == engine::ContactSolver::kSubstep) def.velocity_iterations = passes;
   engine::World world(def);
   scene.build(world);
   return world;
