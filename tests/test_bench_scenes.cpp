@@ -51,7 +51,8 @@ TEST_CASE("the bouncing-ball benchmark scene sees its five bounces in its own ru
 
 TEST_CASE("bench_solver's passes reach the substep solver and leave the other one alone", "[bench]") {
   const solver_bench::Scene scene = solver_bench::Scenes().front();
-  // The automatic choice stays the engine's own (World fills it in: 4 passes a substep).
+  // The automatic choice stays the engine's own (World fills it in: one pass a substep where
+  // nothing turns).
   const engine::World automatic = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 4});
   CHECK(automatic.Def().velocity_iterations == engine::World(engine::WorldDef{}).Def().velocity_iterations);
   const engine::World three = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 8}, true, 3);
