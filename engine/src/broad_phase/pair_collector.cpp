@@ -25,7 +25,7 @@ void PairCollector::Begin(std::span<const AABB> boxes, std::span<const PairQuota
   boxes_ = boxes;
   quotas_ = quotas;
   pairs_ = pairs;
-  pairs->clear();
+  size_ = 0;
   crowd_of_.clear();
   crowd_body_.clear();
   kept_.clear();
@@ -66,7 +66,7 @@ void PairCollector::AddPastQuota(std::uint32_t body, std::uint32_t other) {
     // Only bodies past their own quota get here, few outside a pile: the grown quota is worked
     // out for them alone, each time (it only depends on the box).
     if (charged_[body] <= GrownQuota(body)) {
-      pairs_->push_back(MakePair(body, other));
+      Push(MakePair(body, other));
       return;
     }
     crowd_of_[body] = static_cast<std::uint32_t>(crowd_body_.size());
@@ -78,23 +78,23 @@ void PairCollector::AddPastQuota(std::uint32_t body, std::uint32_t other) {
 }
 
 void PairCollector::KeepCrowdsBest() {
-  std::vector<BodyPair>& pairs = *pairs_;
   std::size_t write = 0;
-  for (const BodyPair& p : pairs) {
+  for (std::size_t k = 0; k < size_; ++k) {
+    const BodyPair p = list_[k];
     const std::uint32_t c = Charged(p);
     if (crowd_of_[c] == kNone) {
-      pairs[write++] = p;
+      list_[write++] = p;
     } else {
       Keep(c, RankOf(c, OtherBody(p, c)));
     }
   }
-  pairs.resize(write);
+  size_ = write;
   for (std::size_t list = 0; list < crowd_body_.size(); ++list) {
     const std::uint32_t body = crowd_body_[list];
     for (std::uint32_t k = 0; k < kCrowdPairs; ++k) {
       const std::uint32_t other = kept_[list * kCrowdPairs + k].other;
       if (other == kNone) break;
-      pairs.push_back(MakePair(body, other));
+      Push(MakePair(body, other));
     }
   }
 }
@@ -127,9 +127,10 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
     return;
   }
   const auto threads = static_cast<std::size_t>(pool->Threads());
-  const std::size_t first = pairs_->size();
-  pairs_->resize(first + total);
-  BodyPair* const out = pairs_->data() + first;
+  const std::size_t first = size_;
+  if (list_.size() < first + total) list_.resize(first + total);  // only its growth is zeroed
+  size_ = first + total;
+  BodyPair* const out = list_.data() + first;
   // visit(k, pair) for the pairs [total·t/T, total·(t+1)/T) of the runs joined.
   const auto for_share = [&](std::size_t t, auto&& visit) {
     const std::size_t begin = total * t / threads, end = total * (t + 1) / threads;
@@ -219,7 +220,7 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
     for (std::size_t b = 0; b < bodies; ++b) {
       for (const auto& charges : thread_charges_) charged_[b] -= charges.value[b];
     }
-    pairs_->resize(first);
+    size_ = first;
     add_each();
     return;
   }
@@ -232,9 +233,9 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
 }
 
 void PairCollector::Finish() {
-  std::vector<BodyPair>& pairs = *pairs_;
+  list_.resize(size_);  // shorter or as long: nothing is zeroed
   // AddRuns' tallies hold while nothing came after it.
-  const bool tallied = sorted_to_ == pairs.size() && sorted_to_ > 0 && crowd_body_.empty();
+  const bool tallied = sorted_to_ == size_ && sorted_to_ > 0 && crowd_body_.empty();
   if (!quotas_.empty()) {
     std::uint64_t offered = offered_;
     if (!tallied) {
@@ -246,20 +247,23 @@ void PairCollector::Finish() {
     }
     if (!crowd_body_.empty()) {
       KeepCrowdsBest();
+      list_.resize(size_);
       sorted_from_ = sorted_to_ = 0;
     }
-    dropped_ = offered - pairs.size();
+    dropped_ = offered - size_;
   }
   // The tree finds its pairs in order already (but for a crowded body's, KeepCrowdsBest's);
   // what AddRuns saw in order is not looked at again.
   const auto in_order = [&](std::size_t begin, std::size_t end) {
-    return end <= begin + 1 || std::is_sorted(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
-                                              pairs.begin() + static_cast<std::ptrdiff_t>(end));
+    return end <= begin + 1 || std::is_sorted(list_.begin() + static_cast<std::ptrdiff_t>(begin),
+                                              list_.begin() + static_cast<std::ptrdiff_t>(end));
   };
   const bool sorted = sorted_to_ > sorted_from_
-                          ? in_order(0, sorted_from_ + 1) && in_order(sorted_to_ - 1, pairs.size())
-                          : in_order(0, pairs.size());
-  if (!sorted) detail::SortPairs(boxes_.size(), pairs_, &scratch_, &counts_);
+                          ? in_order(0, sorted_from_ + 1) && in_order(sorted_to_ - 1, size_)
+                          : in_order(0, size_);
+  if (!sorted) detail::SortPairs(boxes_.size(), &list_, &scratch_, &counts_);
+  // The caller's list takes these pairs; its old elements are the next call's to write over.
+  pairs_->swap(list_);
 }
 
 }  // namespace engine
