@@ -621,15 +621,18 @@ void SubstepSolver::DropClosingLags(const StepContext& context, std::span<const 
                                     const StepStart& start) {
   if (std::none_of(impact_lags_.begin(), impact_lags_.end(), [](double lag) { return lag != 0.0; })) return;
   const std::size_t n = context.states.size();
-  // Each body's contacts, by index.
+  // Each body's contacts, by index, from the contacts' bodies alone (8 bytes a contact; read from
+  // the contacts themselves, 152, this pass had 37 of a perf profile's 8 000 samples of the
+  // 4 000-circle pour on one thread, against 13 now).
+  const std::span<const BodyPair> pairs = context.contact_pairs;
   lag_first_.assign(n + 1, 0);
-  for (const Contact& c : context.contacts) ++lag_first_[c.a + 1], ++lag_first_[c.b + 1];
+  for (const BodyPair& c : pairs) ++lag_first_[c.a + 1], ++lag_first_[c.b + 1];
   for (std::size_t i = 0; i < n; ++i) lag_first_[i + 1] += lag_first_[i];
   lag_contacts_.resize(lag_first_[n]);
   lag_fill_.assign(lag_first_.begin(), lag_first_.end() - 1);
-  for (std::uint32_t i = 0; i < context.contacts.size(); ++i) {
-    lag_contacts_[lag_fill_[context.contacts[i].a]++] = i;
-    lag_contacts_[lag_fill_[context.contacts[i].b]++] = i;
+  for (std::uint32_t i = 0; i < pairs.size(); ++i) {
+    lag_contacts_[lag_fill_[pairs[i].a]++] = i;
+    lag_contacts_[lag_fill_[pairs[i].b]++] = i;
   }
   const double slop = context.def.linear_slop;
   // Whether moving `body` by `shift` takes another of its contacts than `bouncing` past the slop.
