@@ -55,6 +55,11 @@ TEST_CASE("bench_solver's passes reach the substep solver and leave the other on
   // nothing turns).
   const engine::World automatic = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 4});
   CHECK(automatic.Def().velocity_iterations == engine::World(engine::WorldDef{}).Def().velocity_iterations);
+  // A scene's own setting stays when no passes are asked for.
+  solver_bench::Scene own = scene;
+  own.def.velocity_iterations = 5;
+  CHECK(solver_bench::MakeWorld(own, {engine::ContactSolver::kSubstep, 4}).Def().velocity_iterations == 5);
+  CHECK(solver_bench::MakeWorld(own, {engine::ContactSolver::kSubstep, 4}, false, 2).Def().velocity_iterations == 2);
   const engine::World three = solver_bench::MakeWorld(scene, {engine::ContactSolver::kSubstep, 8}, true, 3);
   CHECK(three.Def().velocity_iterations == 3);
   CHECK(three.Def().substeps == 8);
