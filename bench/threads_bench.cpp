@@ -47,18 +47,21 @@ struct Timing {
 /// thread; on two, each thread its own half every pass; and on two, the halves swapped every
 /// pass, so that each thread reads states the other core wrote last. Where the third is far
 /// above the first, a pass shared between cores pays for every body it takes from the other.
+/// And an empty job on two threads: what the pool's hand-off alone costs, each of a step's
+/// dozens of jobs (against the round trip, its floor).
 struct CrossCore {
-  double one_thread, own_halves, swapped_halves;
+  double one_thread, own_halves, swapped_halves, empty_job;
 };
 
 CrossCore MeasureCrossCore(std::uint32_t count, int passes) {
   std::vector<engine::BodyState> states(count);
-  const auto time_passes = [&](int threads, bool swap) {
+  const auto time_passes = [&](int threads, bool swap, bool work = true) {
     engine::detail::WorkerPool pool(threads);
     const auto parts = static_cast<std::uint64_t>(threads);
     const auto start = bench::Clock::now();
     for (int pass = 0; pass < passes; ++pass) {
       pool.RunOnAll([&](int thread) {
+        if (!work) return;
         const auto part = static_cast<std::uint64_t>(swap ? (thread + pass) % threads : thread);
         const auto begin = static_cast<std::uint32_t>(count * part / parts);
         const auto end = static_cast<std::uint32_t>(count * (part + 1) / parts);
@@ -72,7 +75,7 @@ CrossCore MeasureCrossCore(std::uint32_t count, int passes) {
     }
     return 1e6 * bench::SecondsSince(start) / passes;
   };
-  return {time_passes(1, false), time_passes(2, false), time_passes(2, true)};
+  return {time_passes(1, false), time_passes(2, false), time_passes(2, true), time_passes(2, false, false)};
 }
 
 /// ns for one thread to hand a flag to another and get it back (the median of 5 batches of
@@ -187,19 +190,20 @@ int main(int argc, char** argv) {
     if (!same) status = 1;
   }
   bench::Progress("cross-core");
-  std::vector<double> one, own, swapped;
+  std::vector<double> one, own, swapped, empty;
   for (int r = 0; r < repeats; ++r) {
     const CrossCore c = MeasureCrossCore(4000, options.quick ? 2000 : 20000);
     one.push_back(c.one_thread);
     own.push_back(c.own_halves);
     swapped.push_back(c.swapped_halves);
+    empty.push_back(c.empty_job);
   }
   bench::Progress("");
   std::printf("\ncross-core: a pass over 4 000 body states (semi-implicit Euler) through the worker pool, µs/pass, "
               "median of %d: 1 thread %s; 2 threads, each its own half %s; 2 threads, halves swapped every pass "
-              "(each reads what the other core wrote) %s\n",
+              "(each reads what the other core wrote) %s; an empty job on 2 threads %s\n",
               repeats, bench::Number(bench::Median(one)).c_str(), bench::Number(bench::Median(own)).c_str(),
-              bench::Number(bench::Median(swapped)).c_str());
+              bench::Number(bench::Median(swapped)).c_str(), bench::Number(bench::Median(empty), "%.3f").c_str());
   std::printf("\n");
   bench::PrintMachine(load);
   return bench::ReportCsv(csv != nullptr, options.out_dir, {"threads.csv (ms/step at 1 and 2 threads)"}, status);

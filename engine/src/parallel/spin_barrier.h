@@ -9,7 +9,7 @@
 
 namespace engine::detail {
 
-class SpinBarrier {
+class alignas(64) SpinBarrier {
  public:
   explicit SpinBarrier(int threads) : threads_(threads) {}
 
