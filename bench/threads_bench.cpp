@@ -47,21 +47,20 @@ struct Timing {
 /// thread; on two, each thread its own half every pass; and on two, the halves swapped every
 /// pass, so that each thread reads states the other core wrote last. Where the third is far
 /// above the first, a pass shared between cores pays for every body it takes from the other.
-/// And an empty job on two threads: what the pool's hand-off alone costs, each of a step's
-/// dozens of jobs (against the round trip, its floor).
+/// And a job that does nothing on two threads: what the pool's hand-off alone costs each of a
+/// step's dozens of jobs (the core round trip is its floor).
 struct CrossCore {
   double one_thread, own_halves, swapped_halves, empty_job;
 };
 
 CrossCore MeasureCrossCore(std::uint32_t count, int passes) {
   std::vector<engine::BodyState> states(count);
-  const auto time_passes = [&](int threads, bool swap, bool work = true) {
+  const auto time_passes = [&](int threads, bool swap) {
     engine::detail::WorkerPool pool(threads);
     const auto parts = static_cast<std::uint64_t>(threads);
     const auto start = bench::Clock::now();
     for (int pass = 0; pass < passes; ++pass) {
       pool.RunOnAll([&](int thread) {
-        if (!work) return;
         const auto part = static_cast<std::uint64_t>(swap ? (thread + pass) % threads : thread);
         const auto begin = static_cast<std::uint32_t>(count * part / parts);
         const auto end = static_cast<std::uint32_t>(count * (part + 1) / parts);
@@ -75,7 +74,13 @@ CrossCore MeasureCrossCore(std::uint32_t count, int passes) {
     }
     return 1e6 * bench::SecondsSince(start) / passes;
   };
-  return {time_passes(1, false), time_passes(2, false), time_passes(2, true), time_passes(2, false, false)};
+  const auto time_empty_jobs = [&] {
+    engine::detail::WorkerPool pool(2);
+    const auto start = bench::Clock::now();
+    for (int pass = 0; pass < passes; ++pass) pool.RunOnAll([](int) {});
+    return 1e6 * bench::SecondsSince(start) / passes;
+  };
+  return {time_passes(1, false), time_passes(2, false), time_passes(2, true), time_empty_jobs()};
 }
 
 /// ns for one thread to hand a flag to another and get it back (the median of 5 batches of
