@@ -9,6 +9,8 @@
 
 namespace engine::detail {
 
+/// A cache line of its own: on the caller's stack it could share one with the caller's other
+/// locals, written while the other threads spin on it.
 class alignas(64) SpinBarrier {
  public:
   explicit SpinBarrier(int threads) : threads_(threads) {}
