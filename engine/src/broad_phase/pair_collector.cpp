@@ -233,7 +233,6 @@ void PairCollector::AddRuns(std::span<const std::span<const BodyPair>> runs, det
 }
 
 void PairCollector::Finish() {
-  list_.resize(size_);  // shorter or as long: nothing is zeroed
   // AddRuns' tallies hold while nothing came after it.
   const bool tallied = sorted_to_ == size_ && sorted_to_ > 0 && crowd_body_.empty();
   if (!quotas_.empty()) {
@@ -247,11 +246,11 @@ void PairCollector::Finish() {
     }
     if (!crowd_body_.empty()) {
       KeepCrowdsBest();
-      list_.resize(size_);
       sorted_from_ = sorted_to_ = 0;
     }
     dropped_ = offered - size_;
   }
+  list_.resize(size_);  // shorter or as long: nothing is zeroed
   // The tree finds its pairs in order already (but for a crowded body's, KeepCrowdsBest's);
   // what AddRuns saw in order is not looked at again.
   const auto in_order = [&](std::size_t begin, std::size_t end) {
